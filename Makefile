@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: MIT
+# pt: a portable wavefront path tracer in C11 + OpenCL C 1.2.
+#   make          build build/pt              make run    install deps, build, render the default scene
+#   make test     build and run every test    make asan   build with address+undefined sanitizers
+#   make bench    run the benchmark suites    make clean
+# Variables: OPT (optimisation flags), V=1 (show commands), SCENE, DEVICE.
+
+CC      ?= cc
+CXX     ?= c++
+OPT     ?= -O2 -g
+BUILD   ?= build
+PKGS    := OpenCL libcjson glfw3 tinyobjloader
+CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr/include/stb \
+            $(shell pkg-config --cflags-only-I $(PKGS) 2>/dev/null) -D_POSIX_C_SOURCE=200809L -DCL_TARGET_OPENCL_VERSION=120
+CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP
+CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
+LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -lm -lpthread
+TEST_LDLIBS := -lcriterion
+
+ifeq ($(V),1)
+Q :=
+else
+Q := @
+endif
+
+# The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
+CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl \
+              cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/scan.cl cl/render_aov.cl \
+              cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
+              cl/intersect_shadow.cl cl/accumulate_film.cl
+
+HOST_C   := $(filter-out host/main.c,$(wildcard host/*.c))
+HOST_CXX := $(wildcard host/*.cc)
+LIB_OBJS := $(HOST_C:host/%.c=$(BUILD)/host/%.o) $(HOST_CXX:host/%.cc=$(BUILD)/host/%.o) \
+            $(BUILD)/kernel_source.o
+TESTS    := $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_*.c))
+TEST_SUPPORT := $(BUILD)/tests/support.o
+
+SCENE   ?= scenes/cornell-box
+DEVICE  ?=
+
+.PHONY: all run test asan bench clean deps
+all: $(BUILD)/pt
+
+deps:
+	$(Q)./tools/install-deps.sh
+
+run: deps
+	$(Q)$(MAKE) --no-print-directory all
+	$(BUILD)/pt render $(SCENE) $(if $(DEVICE),--device $(DEVICE))
+
+test: deps
+	$(Q)$(MAKE) --no-print-directory all $(TESTS)
+	$(Q)./tools/run-tests.sh $(TESTS)
+
+asan:
+	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
+	    LDFLAGS="-fsanitize=address,undefined" all
+
+bench: all
+	$(Q)./tools/bench.sh
+
+clean:
+	rm -rf build build-asan
+
+$(BUILD)/pt: $(BUILD)/host/main.o $(BUILD)/libpt.a
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/libpt.a: $(LIB_OBJS)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/kernel_source.c: $(CL_SOURCES) tools/embed-cl.sh Makefile
+	@mkdir -p $(@D)
+	@echo "  EMBED $@"
+	$(Q)./tools/embed-cl.sh $@ $(CL_SOURCES)
+
+$(BUILD)/%.o: $(BUILD)/%.c
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/host/%.o: host/%.c
+	@mkdir -p $(@D)
+	@echo "  CC    $<"
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/host/%.o: host/%.cc
+	@mkdir -p $(@D)
+	@echo "  CXX   $<"
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
+
+$(BUILD)/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	@echo "  CC    $<"
+	$(Q)$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,2 @@
+/* SPDX-License-Identifier: MIT */
+/* accumulate_film.cl: not written yet. */

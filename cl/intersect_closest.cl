@@ -1,0 +1,2 @@
+/* SPDX-License-Identifier: MIT */
+/* intersect_closest.cl: not written yet. */

@@ -1,0 +1,2 @@
+/* SPDX-License-Identifier: MIT */
+/* intersect_shadow.cl: not written yet. */

@@ -1,0 +1,2 @@
+/* SPDX-License-Identifier: MIT */
+/* shade_surface.cl: not written yet. */

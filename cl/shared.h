@@ -1,0 +1,119 @@
+/* SPDX-License-Identifier: MIT */
+/* shared.h: every struct and constant that crosses the host/device boundary. Compiled by the host C
+ * compiler (through host/shared_types.h) and by the OpenCL C compiler (first file of the program).
+ * Rules: only 4-byte scalars, float2/float4/uint4; no float3, bool, size_t, enum or pointers; sizes
+ * are checked on the host with _Static_assert and on the device by the report_sizes test kernel. */
+#ifndef PT_SHARED_H
+#define PT_SHARED_H
+
+#ifndef __OPENCL_C_VERSION__
+/* Host prelude: map OpenCL C names onto <CL/cl.h> types. */
+#include <CL/cl.h>
+typedef cl_float4 float4;
+typedef cl_float2 float2;
+typedef cl_uint4 uint4;
+typedef cl_uint uint;
+#endif
+
+/* ---- Geometry ------------------------------------------------------------------------------ */
+
+/* Triangle corner indices into the vertex arrays (positions, normals, uvs share one index space),
+ * w = TRIANGLE_* flags. Per-triangle material ids live in their own array. */
+#define TRIANGLE_HAS_NORMALS 1u /* interpolate normals[]; otherwise shade with the geometric normal */
+#define TRIANGLE_HAS_UVS 2u     /* interpolate uvs[]; otherwise uv = barycentrics */
+typedef struct {
+    uint4 v; /* x, y, z: vertex indices; w: flags */
+} Triangle;
+
+/* BVH node, 2-wide with both children's boxes in the parent (Aila & Laine 2009): one 64-byte fetch
+ * decides which children to visit. For each child: box min in xyz, box max in xyz; the w lanes hold
+ * the child reference: child_index >= 0 is an inner node, otherwise ~first_triangle with the count
+ * in the matching count lane. */
+typedef struct {
+    float4 lmin; /* left child box min; w: as_float(left reference) */
+    float4 lmax; /* left child box max; w: as_float(left triangle count, 0 for an inner node) */
+    float4 rmin; /* right child box min; w: as_float(right reference) */
+    float4 rmax; /* right child box max; w: as_float(right triangle count) */
+} BvhNode;
+
+/* Triangle in BVH leaf order, precomputed for the intersection test. */
+typedef struct {
+    float4 v0; /* w: as_float(original triangle index) */
+    float4 v1;
+    float4 v2;
+} BvhTriangle;
+
+/* ---- Materials and textures ---------------------------------------------------------------- */
+
+#define MATERIAL_DIFFUSE 0u
+#define MATERIAL_MIRROR 1u
+#define MATERIAL_DIELECTRIC 2u
+
+#define NO_TEXTURE 0xffffffffu
+
+typedef struct {
+    float4 kd; /* diffuse albedo (linear rgb); w unused */
+    float4 ks; /* mirror reflectance; w unused */
+    float4 ke; /* emitted radiance (one-sided, front = counter-clockwise side); w: luminance */
+    float4 tf; /* dielectric transmission tint; w unused */
+    float ior; /* index of refraction (dielectric) */
+    uint type; /* MATERIAL_* */
+    uint map_kd; /* texture index or NO_TEXTURE */
+    uint pad0;
+} Material;
+
+#define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */
+#define TEXTURE_RGBA32F 1u    /* four uints per texel (float bits), linear */
+
+typedef struct {
+    uint offset; /* first uint of the texture in the texel buffer */
+    uint width;
+    uint height;
+    uint format; /* TEXTURE_* */
+} TextureInfo;
+
+/* ---- Camera and per-render parameters ------------------------------------------------------- */
+
+typedef struct {
+    float4 eye;     /* xyz: position; w: lens radius (0 = pinhole) */
+    float4 right;   /* unit vector, image +x; w: focus distance */
+    float4 up;      /* unit vector, image -y (rows go down); w: tan(fov_y / 2) */
+    float4 forward; /* unit vector toward the target; w: aspect (width / height) */
+} Camera;
+
+#define AOV_ALBEDO 0u
+#define AOV_NORMAL 1u
+#define AOV_DEPTH 2u
+
+typedef struct {
+    Camera camera;
+    float4 background; /* radiance of escaped rays */
+    uint width;
+    uint height;
+    uint seed;
+    uint max_depth;
+    uint sample_index;   /* first sample index of this pass */
+    uint num_triangles;
+    uint num_emissive;   /* emissive triangles in the light table */
+    uint aov;            /* AOV_* for render_aov */
+    float emissive_power; /* total emitted power of the light table (for pdfs) */
+    uint flags;          /* RENDER_* */
+    uint pad0;
+    uint pad1;
+} RenderParams;
+
+#define RENDER_NO_NEE 1u
+
+/* ---- Test support --------------------------------------------------------------------------- */
+
+/* Indices of the sizes written by the report_sizes test kernel. */
+#define SIZEOF_TRIANGLE 0
+#define SIZEOF_BVH_NODE 1
+#define SIZEOF_BVH_TRIANGLE 2
+#define SIZEOF_MATERIAL 3
+#define SIZEOF_TEXTURE_INFO 4
+#define SIZEOF_CAMERA 5
+#define SIZEOF_RENDER_PARAMS 6
+#define SIZEOF_COUNT 7
+
+#endif

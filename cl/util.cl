@@ -1,0 +1,28 @@
+/* SPDX-License-Identifier: MIT */
+/* util.cl: small vector helpers shared by every stage. */
+
+#define PT_PI 3.14159265358979323846f
+#define PT_INV_PI 0.31830988618379067154f
+
+inline float3 xyz(float4 v) { return (float3)(v.x, v.y, v.z); }
+
+inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+inline float luminance(float3 rgb) { return dot(rgb, (float3)(0.2126f, 0.7152f, 0.0722f)); }
+
+/* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
+inline void make_basis(float3 n, float3 *t, float3 *b)
+{
+    float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + n.z);
+    float c = n.x * n.y * a;
+    *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+}
+
+inline float3 to_world(float3 v, float3 n)
+{
+    float3 t, b;
+    make_basis(n, &t, &b);
+    return v.x * t + v.y * b + v.z * n;
+}

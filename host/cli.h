@@ -1,0 +1,31 @@
+/* SPDX-License-Identifier: MIT */
+/* cli.h: the command line of shared/DESIGN.md, parsed into one options struct (zero = default). */
+#ifndef PT_CLI_H
+#define PT_CLI_H
+
+#include <stdbool.h>
+
+#include "error.h"
+
+typedef enum { CMD_NONE, CMD_HELP, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
+
+typedef struct {
+    Command command;
+    const char *scene;  /* SCENE argument */
+    const char *device; /* --device, NULL = default */
+    const char *output; /* -o, NULL = out/<scene name>.{exr,png}, never overwriting */
+    const char *aov;    /* --aov albedo|normal|depth, NULL = path tracing */
+    int spp, max_depth, width, height; /* 0 = from the scene */
+    unsigned seed;
+    bool seed_given;
+    float exposure; /* stops, PNG only */
+    bool quiet;
+    bool preview;   /* with -o X.exr, also write X.png */
+    bool no_nee, no_compaction, profile;
+} Options;
+
+/* Parses argv; returns false with ERR_USAGE naming the offending argument. */
+bool cli_parse(int argc, char **argv, Options *out, Error *err);
+void cli_print_help(void);
+
+#endif

@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: MIT
+/* pt: command-line entry. Each command is a short sequence of named steps; bad input ends with one
+ * line naming the file/line/value and exit status 1. */
+#include <libgen.h>
+#include <strings.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "aov.h"
+#include "bvh.h"
+#include "camera.h"
+#include "cli.h"
+#include "device.h"
+#include "image_io.h"
+#include "scene.h"
+#include "scene_gpu.h"
+
+typedef struct {
+    char exr[1100];
+    char png[1100];
+} OutputPaths;
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static bool has_suffix(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+static bool exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* The scene's name: the file name without extension, or the folder's name. */
+static void scene_name(const char *scene_path, char *out, size_t size)
+{
+    char copy[1024];
+    snprintf(copy, sizeof copy, "%s", scene_path);
+    size_t n = strlen(copy);
+    while (n > 1 && copy[n - 1] == '/')
+        copy[--n] = '\0';
+    const char *base = basename(copy);
+    snprintf(out, size, "%s", base);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
+}
+
+/* -o names the output (and may overwrite it: the user asked). Without -o, out/<name>.exr + .png,
+ * numbered (<name>-2, -3, ...) so that nothing already there is overwritten. */
+static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *paths, Error *err)
+{
+    memset(paths, 0, sizeof *paths);
+    if (o->output) {
+        if (has_suffix(o->output, ".exr")) {
+            snprintf(paths->exr, sizeof paths->exr, "%s", o->output);
+            if (o->preview)
+                snprintf(paths->png, sizeof paths->png, "%.*s.png", (int)strlen(o->output) - 4,
+                         o->output);
+        } else if (has_suffix(o->output, ".png")) {
+            snprintf(paths->png, sizeof paths->png, "%s", o->output);
+        } else {
+            error_set(err, ERR_USAGE, NULL, 0, "-o %s: the output must end in .exr or .png", o->output);
+            return false;
+        }
+    } else {
+        char name[512];
+        scene_name(o->scene, name, sizeof name);
+        if (!exists("out") && mkdir("out", 0777) != 0) {
+            error_set(err, ERR_OUTPUT, "out", 0, "cannot create the output folder 'out'");
+            return false;
+        }
+        for (int n = 1; n < 10000; n++) {
+            char stem[600];
+            if (n == 1)
+                snprintf(stem, sizeof stem, "out/%s%s", name, suffix);
+            else
+                snprintf(stem, sizeof stem, "out/%s%s-%d", name, suffix, n);
+            snprintf(paths->exr, sizeof paths->exr, "%s.exr", stem);
+            snprintf(paths->png, sizeof paths->png, "%s.png", stem);
+            if (!exists(paths->exr) && !exists(paths->png))
+                break;
+        }
+    }
+    if (paths->exr[0] && !image_check_writable(paths->exr, err))
+        return false;
+    if (paths->png[0] && !image_check_writable(paths->png, err))
+        return false;
+    return true;
+}
+
+static bool apply_overrides(const Options *o, Scene *scene, Error *err)
+{
+    SceneDesc *d = &scene->desc;
+    if (o->width) d->width = o->width;
+    if (o->height) d->height = o->height;
+    if (o->spp) d->spp = o->spp;
+    if (o->max_depth) d->max_depth = o->max_depth;
+    if ((size_t)d->width * (size_t)d->height > (size_t)1 << 28) {
+        error_set(err, ERR_USAGE, NULL, 0, "film %dx%d is too large", d->width, d->height);
+        return false;
+    }
+    return true;
+}
+
+static unsigned aov_from_name(const char *name)
+{
+    if (!strcmp(name, "normal")) return AOV_NORMAL;
+    if (!strcmp(name, "depth")) return AOV_DEPTH;
+    return AOV_ALBEDO;
+}
+
+/* PNG previews of AOVs: normals mapped from [-1, 1] to [0, 1], depth scaled by its maximum. */
+static void aov_png_remap(unsigned aov, float *rgb, size_t n)
+{
+    if (aov == AOV_NORMAL) {
+        for (size_t i = 0; i < 3 * n; i++)
+            rgb[i] = 0.5f * rgb[i] + 0.5f;
+    } else if (aov == AOV_DEPTH) {
+        float max_depth = 0.0f;
+        for (size_t i = 0; i < 3 * n; i++)
+            max_depth = rgb[i] > max_depth ? rgb[i] : max_depth;
+        for (size_t i = 0; i < 3 * n && max_depth > 0.0f; i++)
+            rgb[i] /= max_depth;
+    }
+}
+
+static int command_render(const Options *o)
+{
+    Error err = {0};
+    double t0 = seconds_now();
+    Scene scene;
+    if (!scene_load(o->scene, &scene, &err) || !apply_overrides(o, &scene, &err))
+        die("%s", err.message);
+    double t_load = seconds_now();
+    OutputPaths out;
+    char suffix[32] = "";
+    if (o->aov)
+        snprintf(suffix, sizeof suffix, "-%s", o->aov);
+    if (!plan_outputs(o, suffix, &out, &err))
+        die("%s", err.message);
+
+    Device dev;
+    if (!device_open(&dev, o->device, &err) || !device_build(&dev, NULL, NULL, &err))
+        die("%s", err.message);
+    Bvh bvh;
+    bvh_build(&bvh, scene.data.positions, scene.data.triangles, scene.data.num_triangles);
+    double t_bvh = seconds_now();
+    SceneBuffers buffers;
+    if (!scene_buffers_upload(&dev, &scene.data, &bvh, &buffers, &err))
+        die("%s", err.message);
+    if (!o->quiet)
+        fprintf(stderr,
+                "pt: %s: %u triangles, %u materials, %u textures; load %.2f s, kernel build %.2f s, "
+                "BVH %.2f s; device %s\n",
+                scene.desc.path, scene.data.num_triangles, scene.data.num_materials,
+                scene.data.textures.count, t_load - t0, dev.build_seconds, t_bvh - t_load - dev.build_seconds,
+                dev.name);
+
+    size_t num_pixels = (size_t)scene.desc.width * (size_t)scene.desc.height;
+    float *rgb = malloc(num_pixels * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", scene.desc.width, scene.desc.height);
+    unsigned seed = o->seed_given ? o->seed : 0u;
+    unsigned aov = AOV_ALBEDO;
+    if (o->aov) {
+        aov = aov_from_name(o->aov);
+        aov_render(&dev, &scene, &buffers, aov, scene.desc.spp, seed, rgb);
+    } else {
+        die("path tracing is not available in this build yet; use --aov albedo|normal|depth");
+    }
+
+    if (out.exr[0]) {
+        if (!image_write_exr(out.exr, rgb, scene.desc.width, scene.desc.height, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out.exr);
+    }
+    if (out.png[0]) {
+        if (o->aov)
+            aov_png_remap(aov, rgb, num_pixels);
+        if (!image_write_png(out.png, rgb, scene.desc.width, scene.desc.height, o->exposure, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out.png);
+    }
+    free(rgb);
+    scene_buffers_release(&buffers);
+    bvh_free(&bvh);
+    device_close(&dev);
+    scene_free(&scene);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    Options o;
+    Error err = {0};
+    if (!cli_parse(argc, argv, &o, &err))
+        die("%s", err.message);
+    switch (o.command) {
+    case CMD_HELP:
+    case CMD_NONE:
+        cli_print_help();
+        return 0;
+    case CMD_DEVICES:
+        if (!device_list(stdout, &err))
+            die("%s", err.message);
+        return 0;
+    case CMD_RENDER:
+        return command_render(&o);
+    case CMD_VIEW:
+        die("'pt view' is not available in this build yet; use 'pt render'");
+    case CMD_BENCH:
+        die("'pt bench' is not available in this build yet");
+    }
+    return 0;
+}

@@ -1,0 +1,13 @@
+/* SPDX-License-Identifier: MIT */
+/* report_sizes: writes sizeof of every shared struct, indexed by SIZEOF_*, so the host can check
+ * that both compilers lay them out alike. */
+kernel void report_sizes(global uint *out)
+{
+    out[SIZEOF_TRIANGLE] = sizeof(Triangle);
+    out[SIZEOF_BVH_NODE] = sizeof(BvhNode);
+    out[SIZEOF_BVH_TRIANGLE] = sizeof(BvhTriangle);
+    out[SIZEOF_MATERIAL] = sizeof(Material);
+    out[SIZEOF_TEXTURE_INFO] = sizeof(TextureInfo);
+    out[SIZEOF_CAMERA] = sizeof(Camera);
+    out[SIZEOF_RENDER_PARAMS] = sizeof(RenderParams);
+}

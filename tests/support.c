@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+#include "support.h"
+
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+bool assets_available(void)
+{
+    struct stat st;
+    return stat(ASSETS_DIR "/cornell-box/CornellBox-Original.obj", &st) == 0;
+}
+
+char *test_read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *data = malloc((size_t)n + 1);
+    if (data && fread(data, 1, (size_t)n, f) != (size_t)n) {
+        free(data);
+        data = NULL;
+    }
+    fclose(f);
+    if (data) {
+        data[n] = '\0';
+        if (size)
+            *size = (size_t)n;
+    }
+    return data;
+}
+
+static int compare_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Concatenates tests/cl/NAME.cl in name order, each after a #line marker. */
+static char *test_kernel_source(void)
+{
+    DIR *dir = opendir("tests/cl");
+    cr_assert(dir, "tests/cl not found: run the tests from the repository root");
+    char *names[256];
+    int count = 0;
+    struct dirent *entry;
+    while ((entry = readdir(dir)) && count < 256) {
+        size_t n = strlen(entry->d_name);
+        if (n > 3 && strcmp(entry->d_name + n - 3, ".cl") == 0)
+            names[count++] = strdup(entry->d_name);
+    }
+    closedir(dir);
+    qsort(names, (size_t)count, sizeof names[0], compare_names);
+    size_t total = 1;
+    char *source = calloc(1, 1);
+    for (int i = 0; i < count; i++) {
+        char path[512];
+        snprintf(path, sizeof path, "tests/cl/%s", names[i]);
+        size_t size = 0;
+        char *text = test_read_file(path, &size);
+        cr_assert(text, "cannot read %s", path);
+        char marker[600];
+        int m = snprintf(marker, sizeof marker, "\n#line 1 \"tests/cl/%s\"\n", names[i]);
+        source = realloc(source, total + (size_t)m + size);
+        memcpy(source + total - 1, marker, (size_t)m);
+        memcpy(source + total - 1 + m, text, size);
+        total += (size_t)m + size;
+        source[total - 1] = '\0';
+        free(text);
+        free(names[i]);
+    }
+    return source;
+}
+
+Device *test_device(void)
+{
+    Device *dev = calloc(1, sizeof *dev);
+    Error err = {0};
+    const char *spec = getenv("PT_TEST_DEVICE");
+    cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
+    char *source = test_kernel_source();
+    bool built = device_build(dev, source, "tests", &err);
+    free(source);
+    cr_assert(built, "device_build: %s", err.message);
+    return dev;
+}
+
+void test_device_release(Device *dev)
+{
+    device_close(dev);
+    free(dev);
+}
+
+const char *test_temp_dir(void)
+{
+    static char path[64];
+    snprintf(path, sizeof path, "/tmp/pt-test-XXXXXX");
+    cr_assert(mkdtemp(path), "mkdtemp failed");
+    return path;
+}

@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* support.h: helpers shared by the Criterion test binaries (tests/test_*.c). Tests run from the
+ * repository root; the public assets are read from ../shared/assets when present. */
+#ifndef PT_TEST_SUPPORT_H
+#define PT_TEST_SUPPORT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "device.h"
+
+#define ASSETS_DIR "../shared/assets"
+
+/* True when ../shared/assets exists; tests that need it skip otherwise. */
+bool assets_available(void);
+#define REQUIRE_ASSETS()                                             \
+    do {                                                             \
+        if (!assets_available())                                     \
+            cr_skip_test("../shared/assets not found: skipped");     \
+    } while (0)
+
+/* Opens the test device (PT_TEST_DEVICE, default "cpu" = PoCL) and builds the program: the
+ * embedded cl/ sources plus every tests/cl/NAME.cl in name order, so all tests share one build (and
+ * PoCL's kernel cache). Fails the test with the error on failure. */
+Device *test_device(void);
+void test_device_release(Device *dev);
+
+/* Reads a whole file; NULL when it cannot. */
+char *test_read_file(const char *path, size_t *size);
+
+/* A fresh temporary folder under /tmp; returned string is static per call site use. */
+const char *test_temp_dir(void);
+
+#endif

@@ -1,0 +1,26 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# run-tests.sh BINARY...: runs every Criterion test binary from the repository root, then prints
+# one total line "tests: N passed, N failed". Exit status is non-zero if any test failed or crashed.
+set -u
+passed=0; failed=0; status=0
+for t in "$@"; do
+    echo "== $t"
+    log=$(mktemp)
+    "$t" --jobs 2 2>&1 | tee "$log"
+    rc=$?
+    line=$(grep -o 'Tested: [0-9]* | Passing: [0-9]* | Failing: [0-9]* | Crashing: [0-9]*' "$log" | tail -1)
+    if [ -z "$line" ]; then
+        echo "run-tests: $t printed no synthesis (exit $rc)"
+        failed=$((failed + 1)); status=1
+    else
+        p=$(echo "$line" | sed 's/.*Passing: \([0-9]*\).*/\1/')
+        f=$(echo "$line" | sed 's/.*Failing: \([0-9]*\).*/\1/')
+        c=$(echo "$line" | sed 's/.*Crashing: \([0-9]*\).*/\1/')
+        passed=$((passed + p)); failed=$((failed + f + c))
+        [ "$f" -ne 0 ] || [ "$c" -ne 0 ] && status=1
+    fi
+    rm -f "$log"
+done
+echo "tests: $passed passed, $failed failed"
+exit $status
