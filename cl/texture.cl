@@ -31,9 +31,12 @@ float4 texture_sample(const global uint *texels, const global TextureInfo *textu
                       float2 uv)
 {
     TextureInfo info = textures[index];
-    /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. */
-    float x = (uv.x - floor(uv.x)) * (float)info.width - 0.5f;
-    float y = (1.0f - (uv.y - floor(uv.y))) * (float)info.height - 0.5f;
+    /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. The
+     * fmin/fmax keep a NaN or infinite uv (and rounding of the fraction up to 1) from reaching the
+     * float-to-int conversions below, whose out-of-range result is undefined. */
+    float w = (float)info.width, h = (float)info.height;
+    float x = fmin(fmax((uv.x - floor(uv.x)) * w - 0.5f, -0.5f), w - 0.5f);
+    float y = fmin(fmax((1.0f - (uv.y - floor(uv.y))) * h - 0.5f, -0.5f), h - 0.5f);
     float fx = floor(x), fy = floor(y);
     float ax = x - fx, ay = y - fy;
     int x0 = wrap_coord((int)fx, (int)info.width), x1 = wrap_coord((int)fx + 1, (int)info.width);
