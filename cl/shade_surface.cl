@@ -1,2 +1,111 @@
 /* SPDX-License-Identifier: MIT */
-/* shade_surface.cl: not written yet. */
+/* shade_surface: one path vertex. Adds emission (MIS-weighted against light sampling), queues a
+ * next-event shadow ray for diffuse surfaces, samples the BSDF for the next segment and applies
+ * Russian roulette. depth = segments traced so far (1 after the camera ray).
+ * Reads: hit, ray_*, throughput, scene. Writes: radiance, throughput, ray_* (next segment),
+ * shadow_* (w = 1 when queued), alive. Next: intersect_shadow, then compaction. */
+
+/* Emission seen along the ray, with the MIS weight against next-event estimation. */
+inline float3 emission_seen(constant RenderParams *p, Material m, float t, float cos_light,
+                            float prev_pdf_w, uint depth)
+{
+    if (m.ke.w <= 0.0f || cos_light <= 0.0f)
+        return (float3)(0.0f);
+    /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
+    if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
+        return xyz(m.ke);
+    /* light_sample picks a triangle with probability area * luminance / total power, then a point
+     * with density 1 / area: per unit area that is luminance / total power. */
+    float light_pdf = m.ke.w / p->emissive_power * t * t / cos_light;
+    return xyz(m.ke) * mis_power(prev_pdf_w, light_pdf);
+}
+
+kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
+                          const global uint *active, uint n_active, uint depth)
+{
+    uint i = get_global_id(0);
+    if (i >= n_active)
+        return;
+    uint slot = active[i];
+    if (!alive[slot])
+        return;
+    float4 h = hit[slot];
+    float4 dir4 = ray_direction[slot];
+    float3 beta = xyz(throughput[slot]);
+    uint prim = as_uint(h.w);
+    if (prim == HIT_NONE) {
+        radiance[slot] += (float4)(beta * xyz(p->background), 0.0f);
+        alive[slot] = 0u;
+        return;
+    }
+    Hit hh = {h.x, h.y, h.z, prim};
+    SurfaceHit surf = surface_at(hh, positions, normals, uvs, triangles, material_ids);
+    Material m = materials[surf.material];
+    float3 wo = -xyz(dir4);
+    float cos_o_geometric = dot(wo, surf.geometric_normal);
+    bool front = cos_o_geometric > 0.0f;
+    float3 ng = front ? surf.geometric_normal : -surf.geometric_normal;
+    float3 ns = front ? surf.shading_normal : -surf.shading_normal;
+    if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
+        ns = ng;
+
+    float3 L = emission_seen(p, m, h.x, cos_o_geometric, dir4.w, depth);
+    float3 gathered = beta * L;
+
+    bool path_continues = depth < p->max_depth;
+    shadow_contribution[slot] = (float4)(0.0f);
+    if (path_continues) {
+        uint pixel = slot_pixel(p, slot), sample = slot_sample(p, slot), bounce = depth - 1u;
+        float3 albedo = xyz(m.kd);
+        if (m.map_kd != NO_TEXTURE)
+            albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
+
+        /* Next-event estimation: diffuse surfaces only (delta lobes cannot meet a sampled light). */
+        if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
+            LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
+                                          materials, surf.position,
+                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_PICK, p->seed),
+                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_U, p->seed),
+                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_V, p->seed));
+            float3 wi = normalize(ls.position - surf.position);
+            float bsdf_pdf;
+            float3 f_cos = diffuse_eval_cos(albedo, ns, wi, &bsdf_pdf);
+            if (ls.pdf_w > 0.0f && bsdf_pdf > 0.0f && dot(wi, ng) > 0.0f) {
+                float3 contribution = beta * f_cos * ls.radiance *
+                                      (mis_power(ls.pdf_w, bsdf_pdf) / ls.pdf_w);
+                float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
+                float dist = length(ls.position - origin);
+                /* Stop just short of the light so its own triangle does not occlude it. */
+                shadow_origin[slot] = (float4)(origin, dist * (1.0f - 1e-4f));
+                shadow_direction[slot] = (float4)((ls.position - origin) / dist, 0.0f);
+                shadow_contribution[slot] = (float4)(contribution, 1.0f);
+            }
+        }
+
+        BsdfSample bs = bsdf_sample(m, albedo, wo, ns, front,
+                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_U, p->seed),
+                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_V, p->seed),
+                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_LOBE, p->seed));
+        beta *= bs.weight;
+        /* A diffuse sample below the true surface (possible with interpolated normals) is lost. */
+        if (m.type == MATERIAL_DIFFUSE && dot(bs.wi, ng) <= 0.0f)
+            path_continues = false;
+        /* Russian roulette from the third vertex on, driven by the throughput. */
+        if (path_continues && depth >= 3u) {
+            float q = fmin(max3(beta), 0.95f);
+            if (rng_bounce(pixel, sample, bounce, DIM_ROULETTE, p->seed) >= q)
+                path_continues = false;
+            else
+                beta /= q;
+        }
+        if (!(max3(beta) > 0.0f))
+            path_continues = false;
+        if (path_continues) {
+            ray_origin[slot] = (float4)(offset_ray_origin(surf.position, surf.geometric_normal, bs.wi), 0.0f);
+            ray_direction[slot] = (float4)(bs.wi, bs.pdf_w);
+            throughput[slot] = (float4)(beta, 0.0f);
+        }
+    }
+    radiance[slot] += (float4)(gathered, 0.0f);
+    alive[slot] = path_continues ? 1u : 0u;
+}

@@ -43,6 +43,10 @@ typedef struct {
     float4 v2;
 } BvhTriangle;
 
+/* Entries of the traversal's private stack; host/bvh.c bounds the tree's depth so it never
+ * overflows. */
+#define BVH_STACK_SIZE 64
+
 /* ---- Materials and textures ---------------------------------------------------------------- */
 
 #define MATERIAL_DIFFUSE 0u
@@ -92,17 +96,48 @@ typedef struct {
     uint height;
     uint seed;
     uint max_depth;
-    uint sample_index;   /* first sample index of this pass */
+    uint sample_index;   /* sample index of the batch's first path */
     uint num_triangles;
     uint num_emissive;   /* emissive triangles in the light table */
     uint aov;            /* AOV_* for render_aov */
     float emissive_power; /* total emitted power of the light table (for pdfs) */
     uint flags;          /* RENDER_* */
-    uint pad0;
-    uint pad1;
+    uint batch_start;    /* pixel of the batch's first path (see PATH_STATE_FIELDS) */
+    uint batch_size;     /* paths in the batch */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
+
+/* ---- Lights --------------------------------------------------------------------------------- */
+
+/* One entry of the alias table over emissive triangles, chosen in proportion to emitted power
+ * (area x luminance of Ke). Vose's method, built on the host (host/lights.c). */
+typedef struct {
+    float prob;    /* probability of keeping this entry rather than its alias */
+    uint alias;    /* entry taken otherwise */
+    uint triangle; /* emissive triangle index */
+    float pdf;     /* probability of choosing this triangle */
+} LightEntry;
+
+/* ---- Wavefront path state ------------------------------------------------------------------ */
+
+/* Structure of arrays, one slot per path of the current batch. With s = batch_start + slot, the
+ * slot traces pixel s % num_pixels, sample sample_index + s / num_pixels. The host's
+ * buffers, the clSetKernelArg loop and the kernels' parameter lists all expand from this list. */
+#define PATH_STATE_FIELDS(X)                                                                       \
+    X(float4, ray_origin)          /* xyz; w unused */                                              \
+    X(float4, ray_direction)       /* xyz; w: solid-angle pdf of the BSDF sample, 0 if specular */  \
+    X(float4, throughput)          /* rgb path weight; w unused */                                 \
+    X(float4, radiance)            /* rgb gathered so far */                                       \
+    X(float4, hit)                 /* t, u, v, as_float(triangle) or HIT_NONE */                    \
+    X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
+    X(float4, shadow_direction)    /* xyz; w unused */                                             \
+    X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
+    X(uint, alive)                 /* 1 while the path continues */
+
+/* Wavefront counters (one uint buffer). */
+#define COUNTER_NONFINITE 0 /* samples whose radiance was NaN or Inf (dropped) */
+#define COUNTER_COUNT 4
 
 /* ---- Test support --------------------------------------------------------------------------- */
 
@@ -114,6 +149,7 @@ typedef struct {
 #define SIZEOF_TEXTURE_INFO 4
 #define SIZEOF_CAMERA 5
 #define SIZEOF_RENDER_PARAMS 6
-#define SIZEOF_COUNT 7
+#define SIZEOF_LIGHT_ENTRY 7
+#define SIZEOF_COUNT 8
 
 #endif

@@ -18,6 +18,8 @@
 #include "image_io.h"
 #include "scene.h"
 #include "scene_gpu.h"
+#include "wavefront.h"
+#include <signal.h>
 
 typedef struct {
     char exr[1100];
@@ -137,6 +139,39 @@ static void aov_png_remap(unsigned aov, float *rgb, size_t n)
     }
 }
 
+static void on_interrupt(int signal_number)
+{
+    (void)signal_number;
+    wavefront_request_stop();
+}
+
+static void report_render(const Options *o, const RenderStats *stats, int spp)
+{
+    if (stats->spp_done < spp)
+        fprintf(stderr, "pt: interrupted: the image holds %d of %d spp\n", stats->spp_done, spp);
+    if (stats->nonfinite)
+        fprintf(stderr, "pt: warning: %u samples were NaN or Inf and were counted as black\n",
+                stats->nonfinite);
+    if (!o->quiet)
+        fprintf(stderr,
+                "pt: %d spp in %.2f s: %.2f Mpaths/s, %.2f Mrays/s extension (pool %u paths, %u batches)\n",
+                stats->spp_done, stats->seconds, stats->paths / stats->seconds * 1e-6,
+                stats->extension_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches);
+    if (o->profile) {
+        double total = 0.0;
+        for (int k = 0; k < STAGE_COUNT; k++)
+            total += stats->stage_ms[k];
+        fprintf(stderr, "%-22s %9s %11s %7s\n", "stage", "launches", "total ms", "share");
+        for (int k = 0; k < STAGE_COUNT; k++)
+            fprintf(stderr, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
+                    stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
+        fprintf(stderr, "live paths per bounce (all batches):");
+        for (int b = 0; b < 64 && stats->live_per_bounce[b]; b++)
+            fprintf(stderr, " %llu", (unsigned long long)stats->live_per_bounce[b]);
+        fputc('\n', stderr);
+    }
+}
+
 static int command_render(const Options *o)
 {
     Error err = {0};
@@ -179,7 +214,21 @@ static int command_render(const Options *o)
         aov = aov_from_name(o->aov);
         aov_render(&dev, &scene, &buffers, aov, scene.desc.spp, seed, rgb);
     } else {
-        die("path tracing is not available in this build yet; use --aov albedo|normal|depth");
+        RenderSettings settings = {
+            .spp = scene.desc.spp,
+            .max_depth = scene.desc.max_depth,
+            .seed = seed,
+            .no_nee = o->no_nee,
+            .no_compaction = o->no_compaction,
+            .quiet = o->quiet,
+            .profile = o->profile,
+        };
+        RenderStats stats;
+        signal(SIGINT, on_interrupt);
+        if (!wavefront_render(&dev, &scene, &buffers, &settings, rgb, &stats, &err))
+            die("%s", err.message);
+        signal(SIGINT, SIG_DFL);
+        report_render(o, &stats, scene.desc.spp);
     }
 
     if (out.exr[0]) {

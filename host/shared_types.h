@@ -13,6 +13,7 @@ _Static_assert(sizeof(Material) == 80, "Material layout");
 _Static_assert(sizeof(TextureInfo) == 16, "TextureInfo layout");
 _Static_assert(sizeof(Camera) == 64, "Camera layout");
 _Static_assert(sizeof(RenderParams) == 128, "RenderParams layout");
+_Static_assert(sizeof(LightEntry) == 16, "LightEntry layout");
 _Static_assert(sizeof(RenderParams) % 16 == 0, "RenderParams must stay a multiple of 16 bytes");
 
 #endif

@@ -25,6 +25,7 @@ Test(device, shared_struct_sizes_match_host)
     cr_expect_eq(sizes[SIZEOF_TEXTURE_INFO], sizeof(TextureInfo));
     cr_expect_eq(sizes[SIZEOF_CAMERA], sizeof(Camera));
     cr_expect_eq(sizes[SIZEOF_RENDER_PARAMS], sizeof(RenderParams));
+    cr_expect_eq(sizes[SIZEOF_LIGHT_ENTRY], sizeof(LightEntry));
     clReleaseKernel(kernel);
     clReleaseMemObject(out);
     test_device_release(dev);

@@ -10,4 +10,5 @@ kernel void report_sizes(global uint *out)
     out[SIZEOF_TEXTURE_INFO] = sizeof(TextureInfo);
     out[SIZEOF_CAMERA] = sizeof(Camera);
     out[SIZEOF_RENDER_PARAMS] = sizeof(RenderParams);
+    out[SIZEOF_LIGHT_ENTRY] = sizeof(LightEntry);
 }

@@ -1,0 +1,26 @@
+/* SPDX-License-Identifier: MIT */
+/* path_state.cl: kernel parameter lists expanded from the shared lists, so that the host's
+ * clSetKernelArg order and every stage's signature cannot drift apart. */
+
+#define PATH_STATE_PARAM(type, name) global type *name,
+/* Every PATH_STATE_FIELDS buffer, each followed by a comma. */
+#define PATH_STATE_PARAMS PATH_STATE_FIELDS(PATH_STATE_PARAM)
+
+/* The scene's read-only buffers, in the order host/wavefront.c sets them; ends with a comma. */
+#define SCENE_PARAMS                                                                               \
+    const global BvhNode *bvh_nodes, const global BvhTriangle *bvh_tris,                           \
+        const global float4 *positions, const global float4 *normals, const global float2 *uvs,    \
+        const global Triangle *triangles, const global uint *material_ids,                         \
+        const global Material *materials, const global uint *texels,                               \
+        const global TextureInfo *textures, const global LightEntry *lights,
+
+/* The path sample a slot traces (see PATH_STATE_FIELDS in shared.h). */
+inline uint slot_pixel(constant RenderParams *p, uint slot)
+{
+    return (p->batch_start + slot) % (p->width * p->height);
+}
+
+inline uint slot_sample(constant RenderParams *p, uint slot)
+{
+    return p->sample_index + (p->batch_start + slot) / (p->width * p->height);
+}

@@ -1,0 +1,301 @@
+// SPDX-License-Identifier: MIT
+#include "wavefront.h"
+
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "camera.h"
+#include "compact.h"
+#include "lights.h"
+
+const char *const stage_names[STAGE_COUNT] = {
+    "generate_camera_rays", "intersect_closest", "shade_surface",
+    "intersect_shadow",     "compact_paths",     "accumulate_film",
+};
+
+static volatile sig_atomic_t g_stop_requested;
+void wavefront_request_stop(void) { g_stop_requested = 1; }
+
+/* Everything one render holds on the device. */
+typedef struct {
+    Device *dev;
+    const SceneBuffers *scene;
+    RenderSettings settings;
+    RenderParams params;
+    RenderStats *stats;
+    cl_mem params_buf, lights_buf, film, counters, active, count_buf;
+#define PATH_STATE_MEMBER(type, name) cl_mem name;
+    PATH_STATE_FIELDS(PATH_STATE_MEMBER)
+#undef PATH_STATE_MEMBER
+    cl_kernel kernels[STAGE_COUNT];
+    Compactor *compactor;
+    uint32_t num_pixels;
+} Wavefront;
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Paths in flight: enough to fill a GPU, modest on a CPU, and within the device's limits. */
+static uint32_t choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples)
+{
+    uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 18;
+    const uint64_t bytes_per_path = 8 * sizeof(float4) + 2 * sizeof(uint32_t);
+    while (pool > 1024 && (pool * sizeof(float4) > dev->max_alloc || pool * bytes_per_path > dev->global_mem / 2))
+        pool /= 2;
+    return (uint32_t)(pool < total_samples ? pool : total_samples);
+}
+
+static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *err)
+{
+    if (error_is_set(err))
+        return NULL;
+    return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
+}
+
+static bool wavefront_create(Wavefront *w, Device *dev, const Scene *scene,
+                             const SceneBuffers *buffers, const RenderSettings *s,
+                             RenderStats *stats, Error *err)
+{
+    memset(w, 0, sizeof *w);
+    w->dev = dev, w->scene = buffers, w->settings = *s, w->stats = stats;
+    const SceneDesc *desc = &scene->desc;
+    w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
+    uint32_t pool = choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp);
+    stats->pool_size = pool;
+
+    LightTable lights;
+    light_table_build(&lights, &scene->data);
+    w->params = (RenderParams){
+        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
+        .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
+        .width = (uint)desc->width,
+        .height = (uint)desc->height,
+        .seed = s->seed,
+        .max_depth = (uint)s->max_depth,
+        .num_triangles = buffers->num_triangles,
+        .num_emissive = lights.count,
+        .emissive_power = lights.total_power,
+        .flags = s->no_nee ? RENDER_NO_NEE : 0u,
+    };
+    w->lights_buf = device_buffer(dev, "lights", CL_MEM_READ_ONLY, lights.count * sizeof(LightEntry),
+                                  lights.entries, err);
+    light_table_free(&lights);
+    if (error_is_set(err))
+        return false;
+    w->params_buf = state_buffer(w, "params", sizeof w->params, err);
+    w->film = state_buffer(w, "film", (size_t)w->num_pixels * sizeof(float4), err);
+    w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
+    w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
+    w->count_buf = state_buffer(w, "live_count", sizeof(uint32_t), err);
+#define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
+    PATH_STATE_FIELDS(PATH_STATE_ALLOC)
+#undef PATH_STATE_ALLOC
+    if (error_is_set(err))
+        return false;
+    w->compactor = compactor_create(dev, pool, err);
+    if (!w->compactor)
+        return false;
+    float4 zero4 = {{0}};
+    uint32_t zero = 0;
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->film, &zero4, sizeof zero4, 0,
+                                 (size_t)w->num_pixels * sizeof(float4), 0, NULL, NULL));
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->counters, &zero, sizeof zero, 0,
+                                 COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
+    for (int k = 0; k < STAGE_COUNT; k++)
+        if (k != STAGE_COMPACT)
+            w->kernels[k] = device_kernel(dev, stage_names[k]);
+    return true;
+}
+
+/* Arguments in the order of cl/path_state.cl: params, [scene buffers], path state, then extras. */
+static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
+{
+    cl_uint i = 0;
+    KERNEL_ARG(k, i++, w->params_buf);
+    if (with_scene) {
+        const SceneBuffers *b = w->scene;
+        cl_mem scene[] = {b->bvh_nodes, b->bvh_tris, b->positions, b->normals, b->uvs, b->triangles,
+                          b->material_ids, b->materials, b->texels, b->textures, w->lights_buf};
+        for (size_t j = 0; j < sizeof scene / sizeof scene[0]; j++)
+            KERNEL_ARG(k, i++, scene[j]);
+    }
+#define PATH_STATE_ARG(type, name) KERNEL_ARG(k, i++, w->name);
+    PATH_STATE_FIELDS(PATH_STATE_ARG)
+#undef PATH_STATE_ARG
+    return i;
+}
+
+static void set_all_args(Wavefront *w)
+{
+    cl_uint i = set_path_args(w, w->kernels[STAGE_GENERATE], false);
+    KERNEL_ARG(w->kernels[STAGE_GENERATE], i, w->active);
+    for (int k = STAGE_EXTEND; k <= STAGE_CONNECT; k++) {
+        i = set_path_args(w, w->kernels[k], true);
+        KERNEL_ARG(w->kernels[k], i, w->active);
+    }
+    i = set_path_args(w, w->kernels[STAGE_ACCUMULATE], false);
+    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film);
+    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i, w->counters);
+}
+
+/* The index of the first argument after the active list (n_active, then depth for shading). */
+#define ARG_AFTER_ACTIVE (1 + 11 + PATH_STATE_FIELD_COUNT + 1)
+#define PATH_STATE_COUNT_ONE(type, name) +1
+#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE))
+
+static void run(Wavefront *w, int stage, size_t n)
+{
+    double ms = 0.0;
+    device_run(w->dev, w->kernels[stage], n, 0, w->settings.profile ? &ms : NULL);
+    w->stats->stage_ms[stage] += ms;
+    w->stats->stage_launches[stage]++;
+}
+
+static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
+{
+    cl_uint n = n_active;
+    KERNEL_ARG(w->kernels[stage], ARG_AFTER_ACTIVE, n);
+    run(w, stage, n_active);
+}
+
+static uint32_t compact_paths(Wavefront *w, uint32_t batch_size)
+{
+    double t = seconds_now();
+    uint32_t live = compactor_run(w->compactor, w->alive, w->active, batch_size);
+    if (w->settings.profile)
+        w->stats->stage_ms[STAGE_COMPACT] += 1e3 * (seconds_now() - t);
+    w->stats->stage_launches[STAGE_COMPACT]++;
+    return live;
+}
+
+/* One batch of camera paths, traced to the end: the wavefront loop. */
+static void render_batch(Wavefront *w, uint32_t batch_start, uint32_t batch_size, uint32_t sample_index)
+{
+    w->params.batch_start = batch_start;
+    w->params.batch_size = batch_size;
+    w->params.sample_index = sample_index;
+    device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
+
+    run(w, STAGE_GENERATE, batch_size);
+    uint32_t n_active = batch_size;
+    for (cl_uint depth = 1; depth <= (cl_uint)w->settings.max_depth && n_active > 0; depth++) {
+        if (depth - 1 < 64)
+            w->stats->live_per_bounce[depth - 1] += n_active;
+        w->stats->extension_rays += n_active;
+        run_over_active(w, STAGE_EXTEND, n_active);
+        KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, depth);
+        run_over_active(w, STAGE_SHADE, n_active);
+        run_over_active(w, STAGE_CONNECT, n_active);
+        if (!w->settings.no_compaction)
+            n_active = compact_paths(w, batch_size);
+    }
+    run(w, STAGE_ACCUMULATE, batch_size < w->num_pixels ? batch_size : w->num_pixels);
+    w->stats->paths += batch_size;
+    w->stats->batches++;
+}
+
+static void print_progress(const RenderStats *stats, int spp, double elapsed, uint64_t done,
+                           uint64_t total)
+{
+    double rate = done / (elapsed > 0 ? elapsed : 1e-9);
+    double eta = (double)(total - done) / (rate > 0 ? rate : 1);
+    fprintf(stderr, "\rpt: %5.1f%%  %d/%d spp  %.2f Msamples/s  elapsed %.1f s  ETA %.1f s   ",
+            100.0 * (double)done / (double)total, stats->spp_done, spp, rate * 1e-6, elapsed, eta);
+    fflush(stderr);
+}
+
+/* Batches: whole samples per pixel when the pool holds the film, else slices of one sample. */
+static void render_all(Wavefront *w, int spp, bool show_progress)
+{
+    uint32_t pool = w->stats->pool_size, np = w->num_pixels;
+    uint64_t total = (uint64_t)np * (uint64_t)spp, done = 0;
+    double start = seconds_now(), last_print = 0.0;
+    int sample = 0;
+    while (sample < spp && !g_stop_requested) {
+        if (pool >= np) {
+            uint32_t k = pool / np;
+            if (k > (uint32_t)(spp - sample))
+                k = (uint32_t)(spp - sample);
+            render_batch(w, 0, k * np, (uint32_t)sample);
+            sample += (int)k;
+            done += (uint64_t)k * np;
+        } else {
+            for (uint32_t first = 0; first < np; first += pool) {
+                uint32_t n = np - first < pool ? np - first : pool;
+                render_batch(w, first, n, (uint32_t)sample);
+                done += n;
+            }
+            sample++;
+        }
+        CL_CHECK(clFinish(w->dev->queue));
+        w->stats->spp_done = sample;
+        double now = seconds_now() - start;
+        if (show_progress && (now - last_print > 0.25 || sample == spp)) {
+            print_progress(w->stats, spp, now, done, total);
+            last_print = now;
+        }
+    }
+    if (show_progress)
+        fputc('\n', stderr);
+    w->stats->seconds = seconds_now() - start;
+}
+
+/* Film (sum, count) to the mean per pixel. */
+static void read_film(Wavefront *w, float *rgb)
+{
+    float4 *film = malloc((size_t)w->num_pixels * sizeof *film);
+    if (!film)
+        die("out of memory reading the film");
+    device_read(w->dev, w->film, 0, (size_t)w->num_pixels * sizeof *film, film);
+    for (size_t i = 0; i < w->num_pixels; i++) {
+        float count = film[i].s[3];
+        for (int c = 0; c < 3; c++)
+            rgb[3 * i + c] = count > 0.0f ? film[i].s[c] / count : 0.0f;
+    }
+    free(film);
+    uint32_t counters[COUNTER_COUNT];
+    device_read(w->dev, w->counters, 0, sizeof counters, counters);
+    w->stats->nonfinite = counters[COUNTER_NONFINITE];
+}
+
+static void wavefront_destroy(Wavefront *w)
+{
+    for (int k = 0; k < STAGE_COUNT; k++)
+        if (w->kernels[k])
+            CL_CHECK(clReleaseKernel(w->kernels[k]));
+    if (w->compactor)
+        compactor_destroy(w->compactor);
+    cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->count_buf,
+#define PATH_STATE_LIST(type, name) w->name,
+                    PATH_STATE_FIELDS(PATH_STATE_LIST)
+#undef PATH_STATE_LIST
+    };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (all[i])
+            CL_CHECK(clReleaseMemObject(all[i]));
+}
+
+bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                      const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err)
+{
+    memset(stats, 0, sizeof *stats);
+    g_stop_requested = 0;
+    Wavefront w;
+    bool ok = wavefront_create(&w, dev, scene, buffers, settings, stats, err);
+    if (ok) {
+        set_all_args(&w);
+        render_all(&w, settings->spp, !settings->quiet && isatty(STDERR_FILENO));
+        read_film(&w, rgb);
+    }
+    wavefront_destroy(&w);
+    return ok;
+}

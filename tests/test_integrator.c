@@ -1,0 +1,266 @@
+// SPDX-License-Identifier: MIT
+/* The path tracer against analytic answers and against itself: white furnace, closed emitting
+ * sphere (exercises NEE + MIS + Russian roulette), NEE vs BSDF-only on the Cornell box, compaction
+ * on/off, determinism and independence from the pass split. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "scene.h"
+#include "scene_gpu.h"
+#include "support.h"
+#include "wavefront.h"
+
+/* A loaded scene on the device, ready to render many times. */
+typedef struct {
+    Device *dev;
+    Scene scene;
+    Bvh bvh;
+    SceneBuffers buffers;
+} Fixture;
+
+static void fixture_open(Fixture *f, const char *scene_path, int width, int height)
+{
+    Error err = {0};
+    f->dev = test_device();
+    cr_assert(scene_load(scene_path, &f->scene, &err), "scene_load %s: %s", scene_path, err.message);
+    f->scene.desc.width = width;
+    f->scene.desc.height = height;
+    bvh_build(&f->bvh, f->scene.data.positions, f->scene.data.triangles, f->scene.data.num_triangles);
+    cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
+}
+
+static void fixture_close(Fixture *f)
+{
+    scene_buffers_release(&f->buffers);
+    bvh_free(&f->bvh);
+    scene_free(&f->scene);
+    test_device_release(f->dev);
+}
+
+static float *render(Fixture *f, RenderSettings s, RenderStats *stats_out)
+{
+    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
+    float *rgb = malloc(n * 3 * sizeof *rgb);
+    RenderStats stats;
+    Error err = {0};
+    s.quiet = true;
+    cr_assert(wavefront_render(f->dev, &f->scene, &f->buffers, &s, rgb, &stats, &err), "%s", err.message);
+    cr_assert_eq(stats.nonfinite, 0, "%u non-finite samples", stats.nonfinite);
+    if (stats_out)
+        *stats_out = stats;
+    return rgb;
+}
+
+/* Writes a UV sphere (radius r, centre c) as OBJ; inward = true flips the winding so the
+ * counter-clockwise normals point inside. */
+static void write_sphere_obj(FILE *out, const float c[3], float r, int stacks, int slices, bool inward)
+{
+    const double pi = 3.14159265358979323846;
+    fprintf(out, "v %f %f %f\n", c[0], c[1] + r, c[2]);
+    for (int i = 1; i < stacks; i++)
+        for (int j = 0; j < slices; j++) {
+            double theta = pi * i / stacks, phi = 2 * pi * j / slices;
+            fprintf(out, "v %.7f %.7f %.7f\n", c[0] + r * sin(theta) * cos(phi), c[1] + r * cos(theta),
+                    c[2] - r * sin(theta) * sin(phi));
+        }
+    fprintf(out, "v %f %f %f\n", c[0], c[1] - r, c[2]);
+    int bottom = 2 + (stacks - 1) * slices;
+#define RING(i, j) (2 + ((i) - 1) * slices + ((j) % slices))
+#define FACE(a, b, c) (inward ? fprintf(out, "f %d %d %d\n", a, c, b) : fprintf(out, "f %d %d %d\n", a, b, c))
+    for (int j = 0; j < slices; j++)
+        FACE(1, RING(1, j), RING(1, j + 1));
+    for (int i = 1; i < stacks - 1; i++)
+        for (int j = 0; j < slices; j++) {
+            FACE(RING(i, j), RING(i + 1, j), RING(i + 1, j + 1));
+            FACE(RING(i, j), RING(i + 1, j + 1), RING(i, j + 1));
+        }
+    for (int j = 0; j < slices; j++)
+        FACE(RING(stacks - 1, j), bottom, RING(stacks - 1, j + 1));
+#undef RING
+#undef FACE
+}
+
+static const char *write_sphere_scene(const char *dir, const char *mtl, bool inward, const char *camera,
+                                      const char *background)
+{
+    static char path[512];
+    char file[512];
+    snprintf(file, sizeof file, "%s/sphere.mtl", dir);
+    FILE *f = fopen(file, "w");
+    fprintf(f, "%s", mtl);
+    fclose(f);
+    snprintf(file, sizeof file, "%s/sphere.obj", dir);
+    f = fopen(file, "w");
+    fprintf(f, "mtllib sphere.mtl\nusemtl surface\n");
+    write_sphere_obj(f, (float[3]){0, 0, 0}, 1.0f, 24, 48, inward);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/scene.json", dir);
+    f = fopen(path, "w");
+    fprintf(f, "{\"camera\": %s, \"objects\": [{\"obj\": \"sphere.obj\"}], \"background\": %s}\n", camera,
+            background);
+    fclose(f);
+    return path;
+}
+
+static double channel_mean(const float *rgb, size_t n, int c)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        sum += rgb[3 * i + c];
+    return sum / (double)n;
+}
+
+/* White furnace: a convex diffuse sphere of albedo 0.8 under a uniform sky of 1 reflects exactly
+ * 0.8 (every bounce ray escapes); the sky around it is 1. Any self-intersection or energy error
+ * shows as a deviation far above float rounding. */
+Test(integrator, white_furnace_sphere, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    const char *scene = write_sphere_scene(dir, "newmtl surface\nKd 0.8 0.8 0.8\n", false,
+                                           "{\"eye\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": 40}",
+                                           "[1, 1, 1]");
+    Fixture f;
+    fixture_open(&f, scene, 48, 48);
+    for (int nee = 0; nee < 2; nee++) {
+        float *rgb = render(&f, (RenderSettings){.spp = 16, .max_depth = 8, .seed = 1, .no_nee = nee}, NULL);
+        int on_sphere = 0, sky = 0;
+        for (int y = 0; y < 48; y++)
+            for (int x = 0; x < 48; x++) {
+                /* Pixels well inside or well outside the sphere's silhouette (radius ~ 16.5 px). */
+                double r = hypot(x + 0.5 - 24, y + 0.5 - 24);
+                const float *px = &rgb[3 * (y * 48 + x)];
+                for (int c = 0; c < 3; c++) {
+                    if (r < 14) {
+                        cr_expect(fabsf(px[c] - 0.8f) < 1e-3f, "pixel %d,%d = %f, expected 0.8", x, y, px[c]);
+                    } else if (r > 19) {
+                        cr_expect(fabsf(px[c] - 1.0f) < 1e-5f, "pixel %d,%d = %f, expected 1", x, y, px[c]);
+                    }
+                }
+                on_sphere += r < 14, sky += r > 19;
+            }
+        cr_assert(on_sphere > 400 && sky > 400);
+        free(rgb);
+    }
+    fixture_close(&f);
+}
+
+/* Inside a closed sphere whose inner wall has albedo a = 0.5 and emits Le = 0.5, radiance is
+ * Le / (1 - a) = 1 in the limit; with max_depth D it is 1 - a^D. Exercises light sampling, the MIS
+ * weights of both strategies (they must sum to one) and Russian roulette. */
+Test(integrator, closed_emitting_sphere_converges_to_one, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    const char *scene = write_sphere_scene(dir, "newmtl surface\nKd 0.5 0.5 0.5\nKe 0.5 0.5 0.5\n", true,
+                                           "{\"eye\": [0, 0, 0.3], \"target\": [0, 0, -1], \"fov_y\": 60}",
+                                           "[0, 0, 0]");
+    Fixture f;
+    fixture_open(&f, scene, 32, 32);
+    const int depth = 12;
+    double expected = 1.0 - pow(0.5, depth);
+    for (int nee = 0; nee < 2; nee++) {
+        float *rgb = render(&f, (RenderSettings){.spp = 64, .max_depth = depth, .seed = 7, .no_nee = !nee}, NULL);
+        for (int c = 0; c < 3; c++) {
+            double mean = channel_mean(rgb, 32 * 32, c);
+            cr_expect(fabs(mean - expected) < 0.01, "%s: channel %d mean %f, expected %f",
+                      nee ? "NEE+MIS" : "BSDF only", c, mean, expected);
+        }
+        free(rgb);
+    }
+    fixture_close(&f);
+}
+
+/* Per-channel image means and their standard errors from K independent renders (seeds). */
+typedef struct {
+    double mean[3], se[3];
+    float *image; /* mean image over the K renders */
+} Estimate;
+
+static Estimate estimate(Fixture *f, RenderSettings s, int renders)
+{
+    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
+    Estimate e = {.image = calloc(n * 3, sizeof(float))};
+    double sums[3] = {0}, sums2[3] = {0};
+    for (int k = 0; k < renders; k++) {
+        s.seed = 1000u + (unsigned)k * 7919u;
+        float *rgb = render(f, s, NULL);
+        for (int c = 0; c < 3; c++) {
+            double m = channel_mean(rgb, n, c);
+            sums[c] += m, sums2[c] += m * m;
+        }
+        for (size_t i = 0; i < 3 * n; i++)
+            e.image[i] += rgb[i] / renders;
+        free(rgb);
+    }
+    for (int c = 0; c < 3; c++) {
+        e.mean[c] = sums[c] / renders;
+        double var = (sums2[c] - renders * e.mean[c] * e.mean[c]) / (renders - 1);
+        e.se[c] = sqrt(fmax(var, 0.0) / renders);
+    }
+    return e;
+}
+
+/* NEE+MIS and BSDF sampling alone estimate the same integral: their image means must agree
+ * within the measured noise (z < 4.5), and their per-pixel difference must be noise-sized. */
+Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 300)
+{
+    REQUIRE_ASSETS();
+    Fixture f;
+    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    const int renders = 6;
+    Estimate nee = estimate(&f, (RenderSettings){.spp = 64, .max_depth = 5}, renders);
+    Estimate bsdf = estimate(&f, (RenderSettings){.spp = 256, .max_depth = 5, .no_nee = true}, renders);
+    for (int c = 0; c < 3; c++) {
+        double z = fabs(nee.mean[c] - bsdf.mean[c]) / sqrt(nee.se[c] * nee.se[c] + bsdf.se[c] * bsdf.se[c]);
+        cr_expect(z < 4.5, "channel %d: NEE %f +- %f vs BSDF %f +- %f (z = %.2f)", c, nee.mean[c],
+                  nee.se[c], bsdf.mean[c], bsdf.se[c], z);
+        cr_expect(nee.mean[c] > 0.05, "channel %d: the image is not black", c);
+    }
+    free(nee.image);
+    free(bsdf.image);
+    fixture_close(&f);
+}
+
+Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
+{
+    REQUIRE_ASSETS();
+    Fixture f;
+    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    RenderStats with, without;
+    float *a = render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
+    float *b = render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
+    cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
+    /* Compaction really removed paths: fewer extension rays than without. */
+    cr_expect(with.live_per_bounce[4] < with.live_per_bounce[0]);
+    free(a), free(b);
+    fixture_close(&f);
+}
+
+Test(integrator, same_seed_same_bits_and_pass_split_independent, .timeout = 120)
+{
+    REQUIRE_ASSETS();
+    Fixture f;
+    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    size_t n = 32 * 32 * 3;
+    float *a = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    float *b = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    cr_expect(memcmp(a, b, n * sizeof(float)) == 0, "same seed, different bits");
+    /* Pool of 4 spp per batch, and of half a film per batch: same samples, other sums. */
+    RenderStats stats;
+    float *c = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
+    cr_expect_eq(stats.batches, 4);
+    float *d = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
+    cr_expect_eq(stats.batches, 32);
+    for (size_t i = 0; i < n; i++) {
+        cr_expect(fabsf(a[i] - c[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "4 batches: %zu %f vs %f", i, a[i], c[i]);
+        cr_expect(fabsf(a[i] - d[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "32 batches: %zu %f vs %f", i, a[i], d[i]);
+    }
+    /* A different seed changes the image. */
+    float *e = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 12}, NULL);
+    cr_expect(memcmp(a, e, n * sizeof(float)) != 0);
+    free(a), free(b), free(c), free(d), free(e);
+    fixture_close(&f);
+}
