@@ -13,7 +13,8 @@
 
 typedef struct {
     char name[128];
-    float kd[3], ks[3], ke[3], tf[3];
+    float kd[3], ks[3], ke[3];
+    float tf[3];    /* transmission filter (Tf or Kt), 1 1 1 when absent */
     float ni;       /* index of refraction, 1 when absent */
     float d;        /* dissolve, 1 when absent */
     int illum;      /* illumination model, -1 when absent */
@@ -37,9 +38,12 @@ typedef struct {
     size_t num_materials;
 } ObjMesh;
 
-/* Loads an OBJ and its MTL files. Errors: ERR_FILE_MISSING, ERR_OBJ_PARSE, ERR_OBJ_INDEX (face
- * index out of range: names the file, line and index), ERR_OBJ_NONFINITE (names file and line).
- * A missing MTL or an unknown material name is a warning (default material). */
+/* Loads an OBJ and its MTL files. Errors: ERR_FILE_MISSING, ERR_FILE_READ, ERR_OBJ_PARSE,
+ * ERR_OBJ_INDEX (face index out of range: names the file, line and index), ERR_OBJ_NONFINITE
+ * (names file and line), ERR_TOO_LARGE (a face with more than 255 corners, tinyobjloader's limit).
+ * A missing MTL or an unknown material name is a warning (default material); so is a face with
+ * fewer than 3 corners (skipped). Faces with a repeated corner may give fewer than n - 2
+ * triangles (zero-area ones are dropped). On failure *out is left empty. */
 bool obj_load(const char *path, ObjMesh *out, Error *err);
 void obj_free(ObjMesh *mesh);
 
