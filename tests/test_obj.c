@@ -570,6 +570,9 @@ Test(obj_details, mtl_values_defaults_and_warnings)
     cr_expect_eq(mesh.material_ids[1], 1);
     cr_expect_eq(mesh.material_ids[2], -1);
     obj_free(&mesh);
+    remove(path);
+    remove(write_file(dir, "m.mtl", ""));
+    rmdir(dir);
 }
 
 Test(obj_details, missing_mtl_is_a_warning_naming_it)
@@ -606,6 +609,9 @@ Test(obj_details, missing_mtl_is_a_warning_naming_it)
     cr_expect_eq(mesh.num_materials, 0);
     cr_expect_eq(mesh.material_ids[0], -1);
     obj_free(&mesh);
+    remove(path);
+    remove(log_path);
+    rmdir(dir);
 }
 
 Test(obj_lines, find_record_counts_like_tinyobjloader)
