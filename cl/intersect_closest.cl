@@ -1,18 +1,26 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_closest: extends every live path by one segment.
  * Reads: active[0..n_active), ray_origin, ray_direction. Writes: hit (t, u, v, triangle or
- * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped. */
+ * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped.
+ * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group). */
 
 kernel void intersect_closest(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                              const global uint *active, uint n_active)
+                              const global uint *active, uint n_active, global uint *counters)
 {
+    local uint group_rays;
+    if (get_local_id(0) == 0)
+        group_rays = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
-    if (i >= n_active)
-        return;
-    uint slot = active[i];
-    if (!alive[slot])
-        return;
-    Hit h = trace_closest(bvh_nodes, bvh_tris, p->num_triangles, xyz(ray_origin[slot]),
-                          xyz(ray_direction[slot]), 0.0f, INFINITY);
-    hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
+    uint slot = i < n_active ? active[i] : 0u;
+    if (i < n_active && alive[slot]) {
+        atomic_inc(&group_rays);
+        Hit h = trace_closest(bvh_nodes, bvh_tris, p->num_triangles, xyz(ray_origin[slot]),
+                              xyz(ray_direction[slot]), 0.0f, INFINITY);
+        hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
+    }
+    /* Every work item reaches this barrier: no early return above. */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0 && group_rays > 0)
+        atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_rays);
 }

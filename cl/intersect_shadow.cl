@@ -2,21 +2,31 @@
 /* intersect_shadow: resolves the next-event shadow rays that shade_surface queued.
  * Reads: active[0..n_active), shadow_origin, shadow_direction, shadow_contribution (w = 1: a ray
  * waits). Writes: radiance += contribution when unoccluded; shadow_contribution.w = 0.
- * Runs before compaction: a path killed by Russian roulette may still have a shadow ray. */
+ * Runs before compaction: a path killed by Russian roulette may still have a shadow ray.
+ * counters[COUNTER_SHADOW_RAYS] counts the rays traced (one global atomic per work-group). */
 
 kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                             const global uint *active, uint n_active)
+                             const global uint *active, uint n_active, global uint *counters)
 {
+    local uint group_rays;
+    if (get_local_id(0) == 0)
+        group_rays = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
-    if (i >= n_active)
-        return;
-    uint slot = active[i];
-    float4 contribution = shadow_contribution[slot];
-    if (contribution.w == 0.0f)
-        return;
-    float4 origin = shadow_origin[slot];
-    if (!trace_any(bvh_nodes, bvh_tris, p->num_triangles, xyz(origin), xyz(shadow_direction[slot]),
-                   0.0f, origin.w))
-        radiance[slot] += (float4)(xyz(contribution), 0.0f);
-    shadow_contribution[slot] = (float4)(0.0f);
+    if (i < n_active) {
+        uint slot = active[i];
+        float4 contribution = shadow_contribution[slot];
+        if (contribution.w != 0.0f) {
+            atomic_inc(&group_rays);
+            float4 origin = shadow_origin[slot];
+            if (!trace_any(bvh_nodes, bvh_tris, p->num_triangles, xyz(origin),
+                           xyz(shadow_direction[slot]), 0.0f, origin.w))
+                radiance[slot] += (float4)(xyz(contribution), 0.0f);
+            shadow_contribution[slot] = (float4)(0.0f);
+        }
+    }
+    /* Every work item reaches this barrier: no early return above. */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0 && group_rays > 0)
+        atomic_add(&counters[COUNTER_SHADOW_RAYS], group_rays);
 }

@@ -136,7 +136,9 @@ typedef struct {
     X(uint, alive)                 /* 1 while the path continues */
 
 /* Wavefront counters (one uint buffer). */
-#define COUNTER_NONFINITE 0 /* samples whose radiance was NaN or Inf (dropped) */
+#define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */
+#define COUNTER_SHADOW_RAYS 1 /* shadow rays traced in the current batch */
+#define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current batch */
 #define COUNTER_COUNT 4
 
 /* ---- Test support --------------------------------------------------------------------------- */

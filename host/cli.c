@@ -14,6 +14,8 @@ void cli_print_help(void)
          "usage:\n"
          "  pt render SCENE [options]   render SCENE (.json scene, bare .obj, or a folder with scene.json)\n"
          "  pt view SCENE [options]     interactive window\n"
+         "  pt bench SCENE [options]    throughput: Mpaths/s and Mrays/s with and without compaction,\n"
+         "                              per-stage times (no image written; --csv FILE appends a row)\n"
          "  pt devices                  list OpenCL platforms and devices\n"
          "  pt help                     this text\n"
          "\n"
@@ -103,6 +105,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             o->seed = (unsigned)s, o->seed_given = true;
         } else if (!strcmp(a, "--device")) ok = need_value(a, v, err), o->device = v;
         else if (!strcmp(a, "-o") || !strcmp(a, "--output")) ok = need_value(a, v, err), o->output = v;
+        else if (!strcmp(a, "--csv")) ok = need_value(a, v, err), o->csv = v;
         else if (!strcmp(a, "--exposure")) ok = parse_float(a, v, &o->exposure, err);
         else if (!strcmp(a, "--aov")) {
             ok = need_value(a, v, err);

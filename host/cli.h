@@ -22,6 +22,7 @@ typedef struct {
     bool quiet;
     bool preview;   /* with -o X.exr, also write X.png */
     bool no_nee, no_compaction, profile;
+    const char *csv; /* pt bench: append results to this CSV file */
 } Options;
 
 /* Parses argv; returns false with ERR_USAGE naming the offending argument. */

@@ -19,6 +19,8 @@
 #include "scene.h"
 #include "scene_gpu.h"
 #include "wavefront.h"
+#include "bench.h"
+#include "session.h"
 #include <signal.h>
 
 typedef struct {
@@ -26,12 +28,6 @@ typedef struct {
     char png[1100];
 } OutputPaths;
 
-static double seconds_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static bool has_suffix(const char *s, const char *suffix)
 {
@@ -103,20 +99,6 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
     return true;
 }
 
-static bool apply_overrides(const Options *o, Scene *scene, Error *err)
-{
-    SceneDesc *d = &scene->desc;
-    if (o->width) d->width = o->width;
-    if (o->height) d->height = o->height;
-    if (o->spp) d->spp = o->spp;
-    if (o->max_depth) d->max_depth = o->max_depth;
-    if ((size_t)d->width * (size_t)d->height > (size_t)1 << 28) {
-        error_set(err, ERR_USAGE, NULL, 0, "film %dx%d is too large", d->width, d->height);
-        return false;
-    }
-    return true;
-}
-
 static unsigned aov_from_name(const char *name)
 {
     if (!strcmp(name, "normal")) return AOV_NORMAL;
@@ -154,9 +136,12 @@ static void report_render(const Options *o, const RenderStats *stats, int spp)
                 stats->nonfinite);
     if (!o->quiet)
         fprintf(stderr,
-                "pt: %d spp in %.2f s: %.2f Mpaths/s, %.2f Mrays/s extension (pool %u paths, %u batches)\n",
+                "pt: %d spp in %.2f s: %.2f Mpaths/s, %.2f Mrays/s (%.2f extension + %.2f shadow); "
+                "pool %u paths, %u batches\n",
                 stats->spp_done, stats->seconds, stats->paths / stats->seconds * 1e-6,
-                stats->extension_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches);
+                (stats->extension_rays + stats->shadow_rays) / stats->seconds * 1e-6,
+                stats->extension_rays / stats->seconds * 1e-6,
+                stats->shadow_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches);
     if (o->profile) {
         double total = 0.0;
         for (int k = 0; k < STAGE_COUNT; k++)
@@ -175,48 +160,32 @@ static void report_render(const Options *o, const RenderStats *stats, int spp)
 static int command_render(const Options *o)
 {
     Error err = {0};
-    double t0 = seconds_now();
-    Scene scene;
-    if (!scene_load(o->scene, &scene, &err) || !apply_overrides(o, &scene, &err))
+    Session session;
+    if (!session_open(&session, o, &err))
         die("%s", err.message);
-    double t_load = seconds_now();
     OutputPaths out;
     char suffix[32] = "";
     if (o->aov)
         snprintf(suffix, sizeof suffix, "-%s", o->aov);
     if (!plan_outputs(o, suffix, &out, &err))
         die("%s", err.message);
-
-    Device dev;
-    if (!device_open(&dev, o->device, &err) || !device_build(&dev, NULL, NULL, &err))
-        die("%s", err.message);
-    Bvh bvh;
-    bvh_build(&bvh, scene.data.positions, scene.data.triangles, scene.data.num_triangles);
-    double t_bvh = seconds_now();
-    SceneBuffers buffers;
-    if (!scene_buffers_upload(&dev, &scene.data, &bvh, &buffers, &err))
-        die("%s", err.message);
     if (!o->quiet)
-        fprintf(stderr,
-                "pt: %s: %u triangles, %u materials, %u textures; load %.2f s, kernel build %.2f s, "
-                "BVH %.2f s; device %s\n",
-                scene.desc.path, scene.data.num_triangles, scene.data.num_materials,
-                scene.data.textures.count, t_load - t0, dev.build_seconds, t_bvh - t_load - dev.build_seconds,
-                dev.name);
+        session_print_summary(&session);
 
-    size_t num_pixels = (size_t)scene.desc.width * (size_t)scene.desc.height;
+    const SceneDesc *desc = &session.scene.desc;
+    size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
     float *rgb = malloc(num_pixels * 3 * sizeof *rgb);
     if (!rgb)
-        die("out of memory for a %dx%d film", scene.desc.width, scene.desc.height);
+        die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     unsigned aov = AOV_ALBEDO;
     if (o->aov) {
         aov = aov_from_name(o->aov);
-        aov_render(&dev, &scene, &buffers, aov, scene.desc.spp, seed, rgb);
+        aov_render(&session.dev, &session.scene, &session.buffers, aov, desc->spp, seed, rgb);
     } else {
         RenderSettings settings = {
-            .spp = scene.desc.spp,
-            .max_depth = scene.desc.max_depth,
+            .spp = desc->spp,
+            .max_depth = desc->max_depth,
             .seed = seed,
             .no_nee = o->no_nee,
             .no_compaction = o->no_compaction,
@@ -225,29 +194,26 @@ static int command_render(const Options *o)
         };
         RenderStats stats;
         signal(SIGINT, on_interrupt);
-        if (!wavefront_render(&dev, &scene, &buffers, &settings, rgb, &stats, &err))
+        if (!wavefront_render(&session.dev, &session.scene, &session.buffers, &settings, rgb, &stats, &err))
             die("%s", err.message);
         signal(SIGINT, SIG_DFL);
-        report_render(o, &stats, scene.desc.spp);
+        report_render(o, &stats, desc->spp);
     }
 
     if (out.exr[0]) {
-        if (!image_write_exr(out.exr, rgb, scene.desc.width, scene.desc.height, &err))
+        if (!image_write_exr(out.exr, rgb, desc->width, desc->height, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
         if (o->aov)
             aov_png_remap(aov, rgb, num_pixels);
-        if (!image_write_png(out.png, rgb, scene.desc.width, scene.desc.height, o->exposure, &err))
+        if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }
     free(rgb);
-    scene_buffers_release(&buffers);
-    bvh_free(&bvh);
-    device_close(&dev);
-    scene_free(&scene);
+    session_close(&session);
     return 0;
 }
 
@@ -271,7 +237,7 @@ int main(int argc, char **argv)
     case CMD_VIEW:
         die("'pt view' is not available in this build yet; use 'pt render'");
     case CMD_BENCH:
-        die("'pt bench' is not available in this build yet");
+        return command_bench(&o);
     }
     return 0;
 }

@@ -116,6 +116,11 @@ static bool wavefront_create(Wavefront *w, Device *dev, const Scene *scene,
     return true;
 }
 
+/* The index of the first argument after the active list (n_active, then depth for shading). */
+#define ARG_AFTER_ACTIVE (1 + 11 + PATH_STATE_FIELD_COUNT + 1)
+#define PATH_STATE_COUNT_ONE(type, name) +1
+#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE))
+
 /* Arguments in the order of cl/path_state.cl: params, [scene buffers], path state, then extras. */
 static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
 {
@@ -142,15 +147,13 @@ static void set_all_args(Wavefront *w)
         i = set_path_args(w, w->kernels[k], true);
         KERNEL_ARG(w->kernels[k], i, w->active);
     }
+    KERNEL_ARG(w->kernels[STAGE_EXTEND], ARG_AFTER_ACTIVE + 1, w->counters);
+    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 1, w->counters);
     i = set_path_args(w, w->kernels[STAGE_ACCUMULATE], false);
     KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film);
     KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i, w->counters);
 }
 
-/* The index of the first argument after the active list (n_active, then depth for shading). */
-#define ARG_AFTER_ACTIVE (1 + 11 + PATH_STATE_FIELD_COUNT + 1)
-#define PATH_STATE_COUNT_ONE(type, name) +1
-#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE))
 
 static void run(Wavefront *w, int stage, size_t n)
 {
@@ -190,7 +193,6 @@ static void render_batch(Wavefront *w, uint32_t batch_start, uint32_t batch_size
     for (cl_uint depth = 1; depth <= (cl_uint)w->settings.max_depth && n_active > 0; depth++) {
         if (depth - 1 < 64)
             w->stats->live_per_bounce[depth - 1] += n_active;
-        w->stats->extension_rays += n_active;
         run_over_active(w, STAGE_EXTEND, n_active);
         KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, depth);
         run_over_active(w, STAGE_SHADE, n_active);
@@ -201,6 +203,13 @@ static void render_batch(Wavefront *w, uint32_t batch_start, uint32_t batch_size
     run(w, STAGE_ACCUMULATE, batch_size < w->num_pixels ? batch_size : w->num_pixels);
     w->stats->paths += batch_size;
     w->stats->batches++;
+    /* The per-batch ray counters stay far below 2^32; fold them into the 64-bit totals. */
+    uint32_t rays[2], zeros[2] = {0, 0};
+    _Static_assert(COUNTER_EXTENSION_RAYS == COUNTER_SHADOW_RAYS + 1, "ray counters are adjacent");
+    device_read(w->dev, w->counters, COUNTER_SHADOW_RAYS * sizeof(uint32_t), sizeof rays, rays);
+    w->stats->shadow_rays += rays[0];
+    w->stats->extension_rays += rays[1];
+    device_write(w->dev, w->counters, COUNTER_SHADOW_RAYS * sizeof(uint32_t), sizeof zeros, zeros);
 }
 
 static void print_progress(const RenderStats *stats, int spp, double elapsed, uint64_t done,

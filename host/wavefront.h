@@ -28,6 +28,7 @@ typedef struct {
     double seconds;            /* wall time of the sample loop */
     uint64_t paths;            /* camera paths traced */
     uint64_t extension_rays;   /* closest-hit rays traced (live paths per bounce) */
+    uint64_t shadow_rays;      /* any-hit rays traced for next-event estimation */
     uint32_t nonfinite;        /* samples dropped as NaN/Inf */
     uint32_t pool_size;
     uint32_t batches;

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+/* pt bench: a warm-up render (kernel compilation and first-launch costs stay out of the figures),
+ * then timed renders with and without compaction, then one profiled render for per-stage times
+ * (profiling waits after every launch, so its wall time is not used for throughput). */
+#include "bench.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "session.h"
+#include "wavefront.h"
+
+static RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
+{
+    RenderStats stats;
+    Error err = {0};
+    if (!wavefront_render(&s->dev, &s->scene, &s->buffers, &settings, rgb, &stats, &err))
+        die("%s", err.message);
+    return stats;
+}
+
+static void print_row(const char *label, const RenderStats *st)
+{
+    printf("%-16s %8.1f %12.2f %12.2f %12.2f %12.2f %9.3f\n", label, st->seconds * 1e3,
+           st->paths / st->seconds * 1e-6, (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
+           st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
+           (double)(st->extension_rays + st->shadow_rays) / (double)st->paths);
+}
+
+static void append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+{
+    FILE *f = fopen(path, "a");
+    if (!f)
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,max_depth,mode,seconds,mpaths_per_s,mrays_per_s,"
+                   "mext_per_s,mshadow_per_s,pool\n");
+    fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u\n", s->dev.name,
+            s->scene.desc.path, s->scene.desc.width, s->scene.desc.height, st->spp_done,
+            s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
+            (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
+            st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
+            st->pool_size);
+    fclose(f);
+}
+
+int command_bench(const Options *o)
+{
+    Error err = {0};
+    Session s;
+    if (!session_open(&s, o, &err))
+        die("%s", err.message);
+    session_print_summary(&s);
+    const SceneDesc *d = &s.scene.desc;
+    float *rgb = malloc((size_t)d->width * d->height * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed, .quiet = true,
+                           .no_nee = o->no_nee};
+
+    RenderSettings warm = base;
+    warm.spp = 1;
+    bench_render(&s, warm, rgb);
+    RenderSettings off = base;
+    off.no_compaction = true;
+    RenderStats with = bench_render(&s, base, rgb);
+    RenderStats without = bench_render(&s, off, rgb);
+
+    printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths\n", d->path,
+           d->width, d->height, d->spp, d->max_depth, s.dev.name, with.pool_size);
+    printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
+           "Mshadow/s", "rays/path");
+    print_row("compaction", &with);
+    print_row("no-compaction", &without);
+    if (o->csv) {
+        append_csv(o->csv, &s, "compaction", &with);
+        append_csv(o->csv, &s, "no-compaction", &without);
+    }
+
+    RenderSettings profiled = base;
+    profiled.profile = true;
+    RenderStats prof = bench_render(&s, profiled, rgb);
+    double total = 0.0;
+    for (int k = 0; k < STAGE_COUNT; k++)
+        total += prof.stage_ms[k];
+    printf("%-22s %9s %11s %7s\n", "stage (profiled run)", "launches", "total ms", "share");
+    for (int k = 0; k < STAGE_COUNT; k++)
+        printf("%-22s %9u %11.2f %6.1f%%\n", stage_names[k], prof.stage_launches[k], prof.stage_ms[k],
+               total > 0 ? 100.0 * prof.stage_ms[k] / total : 0.0);
+    printf("live paths per bounce:");
+    for (int b = 0; b < 64 && prof.live_per_bounce[b]; b++)
+        printf(" %llu", (unsigned long long)prof.live_per_bounce[b]);
+    printf("\n");
+    free(rgb);
+    session_close(&s);
+    return 0;
+}

@@ -1,0 +1,30 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# bundle.sh BUILD_DIR VERSION: a relocatable dist/pt-VERSION-linux-x86_64/ (+ .tar.gz) that runs on a
+# machine with only an OpenCL ICD loader and a driver: bin/ (pt and the benchmark tools, linked with
+# an $ORIGIN/../lib rpath), lib/ (every shared library they link that such a machine may lack),
+# scenes/ and the README.
+set -eu
+build=$1; version=$2
+name=pt-$version-linux-x86_64
+dest=dist/$name
+rm -rf "$dest"
+mkdir -p "$dest/bin" "$dest/lib"
+cp "$build/pt" "$dest/bin/"
+for tool in "$build"/tools/bench_*; do
+    [ -x "$tool" ] && cp "$tool" "$dest/bin/"
+done
+# Libraries found on any glibc system (and the ICD loader, which must come from the host) stay out.
+system='^(linux-vdso|ld-linux|libc\.|libm\.|libdl\.|libpthread\.|librt\.|libgcc_s\.|libstdc\+\+\.|libz\.|libOpenCL\.)'
+for bin in "$dest"/bin/*; do
+    ldd "$bin" | awk '/=> \// {print $1, $3}'
+done | sort -u | while read -r soname path; do
+    if ! echo "$soname" | grep -Eq "$system"; then
+        cp -L "$path" "$dest/lib/$soname"
+    fi
+done
+cp -r scenes "$dest/"
+cp README.md "$dest/README.md"
+tar -C dist -czf "dist/$name.tar.gz" "$name"
+echo "bundle: $dest ($(du -sh "$dest" | cut -f1)), dist/$name.tar.gz"
+ls "$dest/lib"
