@@ -22,7 +22,7 @@ static volatile sig_atomic_t g_stop_requested;
 void wavefront_request_stop(void) { g_stop_requested = 1; }
 
 /* Everything one render holds on the device. */
-typedef struct {
+struct Wavefront {
     Device *dev;
     const SceneBuffers *scene;
     RenderSettings settings;
@@ -35,7 +35,9 @@ typedef struct {
     cl_kernel kernels[STAGE_COUNT];
     Compactor *compactor;
     uint32_t num_pixels;
-} Wavefront;
+    uint32_t next_sample, next_pixel; /* where the next batch starts */
+    RenderStats own_stats;
+};
 
 static double seconds_now(void)
 {
@@ -54,6 +56,8 @@ static uint32_t choose_pool_size(const Device *dev, const RenderSettings *s, uin
     return (uint32_t)(pool < total_samples ? pool : total_samples);
 }
 
+static void set_all_args(Wavefront *w);
+
 static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *err)
 {
     if (error_is_set(err))
@@ -61,11 +65,11 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
     return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
 }
 
-static bool wavefront_create(Wavefront *w, Device *dev, const Scene *scene,
-                             const SceneBuffers *buffers, const RenderSettings *s,
-                             RenderStats *stats, Error *err)
+static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
+                           const SceneBuffers *buffers, const RenderSettings *s, Error *err)
 {
     memset(w, 0, sizeof *w);
+    RenderStats *stats = &w->own_stats;
     w->dev = dev, w->scene = buffers, w->settings = *s, w->stats = stats;
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
@@ -104,16 +108,32 @@ static bool wavefront_create(Wavefront *w, Device *dev, const Scene *scene,
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
-    float4 zero4 = {{0}};
-    uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->film, &zero4, sizeof zero4, 0,
-                                 (size_t)w->num_pixels * sizeof(float4), 0, NULL, NULL));
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->counters, &zero, sizeof zero, 0,
-                                 COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT)
             w->kernels[k] = device_kernel(dev, stage_names[k]);
+    set_all_args(w);
+    wavefront_reset(w);
     return true;
+}
+
+void wavefront_reset(Wavefront *w)
+{
+    float4 zero4 = {{0}};
+    uint32_t zero = 0;
+    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->film, &zero4, sizeof zero4, 0,
+                                 (size_t)w->num_pixels * sizeof(float4), 0, NULL, NULL));
+    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
+                                 COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
+    uint32_t pool = w->stats->pool_size;
+    memset(w->stats, 0, sizeof *w->stats);
+    w->stats->pool_size = pool;
+    w->next_sample = w->next_pixel = 0;
+}
+
+void wavefront_set_camera(Wavefront *w, const Camera *camera)
+{
+    w->params.camera = *camera;
+    wavefront_reset(w);
 }
 
 /* The index of the first argument after the active list (n_active, then depth for shading). */
@@ -222,44 +242,62 @@ static void print_progress(const RenderStats *stats, int spp, double elapsed, ui
     fflush(stderr);
 }
 
-/* Batches: whole samples per pixel when the pool holds the film, else slices of one sample. */
+/* The next batch from the cursor: whole samples per pixel when the pool holds the film, else a
+ * slice of pixels of one sample. Returns the paths traced. */
+static uint32_t render_next_batch(Wavefront *w, uint32_t max_spp)
+{
+    uint32_t pool = w->stats->pool_size, np = w->num_pixels, n;
+    if (pool >= np && w->next_pixel == 0) {
+        uint32_t k = pool / np;
+        if (k > max_spp - w->next_sample)
+            k = max_spp - w->next_sample;
+        n = k * np;
+        render_batch(w, 0, n, w->next_sample);
+        w->next_sample += k;
+    } else {
+        n = np - w->next_pixel < pool ? np - w->next_pixel : pool;
+        render_batch(w, w->next_pixel, n, w->next_sample);
+        w->next_pixel += n;
+        if (w->next_pixel == np)
+            w->next_pixel = 0, w->next_sample++;
+    }
+    w->stats->spp_done = (int)w->next_sample;
+    return n;
+}
+
+uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
+{
+    double start = seconds_now();
+    uint64_t done = 0;
+    while (done < min_paths && (int)w->next_sample < max_spp)
+        done += render_next_batch(w, (uint32_t)max_spp);
+    CL_CHECK(clFinish(w->dev->queue));
+    w->stats->seconds += seconds_now() - start;
+    return done;
+}
+
+int wavefront_spp_done(const Wavefront *w) { return (int)w->next_sample; }
+RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
+
+/* All spp, a pool's worth at a time, with progress; stops early after wavefront_request_stop(). */
 static void render_all(Wavefront *w, int spp, bool show_progress)
 {
-    uint32_t pool = w->stats->pool_size, np = w->num_pixels;
-    uint64_t total = (uint64_t)np * (uint64_t)spp, done = 0;
-    double start = seconds_now(), last_print = 0.0;
-    int sample = 0;
-    while (sample < spp && !g_stop_requested) {
-        if (pool >= np) {
-            uint32_t k = pool / np;
-            if (k > (uint32_t)(spp - sample))
-                k = (uint32_t)(spp - sample);
-            render_batch(w, 0, k * np, (uint32_t)sample);
-            sample += (int)k;
-            done += (uint64_t)k * np;
-        } else {
-            for (uint32_t first = 0; first < np; first += pool) {
-                uint32_t n = np - first < pool ? np - first : pool;
-                render_batch(w, first, n, (uint32_t)sample);
-                done += n;
-            }
-            sample++;
-        }
-        CL_CHECK(clFinish(w->dev->queue));
-        w->stats->spp_done = sample;
+    uint64_t total = (uint64_t)w->num_pixels * (uint64_t)spp, done = 0;
+    double start = seconds_now(), last_print = -1.0;
+    while ((int)w->next_sample < spp && !g_stop_requested) {
+        done += wavefront_advance(w, 1, spp);
         double now = seconds_now() - start;
-        if (show_progress && (now - last_print > 0.25 || sample == spp)) {
+        if (show_progress && (now - last_print > 0.25 || (int)w->next_sample == spp)) {
             print_progress(w->stats, spp, now, done, total);
             last_print = now;
         }
     }
     if (show_progress)
         fputc('\n', stderr);
-    w->stats->seconds = seconds_now() - start;
 }
 
 /* Film (sum, count) to the mean per pixel. */
-static void read_film(Wavefront *w, float *rgb)
+void wavefront_read_film(Wavefront *w, float *rgb)
 {
     float4 *film = malloc((size_t)w->num_pixels * sizeof *film);
     if (!film)
@@ -276,7 +314,7 @@ static void read_film(Wavefront *w, float *rgb)
     w->stats->nonfinite = counters[COUNTER_NONFINITE];
 }
 
-static void wavefront_destroy(Wavefront *w)
+static void wavefront_release(Wavefront *w)
 {
     for (int k = 0; k < STAGE_COUNT; k++)
         if (w->kernels[k])
@@ -293,18 +331,36 @@ static void wavefront_destroy(Wavefront *w)
             CL_CHECK(clReleaseMemObject(all[i]));
 }
 
+Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                            const RenderSettings *settings, Error *err)
+{
+    Wavefront *w = calloc(1, sizeof *w);
+    if (!w)
+        die("out of memory");
+    if (!wavefront_init(w, dev, scene, buffers, settings, err)) {
+        wavefront_release(w);
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void wavefront_destroy(Wavefront *w)
+{
+    wavefront_release(w);
+    free(w);
+}
+
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                       const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err)
 {
-    memset(stats, 0, sizeof *stats);
     g_stop_requested = 0;
-    Wavefront w;
-    bool ok = wavefront_create(&w, dev, scene, buffers, settings, stats, err);
-    if (ok) {
-        set_all_args(&w);
-        render_all(&w, settings->spp, !settings->quiet && isatty(STDERR_FILENO));
-        read_film(&w, rgb);
-    }
-    wavefront_destroy(&w);
-    return ok;
+    Wavefront *w = wavefront_create(dev, scene, buffers, settings, err);
+    if (!w)
+        return false;
+    render_all(w, settings->spp, !settings->quiet && isatty(STDERR_FILENO));
+    wavefront_read_film(w, rgb);
+    *stats = *w->stats;
+    wavefront_destroy(w);
+    return true;
 }

@@ -37,6 +37,22 @@ typedef struct {
     uint64_t live_per_bounce[64];   /* live paths entering each bounce, summed over batches */
 } RenderStats;
 
+typedef struct Wavefront Wavefront;
+
+/* A progressive render: the device state of one film. Samples continue from where the last call
+ * stopped; the image is the same whatever the steps (the RNG is keyed on pixel and sample). */
+Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                            const RenderSettings *settings, Error *err);
+/* Traces batches until at least min_paths camera paths are done or max_spp samples per pixel are
+ * complete (a batch is a pool's worth: lower settings.pool_size for short steps); waits for them. */
+uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
+int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel so far */
+void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
+void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
+void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
+RenderStats *wavefront_stats(Wavefront *w);
+void wavefront_destroy(Wavefront *w);
+
 /* Renders scene into rgb (width * height * 3 floats, row 0 at the top): the mean of spp samples
  * per pixel. Stops early, keeping what is done, after wavefront_request_stop(). */
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
