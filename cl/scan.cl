@@ -136,7 +136,7 @@ kernel void scan_reduce_values(global const uint *values, uint m, uint per_item,
 /* Replaces each tile of values (per_item size of them) by its exclusive prefix sum plus
  * tile_offsets[t], the exclusive prefix of the tiles before it. The last tile writes the grand
  * total to total[0]. The top level runs as one work-group with tile_offsets = {0}.
- * tile_values: per_item size uints; scratch: size uints. */
+ * tile_values: per_item size uints; scratch: 2 size uints. */
 kernel void scan_exclusive_values(global uint *values, uint m, uint per_item,
                                   global const uint *tile_offsets, global uint *total,
                                   local uint *tile_values, local uint *scratch)

@@ -110,17 +110,19 @@ Compactor *compactor_create_sized(Device *dev, size_t max_n, size_t group_size, 
     cl_uint zero = 0;
     c->mask = device_buffer(dev, "scan_mask", CL_MEM_READ_WRITE,
                             tiles * c->group_size * sizeof(cl_uint), NULL, err);
-    for (int k = 1; k <= top && c->mask; k++) {
+    bool ok = c->mask != NULL;
+    for (int k = 1; k <= top && ok; k++) {
         char name[32];
         snprintf(name, sizeof name, "scan_tile_sums_%d", k);
         c->tile_sums[k] = device_buffer(dev, name, CL_MEM_READ_WRITE, sizes[k] * sizeof(cl_uint),
                                         NULL, err);
-        if (!c->tile_sums[k])
-            break;
+        ok = c->tile_sums[k] != NULL;
     }
-    c->zero = device_buffer(dev, "scan_zero", CL_MEM_READ_ONLY, sizeof zero, &zero, err);
-    c->count = device_buffer(dev, "scan_count", CL_MEM_READ_WRITE, sizeof zero, &zero, err);
-    if (error_is_set(err)) {
+    if (ok)
+        c->zero = device_buffer(dev, "scan_zero", CL_MEM_READ_ONLY, sizeof zero, &zero, err);
+    if (c->zero)
+        c->count = device_buffer(dev, "scan_count", CL_MEM_READ_WRITE, sizeof zero, &zero, err);
+    if (!c->count) {
         compactor_destroy(c);
         return NULL;
     }
@@ -183,6 +185,48 @@ static void scan_level(Compactor *c, const size_t *sizes, int k, int top, cl_mem
     launch(c, kernel, k == top ? 1 : sizes[k + 1]);
 }
 
+/* Flags -> mask and per-tile counts (level 1). */
+static void count_flags(Compactor *c, cl_mem flags, uint32_t n, size_t tiles)
+{
+    size_t local = c->group_size;
+    cl_uint n_arg = n;
+    KERNEL_ARG(c->count_flags, 0, flags);
+    KERNEL_ARG(c->count_flags, 1, n_arg);
+    KERNEL_ARG(c->count_flags, 2, c->mask);
+    KERNEL_ARG(c->count_flags, 3, c->tile_sums[1]);
+    CL_CHECK(clSetKernelArg(c->count_flags, 4, FLAGS_PER_ITEM / 4 * local, NULL));
+    CL_CHECK(clSetKernelArg(c->count_flags, 5, local * sizeof(cl_uint), NULL));
+    launch(c, c->count_flags, tiles);
+}
+
+/* Sums level k per tile into level k + 1. */
+static void reduce_level(Compactor *c, const size_t *sizes, int k)
+{
+    cl_uint m = (cl_uint)sizes[k], per_item = VALUES_PER_ITEM;
+    KERNEL_ARG(c->reduce_values, 0, c->tile_sums[k]);
+    KERNEL_ARG(c->reduce_values, 1, m);
+    KERNEL_ARG(c->reduce_values, 2, per_item);
+    KERNEL_ARG(c->reduce_values, 3, c->tile_sums[k + 1]);
+    CL_CHECK(clSetKernelArg(c->reduce_values, 4, c->group_size * sizeof(cl_uint), NULL));
+    launch(c, c->reduce_values, sizes[k + 1]);
+}
+
+/* Mask + level 1 (tile counts when sum_counts, else tile offsets) -> indices. */
+static void scatter_indices(Compactor *c, cl_mem indices, cl_mem count_buf, size_t tiles,
+                            cl_uint sum_counts)
+{
+    size_t local = c->group_size;
+    KERNEL_ARG(c->scatter_indices, 0, c->mask);
+    KERNEL_ARG(c->scatter_indices, 1, c->tile_sums[1]);
+    KERNEL_ARG(c->scatter_indices, 2, sum_counts);
+    KERNEL_ARG(c->scatter_indices, 3, count_buf);
+    KERNEL_ARG(c->scatter_indices, 4, indices);
+    CL_CHECK(clSetKernelArg(c->scatter_indices, 5, FLAGS_PER_ITEM * local * sizeof(cl_ushort),
+                            NULL));
+    CL_CHECK(clSetKernelArg(c->scatter_indices, 6, 2 * local * sizeof(cl_uint), NULL));
+    launch(c, c->scatter_indices, tiles);
+}
+
 void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_buf, uint32_t n)
 {
     if (n > c->max_n)
@@ -193,46 +237,20 @@ void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_
                                      0, NULL, NULL));
         return;
     }
-    size_t sizes[MAX_LEVELS], local = c->group_size;
-    int top = level_sizes(local, n, sizes);
-    cl_uint n_arg = n, per_item = VALUES_PER_ITEM;
-
-    /* Flags -> mask and per-tile counts (level 1). */
-    KERNEL_ARG(c->count_flags, 0, flags);
-    KERNEL_ARG(c->count_flags, 1, n_arg);
-    KERNEL_ARG(c->count_flags, 2, c->mask);
-    KERNEL_ARG(c->count_flags, 3, c->tile_sums[1]);
-    CL_CHECK(clSetKernelArg(c->count_flags, 4, FLAGS_PER_ITEM / 4 * local, NULL));
-    CL_CHECK(clSetKernelArg(c->count_flags, 5, local * sizeof(cl_uint), NULL));
-    launch(c, c->count_flags, sizes[1]);
-
-    /* Levels too large for one work-group: sum them into the level above. */
-    for (int k = 1; k < top; k++) {
-        cl_uint m = (cl_uint)sizes[k];
-        KERNEL_ARG(c->reduce_values, 0, c->tile_sums[k]);
-        KERNEL_ARG(c->reduce_values, 1, m);
-        KERNEL_ARG(c->reduce_values, 2, per_item);
-        KERNEL_ARG(c->reduce_values, 3, c->tile_sums[k + 1]);
-        CL_CHECK(clSetKernelArg(c->reduce_values, 4, local * sizeof(cl_uint), NULL));
-        launch(c, c->reduce_values, sizes[k + 1]);
-    }
-
-    /* When the tile counts fit one work-group, the scatter adds them up itself (sum_counts);
-     * otherwise scan them top level down: level 1 then holds each flag tile's first output. */
+    size_t sizes[MAX_LEVELS];
+    int top = level_sizes(c->group_size, n, sizes);
+    count_flags(c, flags, n, sizes[1]);
+    /* When the tile counts fit one work-group, the scatter adds them up itself, which saves a
+     * launch; otherwise reduce them level by level, then scan them top level down, so that level 1
+     * holds each flag tile's first output position. */
     cl_uint sum_counts = top == 1;
-    for (int k = top; k >= 1 && !sum_counts; k--)
-        scan_level(c, sizes, k, top, count_buf);
-
-    KERNEL_ARG(c->scatter_indices, 0, c->mask);
-    KERNEL_ARG(c->scatter_indices, 1, c->tile_sums[1]);
-    KERNEL_ARG(c->scatter_indices, 2, sum_counts);
-    KERNEL_ARG(c->scatter_indices, 3, count_buf);
-    KERNEL_ARG(c->scatter_indices, 4, indices);
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 5, FLAGS_PER_ITEM * local * sizeof(cl_ushort),
-                            NULL));
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 6, 2 * local * sizeof(cl_uint), NULL));
-    launch(c, c->scatter_indices, sizes[1]);
-
+    if (!sum_counts) {
+        for (int k = 1; k < top; k++)
+            reduce_level(c, sizes, k);
+        for (int k = top; k >= 1; k--)
+            scan_level(c, sizes, k, top, count_buf);
+    }
+    scatter_indices(c, indices, count_buf, sizes[1], sum_counts);
     if (c->profile_ms)
         collect_profile(c);
 }

@@ -13,8 +13,9 @@
 
 #define SENTINEL 0xdeadbeefu
 
-static const uint32_t sizes[] = {0, 1, 2, 255, 256, 257, 1023, 1024, 1025, 4097, 65537,
-                                 (1u << 20) + 3};
+/* 8191..8193: around the flag tile of the default work-group size (32 x 256). */
+static const uint32_t sizes[] = {0, 1, 2, 255, 256, 257, 1023, 1024, 1025, 4097, 8191, 8192, 8193,
+                                 65537, (1u << 20) + 3};
 #define NUM_SIZES (sizeof sizes / sizeof sizes[0])
 #define MAX_SIZE ((1u << 20) + 3)
 
