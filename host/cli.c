@@ -35,6 +35,8 @@ void cli_print_help(void)
          "  --no-nee           pure BSDF sampling (validation; same converged image)\n"
          "  --no-compaction    keep dead paths in the wavefront (validation; same image)\n"
          "  --profile          per-kernel timing table\n"
+         "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
+         "                     default ~/.cache/pt) holds them\n"
          "  --quiet            no progress output");
 }
 
@@ -121,6 +123,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             else if (!strcmp(a, "--no-nee")) o->no_nee = true;
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
             else if (!strcmp(a, "--profile")) o->profile = true;
+            else if (!strcmp(a, "--no-cache")) o->no_cache = true;
             else if (!strcmp(a, "--help") || !strcmp(a, "-h")) o->command = CMD_HELP;
             else if (a[0] == '-' && a[1]) {
                 error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", a);

@@ -22,6 +22,7 @@ typedef struct {
     bool quiet;
     bool preview;   /* with -o X.exr, also write X.png */
     bool no_nee, no_compaction, profile;
+    bool no_cache;   /* compile the kernels even if the kernel cache has them */
     const char *csv; /* pt bench: append results to this CSV file */
 } Options;
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "device.h"
 
+#include "kernel_cache.h"
+
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -183,6 +185,8 @@ bool device_open(Device *dev, const char *spec, Error *err)
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof dev->compute_units,
                              &dev->compute_units, NULL));
     dev->is_nvidia = strstr(dev->platform_name, "NVIDIA") != NULL;
+    const char *no_cache = getenv("PT_NO_CACHE");
+    dev->use_cache = !(no_cache && *no_cache && strcmp(no_cache, "0") != 0);
 
     cl_int status;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)dev->platform, 0};
@@ -201,46 +205,92 @@ const char *device_build_options(const Device *dev)
                           : "-cl-std=CL1.2 -cl-mad-enable -cl-no-signed-zeros";
 }
 
-bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
+/* Prints the build log of a failed build and records the error. */
+static bool build_failed(Device *dev, cl_int status, Error *err)
 {
-    const char *sources[2] = {(const char *)pt_kernel_source, NULL};
-    size_t lengths[2] = {pt_kernel_source_length, 0};
-    cl_uint count = 1;
-    char *extra = NULL;
-    if (extra_source) {
-        size_t n = strlen(extra_source) + strlen(extra_name ? extra_name : "extra") + 32;
-        extra = malloc(n);
-        if (!extra)
-            die("out of memory");
-        snprintf(extra, n, "\n#line 1 \"%s\"\n%s", extra_name ? extra_name : "extra", extra_source);
-        sources[1] = extra, lengths[1] = strlen(extra), count = 2;
-    }
-    cl_int status;
-    dev->program = clCreateProgramWithSource(dev->context, count, sources, lengths, &status);
-    CL_CHECK_ERR(status, "clCreateProgramWithSource");
-    free(extra);
+    size_t log_size = 0;
+    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
+    char *log = malloc(log_size + 1);
+    if (!log)
+        die("out of memory");
+    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
+    log[log_size] = '\0';
+    fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name,
+            device_build_options(dev), log);
+    free(log);
+    error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
+              dev->name, cl_error_name(status));
+    return false;
+}
 
-    double start = now_seconds();
-    status = clBuildProgram(dev->program, 1, &dev->device, device_build_options(dev), NULL, NULL);
-    dev->build_seconds = now_seconds() - start;
-    if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS) {
-        size_t log_size = 0;
-        CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL,
-                                       &log_size));
-        char *log = malloc(log_size + 1);
-        if (!log)
-            die("out of memory");
-        CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, log_size,
-                                       log, NULL));
-        log[log_size] = '\0';
-        fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name,
-                device_build_options(dev), log);
-        free(log);
-        error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
-                  dev->name, cl_error_name(status));
+/* A program from a cached binary; false (and nothing kept) when the entry is missing or unusable. */
+static bool build_from_cache(Device *dev, uint64_t key)
+{
+    unsigned char *binary = NULL;
+    size_t size = 0;
+    if (!kernel_cache_load(key, &binary, &size))
+        return false;
+    cl_int status, binary_status;
+    const unsigned char *binaries[1] = {binary};
+    cl_program program = clCreateProgramWithBinary(dev->context, 1, &dev->device, &size, binaries,
+                                                   &binary_status, &status);
+    free(binary);
+    if (status != CL_SUCCESS || binary_status != CL_SUCCESS)
+        return false;
+    if (clBuildProgram(program, 1, &dev->device, device_build_options(dev), NULL, NULL) != CL_SUCCESS) {
+        clReleaseProgram(program);
         return false;
     }
-    CL_CHECK_ERR(status, "clBuildProgram");
+    dev->program = program;
+    return true;
+}
+
+static void store_in_cache(Device *dev, uint64_t key)
+{
+    size_t size = 0;
+    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL));
+    if (size == 0)
+        return;
+    unsigned char *binary = malloc(size);
+    if (!binary)
+        return;
+    unsigned char *binaries[1] = {binary};
+    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL));
+    kernel_cache_store(key, binary, size);
+    free(binary);
+}
+
+bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
+{
+    char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
+    if (!source)
+        die("out of memory");
+    memcpy(source, pt_kernel_source, pt_kernel_source_length + 1);
+    if (extra_source)
+        sprintf(source + pt_kernel_source_length, "\n#line 1 \"%.500s\"\n%s",
+                extra_name ? extra_name : "extra", extra_source);
+
+    double start = now_seconds();
+    const char *key_parts[] = {source, device_build_options(dev), dev->name, dev->platform_name,
+                               dev->driver_version};
+    uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
+    dev->cache_hit = dev->use_cache && build_from_cache(dev, key);
+    if (!dev->cache_hit) {
+        cl_int status;
+        const char *sources[1] = {source};
+        dev->program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
+        CL_CHECK_ERR(status, "clCreateProgramWithSource");
+        status = clBuildProgram(dev->program, 1, &dev->device, device_build_options(dev), NULL, NULL);
+        if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS) {
+            free(source);
+            return build_failed(dev, status, err);
+        }
+        CL_CHECK_ERR(status, "clBuildProgram");
+        if (dev->use_cache)
+            store_in_cache(dev, key);
+    }
+    dev->build_seconds = now_seconds() - start;
+    free(source);
     return true;
 }
 

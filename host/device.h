@@ -26,7 +26,9 @@ typedef struct {
     char name[256];
     char platform_name[256];
     char driver_version[128];
-    double build_seconds; /* time spent in clBuildProgram */
+    double build_seconds; /* time to get the program: compile, or load from the kernel cache */
+    bool use_cache;       /* set before device_build; device_open sets it unless PT_NO_CACHE=1 */
+    bool cache_hit;       /* the program came from the kernel cache */
 } Device;
 
 /* Prints every platform and device (name, type, compute units, memory, max allocation, OpenCL C

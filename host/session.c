@@ -38,7 +38,10 @@ bool session_open(Session *s, const Options *o, Error *err)
         return false;
     }
     s->load_seconds = seconds_now() - t0;
-    if (!device_open(&s->dev, o->device, err) || !device_build(&s->dev, NULL, NULL, err)) {
+    bool opened = device_open(&s->dev, o->device, err);
+    if (opened && o->no_cache)
+        s->dev.use_cache = false;
+    if (!opened || !device_build(&s->dev, NULL, NULL, err)) {
         if (s->dev.context)
             device_close(&s->dev);
         scene_free(&s->scene);
@@ -58,11 +61,12 @@ void session_print_summary(const Session *s)
 {
     fprintf(stderr,
             "pt: %s: %u triangles, %u materials, %u textures, %u emissive triangles; load %.2f s, "
-            "BVH %.2f s, kernel build %.2f s\npt: device %s (%s, driver %s), %.1f MiB of scene "
+            "BVH %.2f s, kernels %.2f s (%s)\npt: device %s (%s, driver %s), %.1f MiB of scene "
             "buffers\n",
             s->scene.desc.path, s->scene.data.num_triangles, s->scene.data.num_materials,
             s->scene.data.textures.count, s->scene.data.num_emissive, s->load_seconds,
-            s->bvh_seconds, s->dev.build_seconds, s->dev.name, s->dev.platform_name,
+            s->bvh_seconds, s->dev.build_seconds, s->dev.cache_hit ? "from the kernel cache" : "compiled",
+            s->dev.name, s->dev.platform_name,
             s->dev.driver_version, (double)s->buffers.bytes / (1 << 20));
 }
 

@@ -2,6 +2,7 @@
 /* Device layer: the program builds on PoCL, shared structs have the same size on both sides, bad
  * device specs and oversized allocations are reported, a broken kernel shows its build log. */
 #include <criterion/criterion.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "device.h"
@@ -65,4 +66,42 @@ Test(device, broken_kernel_reports_a_build_failure)
                                "broken.cl", &err));
     cr_expect_eq(err.code, ERR_KERNEL_BUILD);
     device_close(&dev);
+}
+
+/* The kernel cache: a second build loads the stored binary; a corrupt entry is rebuilt silently and
+ * replaced; a changed source gets its own entry. */
+Test(device, kernel_cache_hit_and_corrupt_entry_rebuild, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    setenv("XDG_CACHE_HOME", dir, 1);
+    unsetenv("PT_NO_CACHE");
+    const char *extra = "kernel void cache_probe(global int *x) { x[0] = 42; }";
+    Error err = {0};
+    Device a, b, c, d;
+    cr_assert(device_open(&a, "cpu", &err), "%s", err.message);
+    cr_assert(device_build(&a, extra, "probe.cl", &err), "%s", err.message);
+    cr_expect_not(a.cache_hit, "first build cannot come from an empty cache");
+    cr_assert(device_open(&b, "cpu", &err) && device_build(&b, extra, "probe.cl", &err));
+    cr_expect(b.cache_hit, "second build should load the cached binary");
+
+    /* The cached program works. */
+    cl_mem out = device_buffer(&b, "out", CL_MEM_WRITE_ONLY, sizeof(cl_int), NULL, &err);
+    cl_kernel kernel = device_kernel(&b, "cache_probe");
+    KERNEL_ARG(kernel, 0, out);
+    device_run(&b, kernel, 1, 1, NULL);
+    cl_int value = 0;
+    device_read(&b, out, 0, sizeof value, &value);
+    cr_expect_eq(value, 42);
+    clReleaseKernel(kernel);
+    clReleaseMemObject(out);
+
+    /* Corrupt every entry: the next build compiles and succeeds. */
+    char command[600];
+    snprintf(command, sizeof command, "for f in %s/pt/*.bin; do echo garbage > $f; done", dir);
+    cr_assert_eq(system(command), 0);
+    cr_assert(device_open(&c, "cpu", &err) && device_build(&c, extra, "probe.cl", &err), "%s", err.message);
+    cr_expect_not(c.cache_hit, "a corrupt entry must not be used");
+    cr_assert(device_open(&d, "cpu", &err) && device_build(&d, extra, "probe.cl", &err));
+    cr_expect(d.cache_hit, "the rebuilt binary replaced the corrupt entry");
+    device_close(&a), device_close(&b), device_close(&c), device_close(&d);
 }
