@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: MIT
+/* The pt binary end to end: every bad input ends with one line on stderr naming what is wrong and
+ * a non-zero exit (never a crash); a good render writes where it says and never overwrites what
+ * it was not told to. PT_BIN names the binary (the Makefile sets it; default build/pt). */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <criterion/criterion.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "support.h"
+
+typedef struct {
+    int exit_code; /* -1 when killed by a signal */
+    char out[8192], err[8192];
+} Run;
+
+static const char *pt_bin(void)
+{
+    static char path[PATH_MAX];
+    const char *bin = getenv("PT_BIN");
+    if (!realpath(bin ? bin : "build/pt", path))
+        cr_skip_test("pt binary not found (set PT_BIN)");
+    return path;
+}
+
+/* Runs pt with args (a shell fragment) in folder dir (NULL = here). */
+static Run run_pt(const char *dir, const char *args)
+{
+    Run r;
+    memset(&r, 0, sizeof r);
+    char out_path[256], err_path[256], cmd[9000];
+    snprintf(out_path, sizeof out_path, "/tmp/pt-cli-out-%d", (int)getpid());
+    snprintf(err_path, sizeof err_path, "/tmp/pt-cli-err-%d", (int)getpid());
+    snprintf(cmd, sizeof cmd, "%s%s%s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
+             dir ? "' && " : "", pt_bin(), args, out_path, err_path);
+    int status = system(cmd);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    char *text = test_read_file(out_path, NULL);
+    snprintf(r.out, sizeof r.out, "%s", text ? text : "");
+    free(text);
+    text = test_read_file(err_path, NULL);
+    snprintf(r.err, sizeof r.err, "%s", text ? text : "");
+    free(text);
+    unlink(out_path), unlink(err_path);
+    return r;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert(f, "cannot write %s", path);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* One clear line: exit 1, stderr is a single "pt: ..." line containing every needle. */
+static void expect_clean_error(Run r, const char *what, const char *needle1, const char *needle2)
+{
+    cr_expect_eq(r.exit_code, 1, "%s: exit %d (stderr: %s)", what, r.exit_code, r.err);
+    cr_expect(strncmp(r.err, "pt: ", 4) == 0, "%s: stderr starts with 'pt: ': %s", what, r.err);
+    const char *newline = strchr(r.err, '\n');
+    cr_expect(newline && newline[1] == '\0', "%s: exactly one line: %s", what, r.err);
+    if (needle1)
+        cr_expect(strstr(r.err, needle1), "%s: '%s' not in: %s", what, needle1, r.err);
+    if (needle2)
+        cr_expect(strstr(r.err, needle2), "%s: '%s' not in: %s", what, needle2, r.err);
+}
+
+Test(cli, help_lists_the_commands)
+{
+    Run r = run_pt(NULL, "help");
+    cr_expect_eq(r.exit_code, 0);
+    const char *words[] = {"render", "view", "devices", "bench", "--spp", "--max-depth", "--device",
+                           "--seed", "--aov", "--no-nee", "--no-compaction", "--exposure"};
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+        cr_expect(strstr(r.out, words[i]), "help does not mention %s", words[i]);
+}
+
+Test(cli, bad_command_line)
+{
+    expect_clean_error(run_pt(NULL, "frobnicate"), "unknown command", "frobnicate", NULL);
+    expect_clean_error(run_pt(NULL, "render"), "missing scene", "SCENE", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --spp 0"), "spp 0", "--spp", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --spp lots"), "spp text", "lots", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --bogus"), "unknown option", "--bogus", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --aov shiny"), "bad aov", "shiny", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box -o image.tiff"), "bad format", "image.tiff", NULL);
+}
+
+Test(cli, bad_scene_files)
+{
+    const char *dir = test_temp_dir();
+    char path[512], args[1024];
+    expect_clean_error(run_pt(NULL, "render /nonexistent/scene.json"), "missing scene", "/nonexistent/scene.json", NULL);
+
+    snprintf(path, sizeof path, "%s/broken.json", dir);
+    write_text(path, "{\n  \"film\": {\"width\": 64,\n  \"height\": 64}\n  \"objects\": []\n}\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "malformed JSON", "broken.json", ":4");
+
+    snprintf(path, sizeof path, "%s/unknown.json", dir);
+    write_text(path, "{\"objects\": [{\"obj\": \"a.obj\"}], \"colour\": [1, 1, 1]}\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "unknown key", "colour", NULL);
+
+    snprintf(path, sizeof path, "%s/missing_obj.json", dir);
+    write_text(path, "{\"objects\": [{\"obj\": \"nowhere.obj\"}]}\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "missing OBJ", "nowhere.obj", NULL);
+
+    snprintf(path, sizeof path, "%s/bad_index.obj", dir);
+    write_text(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "index out of range", "bad_index.obj", "4");
+
+    snprintf(path, sizeof path, "%s/nan.obj", dir);
+    write_text(path, "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "non-finite vertex", "nan.obj", "2");
+
+    snprintf(path, sizeof path, "%s/empty.obj", dir);
+    write_text(path, "# nothing here\n");
+    snprintf(args, sizeof args, "render '%s'", path);
+    expect_clean_error(run_pt(NULL, args), "no triangles", "empty.obj", NULL);
+}
+
+Test(cli, bad_device_and_output)
+{
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --device 7:3 --quiet"), "unknown device", "7:3", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --device tpu --quiet"), "unknown device", "tpu", NULL);
+    /* The output folder is checked before any rendering starts. */
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box -o /nonexistent/dir/x.exr --quiet"),
+                       "unwritable output", "/nonexistent/dir/x.exr", NULL);
+}
+
+Test(cli, render_writes_outputs_and_never_overwrites_without_o, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    char cwd[PATH_MAX], args[PATH_MAX + 200];
+    cr_assert(getcwd(cwd, sizeof cwd));
+    snprintf(args, sizeof args,
+             "render '%s/scenes/cornell-box' --width 16 --height 16 --spp 1 --device cpu --quiet", cwd);
+    Run first = run_pt(dir, args);
+    cr_assert_eq(first.exit_code, 0, "%s", first.err);
+    cr_expect(strstr(first.out, "out/cornell-box.exr") && strstr(first.out, "out/cornell-box.png"), "%s", first.out);
+    Run second = run_pt(dir, args);
+    cr_assert_eq(second.exit_code, 0, "%s", second.err);
+    cr_expect(strstr(second.out, "out/cornell-box-2.exr") && strstr(second.out, "out/cornell-box-2.png"), "%s", second.out);
+    struct stat st;
+    char path[1024];
+    const char *files[] = {"cornell-box.exr", "cornell-box.png", "cornell-box-2.exr", "cornell-box-2.png"};
+    for (int i = 0; i < 4; i++) {
+        snprintf(path, sizeof path, "%s/out/%s", dir, files[i]);
+        cr_expect(stat(path, &st) == 0 && st.st_size > 0, "%s missing", path);
+    }
+    /* -o names the file and its format. */
+    snprintf(args, sizeof args,
+             "render '%s/scenes/cornell-box' --width 16 --height 16 --spp 1 --device cpu --quiet -o named.png", cwd);
+    Run named = run_pt(dir, args);
+    cr_assert_eq(named.exit_code, 0, "%s", named.err);
+    snprintf(path, sizeof path, "%s/named.png", dir);
+    cr_expect(stat(path, &st) == 0 && st.st_size > 0);
+}
