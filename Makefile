@@ -39,7 +39,7 @@ TEST_SUPPORT := $(BUILD)/tests/support.o
 SCENE   ?= scenes/cornell-box
 DEVICE  ?=
 
-.PHONY: all run test asan bench clean deps
+.PHONY: all run test asan bench clean deps references
 all: $(BUILD)/pt
 
 deps:
@@ -59,6 +59,9 @@ asan:
 
 bench: all
 	$(Q)./tools/bench.sh
+
+# Re-renders tests/references/ with Mitsuba 3 (slow; only when asked, never as a dependency).
+references: ; ./tools/make-references.sh
 
 clean:
 	rm -rf build build-asan

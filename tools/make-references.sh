@@ -1,0 +1,35 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# Re-renders the Mitsuba 3 reference images in tests/references/ from the scenes in tests/scenes/.
+# Run only on purpose (`make references`): nothing else calls it, and the references are committed.
+# Creates the virtualenv .venv-mitsuba (gitignored) with Mitsuba from PyPI on first use.
+#   tools/make-references.sh [SCENE...]     default: every scene listed below
+# Environment: MITSUBA_VARIANT (default scalar_rgb; e.g. "llvm_ad_rgb,scalar_rgb" with
+# DRJIT_LIBLLVM_PATH set to a libLLVM that Dr.Jit accepts), SPP_SCALE (divides every spp: quick trials).
+set -eu
+
+cd "$(dirname "$0")/.."
+VENV=.venv-mitsuba
+MITSUBA_VERSION=3.9.1 # the version the committed references were made with (tests/references/README.md)
+
+if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c "import mitsuba, numpy" 2>/dev/null; then
+    echo "make-references: creating $VENV with mitsuba==$MITSUBA_VERSION"
+    python3 -m venv "$VENV"
+    "$VENV/bin/pip" install -q "mitsuba==$MITSUBA_VERSION" numpy
+fi
+
+# scene:spp. 16 batches each (so spp must be a multiple of 16); see tests/references/README.md.
+ALL="furnace:16384 textured:16384 cornell:16384 cornell-sphere:32768"
+SCENES="${*:-}"
+SCALE="${SPP_SCALE:-1}"
+mkdir -p tests/references
+for entry in $ALL; do
+    scene=${entry%%:*}
+    spp=$((${entry#*:} / SCALE))
+    if [ -n "$SCENES" ] && ! echo " $SCENES " | grep -q " $scene "; then
+        continue
+    fi
+    "$VENV/bin/python" tools/mitsuba_reference.py "tests/scenes/$scene" "tests/references/$scene.exr" \
+        --spp "$spp" --batches 16 --variant "${MITSUBA_VARIANT:-scalar_rgb}" \
+        --stderr "tests/references/$scene.stderr.exr"
+done

@@ -1,0 +1,442 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Renders an independent reference image of one of our scenes with Mitsuba 3.
+
+    mitsuba_reference.py SCENE OUT.exr [--spp N] [--batches K] [--variant V] [--stderr ERR.exr]
+
+SCENE is a scene.json or the folder holding one. The scene and its OBJ/MTL files are read here (a
+small reader following tinyobjloader's rules, written without looking at the renderer's loader), and
+translated to a Mitsuba scene with the same conventions as the renderer (/work/shared/DESIGN.md):
+
+  material (MTL)                              Mitsuba
+  Ke != 0                                     'area' emitter (one-sided, along the CCW normal)
+                                              + the BSDF below (emitters reflect too)
+  illum 4/6/7, or Ni > 1 and d < 1            dielectric, int_ior Ni (1.5 if Ni <= 1), ext_ior 1,
+                                              specular_reflectance 1, specular_transmittance Tf
+                                              (1 if Tf absent or zero); not wrapped: two-sided
+  illum 3/5                                   twosided(conductor 'none', specular_reflectance Ks)
+  anything else                               twosided(diffuse Kd * map_Kd), map_Kd sRGB-decoded,
+                                              bilinear, repeat, v = 0 the bottom row
+  faces without vn                            face_normals (flat shading)
+  camera fov_y, look_at, aperture (diameter)  perspective/thinlens, fov_axis 'y', aperture_radius/2
+  film                                        hdrfilm rgb float32, box rfilter
+  background != 0                             'constant' emitter
+  render.max_depth                            path integrator max_depth, hide_emitters false
+
+The image is rendered in K batches with different seeds; OUT.exr is their mean, and --stderr writes
+the per-pixel standard error of that mean (the batches' spread / sqrt(K)) as a half-float EXR, so
+tests can tell how much of a difference is the reference's own noise.
+Mitsuba is imported only when rendering: the reader works with plain Python (tools/make_test_scenes.py
+uses it to check the files it writes).
+"""
+import argparse
+import json
+import math
+import os
+import struct
+import sys
+import tempfile
+import time
+import zlib
+
+
+class SceneError(Exception):
+    pass
+
+
+# ---- MTL -----------------------------------------------------------------------------------------
+
+class Material:
+    def __init__(self, name):
+        self.name = name
+        # tinyobjloader's defaults.
+        self.kd = [0.0, 0.0, 0.0]
+        self.ks = [0.0, 0.0, 0.0]
+        self.ke = [0.0, 0.0, 0.0]
+        self.tf = [0.0, 0.0, 0.0]
+        self.ni = 1.0
+        self.d = 1.0
+        self.illum = 0
+        self.map_kd = None  # absolute path
+        self.has_kd = False
+        self.has_d = False
+
+    @property
+    def emissive(self):
+        return any(c > 0 for c in self.ke)
+
+    @property
+    def kind(self):
+        if self.illum in (4, 6, 7) or (self.ni > 1 and self.d < 1):
+            return "dielectric"
+        if self.illum in (3, 5):
+            return "mirror"
+        return "diffuse"
+
+
+def _floats(tokens, path, line_no, n=3):
+    try:
+        values = [float(t) for t in tokens[:n]]
+    except ValueError:
+        raise SceneError(f"{path}:{line_no}: bad number in '{' '.join(tokens)}'")
+    if not values:
+        raise SceneError(f"{path}:{line_no}: missing value")
+    while len(values) < n:  # 'Kd 0.5' means grey, as in tinyobjloader
+        values.append(values[-1])
+    return values
+
+
+def load_mtl(path):
+    materials = {}
+    m = None
+    with open(path, "r", encoding="utf-8", errors="replace") as f:
+        for line_no, line in enumerate(f, 1):
+            line = line.split("#", 1)[0].strip()
+            if not line:
+                continue
+            key, *rest = line.split()
+            if key == "newmtl":
+                m = Material(line.split(None, 1)[1].strip() if rest else "")
+                materials[m.name] = m
+                continue
+            if m is None:
+                continue
+            if key == "Kd":
+                m.kd = _floats(rest, path, line_no)
+                m.has_kd = True
+            elif key == "Ks":
+                m.ks = _floats(rest, path, line_no)
+            elif key == "Ke":
+                m.ke = _floats(rest, path, line_no)
+            elif key == "Tf":
+                m.tf = _floats(rest, path, line_no)
+            elif key == "Ni":
+                m.ni = _floats(rest, path, line_no, 1)[0]
+            elif key == "d":
+                m.d = _floats(rest, path, line_no, 1)[0]
+                m.has_d = True
+            elif key == "Tr":
+                if not m.has_d:  # 'd' wins over 'Tr' (tinyobjloader)
+                    m.d = 1.0 - _floats(rest, path, line_no, 1)[0]
+            elif key == "illum":
+                try:
+                    m.illum = int(rest[0])
+                except (ValueError, IndexError):
+                    raise SceneError(f"{path}:{line_no}: bad illum")
+            elif key == "map_Kd":
+                if not rest:
+                    raise SceneError(f"{path}:{line_no}: map_Kd without a file")
+                # Options (-mm a b, -o u v w, ...) come first; the file name is the last token.
+                m.map_kd = os.path.join(os.path.dirname(path), rest[-1])
+                if not m.has_kd:  # tinyobjloader: map_Kd without Kd gets Kd 0.6
+                    m.kd = [0.6, 0.6, 0.6]
+    return materials
+
+
+# ---- OBJ -----------------------------------------------------------------------------------------
+
+class MeshGroup:
+    """The triangles of one material (and one normal mode) with their own vertex arrays; corner
+    indices are 0-based into positions/texcoords/normals of this group."""
+
+    def __init__(self, material, has_uv, has_normals):
+        self.material = material
+        self.has_uv = has_uv
+        self.has_normals = has_normals
+        self.positions, self.texcoords, self.normals = [], [], []
+        self.triangles, self.tri_uv, self.tri_normals = [], [], []
+        self._remap = ({}, {}, {})
+
+    def _local(self, which, index, source, target):
+        remap = self._remap[which]
+        if index not in remap:
+            remap[index] = len(target)
+            target.append(source[index])
+        return remap[index]
+
+    def add(self, corners, v, vt, vn):
+        self.triangles.append(tuple(self._local(0, c[0], v, self.positions) for c in corners))
+        if self.has_uv:
+            self.tri_uv.append(tuple(self._local(1, c[1], vt, self.texcoords) for c in corners))
+        if self.has_normals:
+            self.tri_normals.append(tuple(self._local(2, c[2], vn, self.normals) for c in corners))
+
+
+def _resolve(token, count, path, line_no, what):
+    try:
+        i = int(token)
+    except ValueError:
+        raise SceneError(f"{path}:{line_no}: bad {what} index '{token}'")
+    i = i - 1 if i > 0 else count + i  # 1-based, or negative = relative to the end
+    if not 0 <= i < count:
+        raise SceneError(f"{path}:{line_no}: {what} index {token} out of range")
+    return i
+
+
+def load_obj(path):
+    """Returns a list of MeshGroup, one per (material, has vt, has vn) in first-use order."""
+    v, vt, vn = [], [], []
+    materials = {}
+    current = None
+    groups = {}
+    with open(path, "r", encoding="utf-8", errors="replace") as f:
+        for line_no, line in enumerate(f, 1):
+            line = line.split("#", 1)[0].strip()
+            if not line:
+                continue
+            key, *rest = line.split()
+            if key == "v":
+                v.append(_floats(rest, path, line_no))
+            elif key == "vt":
+                vt.append(_floats(rest, path, line_no, 2))
+            elif key == "vn":
+                vn.append(_floats(rest, path, line_no))
+            elif key == "mtllib":
+                for name in rest:
+                    mtl = os.path.join(os.path.dirname(path), name)
+                    if not os.path.exists(mtl):
+                        raise SceneError(f"{path}:{line_no}: mtllib {name} not found")
+                    materials.update(load_mtl(mtl))
+            elif key == "usemtl":
+                name = line.split(None, 1)[1].strip() if rest else ""
+                if name not in materials:
+                    raise SceneError(f"{path}:{line_no}: material '{name}' not defined")
+                current = materials[name]
+            elif key == "f":
+                if len(rest) < 3:
+                    raise SceneError(f"{path}:{line_no}: face with fewer than 3 corners")
+                corners = []
+                for tok in rest:
+                    parts = tok.split("/")
+                    c = [_resolve(parts[0], len(v), path, line_no, "v"), None, None]
+                    if len(parts) > 1 and parts[1]:
+                        c[1] = _resolve(parts[1], len(vt), path, line_no, "vt")
+                    if len(parts) > 2 and parts[2]:
+                        c[2] = _resolve(parts[2], len(vn), path, line_no, "vn")
+                    corners.append(c)
+                has_uv = all(c[1] is not None for c in corners)
+                has_n = all(c[2] is not None for c in corners)
+                if current is None:
+                    current = materials.setdefault("", Material(""))  # tinyobjloader's default
+                group = groups.setdefault((current.name, has_uv, has_n),
+                                          MeshGroup(current, has_uv, has_n))
+                for k in range(1, len(corners) - 1):  # fan: the faces here are convex
+                    group.add((corners[0], corners[k], corners[k + 1]), v, vt, vn)
+            # g, o, s, l, p and anything else: no effect on the image
+    return list(groups.values())
+
+
+def read_png_size(path):
+    """Checks that path is a PNG whose chunks are intact and whose image data inflates to the
+    right size; returns (width, height)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise SceneError(f"{path}: not a PNG")
+    pos, idat, width = 8, b"", None
+    while pos < len(data):
+        (length,), kind = struct.unpack(">I", data[pos:pos + 4]), data[pos + 4:pos + 8]
+        body = data[pos + 8:pos + 8 + length]
+        (crc,) = struct.unpack(">I", data[pos + 8 + length:pos + 12 + length])
+        if zlib.crc32(kind + body) & 0xFFFFFFFF != crc:
+            raise SceneError(f"{path}: bad CRC in {kind!r}")
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}[colour]
+    if depth != 8 or len(zlib.decompress(idat)) != height * (1 + width * channels):
+        raise SceneError(f"{path}: unexpected PNG layout")
+    return width, height
+
+
+# ---- scene.json ----------------------------------------------------------------------------------
+
+SCENE_KEYS = {"camera", "film", "render", "objects", "background"}
+CAMERA_KEYS = {"eye", "target", "up", "fov_y", "aperture", "focus_distance"}
+
+
+def load_scene(scene_path):
+    if os.path.isdir(scene_path):
+        scene_path = os.path.join(scene_path, "scene.json")
+    with open(scene_path) as f:
+        scene = json.load(f)
+    for key, allowed in (("", SCENE_KEYS), ("camera", CAMERA_KEYS),
+                         ("film", {"width", "height"}), ("render", {"spp", "max_depth"})):
+        section = scene if not key else scene.get(key, {})
+        for k in section:
+            if k not in allowed:
+                raise SceneError(f"{scene_path}: unknown key '{(key + '.') if key else ''}{k}'")
+    for obj in scene.get("objects", []):
+        for k in obj:
+            if k != "obj":
+                raise SceneError(f"{scene_path}: unknown key 'objects[].{k}'")
+    return scene_path, scene
+
+
+# ---- Mitsuba -------------------------------------------------------------------------------------
+
+def rgb(c):
+    return {"type": "rgb", "value": [float(x) for x in c]}
+
+
+def bsdf_for(m, mi, np):
+    kind = m.kind
+    if kind == "dielectric":
+        tf = m.tf if any(c > 0 for c in m.tf) else [1.0, 1.0, 1.0]
+        return {"type": "dielectric", "int_ior": float(m.ni if m.ni > 1 else 1.5), "ext_ior": 1.0,
+                "specular_reflectance": rgb([1, 1, 1]), "specular_transmittance": rgb(tf)}
+    if kind == "mirror":
+        inner = {"type": "conductor", "material": "none", "specular_reflectance": rgb(m.ks)}
+    elif m.map_kd:
+        if not os.path.exists(m.map_kd):
+            raise SceneError(f"material '{m.name}': texture {m.map_kd} not found")
+        texture = {"type": "bitmap", "filter_type": "bilinear", "wrap_mode": "repeat"}
+        if m.kd == [1.0, 1.0, 1.0]:
+            texture["filename"] = m.map_kd  # Mitsuba decodes the sRGB itself
+        else:  # Mitsuba's bitmap has no scale: multiply the decoded (linear) texels by Kd here
+            bitmap = mi.Bitmap(m.map_kd).convert(mi.Bitmap.PixelFormat.RGB,
+                                                 mi.Struct.Type.Float32, srgb_gamma=False)
+            texels = np.array(bitmap) * np.array(m.kd, dtype=np.float32)
+            texture["data"] = mi.TensorXf(texels.astype(np.float32))
+            texture["raw"] = True
+        inner = {"type": "diffuse", "reflectance": texture}
+    else:
+        inner = {"type": "diffuse", "reflectance": rgb(m.kd)}
+    return {"type": "twosided", "material": inner}
+
+
+def write_group_obj(group, path):
+    """One triangulated OBJ per group, read by Mitsuba's own OBJ loader (which, like OBJ, puts
+    v = 0 at the texture's bottom row)."""
+    with open(path, "w") as f:
+        f.writelines(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n" for p in group.positions)
+        f.writelines(f"vt {t[0]!r} {t[1]!r}\n" for t in group.texcoords)
+        f.writelines(f"vn {n[0]!r} {n[1]!r} {n[2]!r}\n" for n in group.normals)
+        for k, tri in enumerate(group.triangles):
+            corners = []
+            for j in range(3):
+                s = str(tri[j] + 1)
+                if group.has_uv or group.has_normals:
+                    s += "/" + (str(group.tri_uv[k][j] + 1) if group.has_uv else "")
+                if group.has_normals:
+                    s += "/" + str(group.tri_normals[k][j] + 1)
+                corners.append(s)
+            f.write("f " + " ".join(corners) + "\n")
+
+
+def build_scene(scene_path, scene, spp, temp_dir, mi, np):
+    cam = scene.get("camera", {})
+    film = scene.get("film", {})
+    eye = cam.get("eye", [0, 0, 0])
+    target = cam.get("target", [0, 0, -1])
+    aperture = float(cam.get("aperture", 0.0))
+    sensor = {
+        "type": "thinlens" if aperture > 0 else "perspective",
+        "fov": float(cam.get("fov_y", 40.0)), "fov_axis": "y",
+        "to_world": mi.ScalarTransform4f().look_at(origin=eye, target=target,
+                                                   up=cam.get("up", [0, 1, 0])),
+        "sampler": {"type": "independent", "sample_count": spp},
+        "film": {"type": "hdrfilm", "width": int(film.get("width", 128)),
+                 "height": int(film.get("height", 128)), "rfilter": {"type": "box"},
+                 "pixel_format": "rgb", "component_format": "float32", "sample_border": False},
+    }
+    if aperture > 0:
+        sensor["aperture_radius"] = aperture / 2  # our JSON has the lens diameter
+        sensor["focus_distance"] = float(cam.get("focus_distance",
+                                                 math.dist(eye, target)))
+    mitsuba_scene = {
+        "type": "scene",
+        "integrator": {"type": "path",
+                       "max_depth": int(scene.get("render", {}).get("max_depth", 8)),
+                       "hide_emitters": False},
+        "sensor": sensor,
+    }
+    background = scene.get("background", [0, 0, 0])
+    if any(c > 0 for c in background):
+        mitsuba_scene["background"] = {"type": "constant", "radiance": rgb(background)}
+    base = os.path.dirname(os.path.abspath(scene_path))
+    count = 0
+    for obj in scene.get("objects", []):
+        for group in load_obj(os.path.join(base, obj["obj"])):
+            path = os.path.join(temp_dir, f"group{count}.obj")
+            write_group_obj(group, path)
+            shape = {"type": "obj", "filename": path, "face_normals": not group.has_normals,
+                     "bsdf": bsdf_for(group.material, mi, np)}
+            if group.material.emissive:
+                shape["emitter"] = {"type": "area", "radiance": rgb(group.material.ke)}
+            mitsuba_scene[f"shape{count}_{group.material.name}"] = shape
+            count += 1
+    return mitsuba_scene
+
+
+def choose_variant(mi, wanted):
+    """Takes the first variant that works; llvm needs a libLLVM Dr.Jit accepts (Debian 12's 15
+    crashes, libllvm19 works through DRJIT_LIBLLVM_PATH)."""
+    for v in wanted.split(","):
+        try:
+            mi.set_variant(v)
+            return v
+        except Exception as e:  # noqa: BLE001  (any failure: try the next variant)
+            print(f"mitsuba_reference: variant {v} unavailable ({e}); trying the next", file=sys.stderr)
+    raise SceneError(f"none of the variants {wanted} works")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--spp", type=int, default=4096, help="total samples per pixel")
+    ap.add_argument("--batches", type=int, default=16, help="independent batches (for --stderr)")
+    ap.add_argument("--variant", default="scalar_rgb",
+                    help="Mitsuba variant(s), comma-separated, first that works")
+    ap.add_argument("--stderr", help="also write the per-pixel standard error of the mean here")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the first batch")
+    args = ap.parse_args()
+    if args.spp % args.batches:
+        ap.error("--spp must be a multiple of --batches")
+
+    import mitsuba as mi
+    import numpy as np
+    variant = choose_variant(mi, args.variant)
+    try:
+        scene_path, scene = load_scene(args.scene)
+        with tempfile.TemporaryDirectory(prefix="mitsuba-ref-") as temp_dir:
+            per_batch = args.spp // args.batches
+            scene_obj = mi.load_dict(build_scene(scene_path, scene, per_batch, temp_dir, mi, np))
+    except (SceneError, OSError, json.JSONDecodeError) as e:
+        print(f"mitsuba_reference: {e}", file=sys.stderr)
+        return 1
+
+    start = time.time()
+    total = total_sq = None
+    for b in range(args.batches):
+        img = np.array(mi.render(scene_obj, seed=args.seed + b, spp=per_batch), dtype=np.float64)
+        total = img if total is None else total + img
+        total_sq = img * img if total_sq is None else total_sq + img * img
+    seconds = time.time() - start
+    mean = total / args.batches
+    if args.batches > 1:
+        var = np.maximum(total_sq / args.batches - mean * mean, 0) * args.batches / (args.batches - 1)
+        stderr = np.sqrt(var / args.batches)
+    else:
+        stderr = np.zeros_like(mean)
+    if not np.all(np.isfinite(mean)):
+        print("mitsuba_reference: the render has NaN/Inf pixels", file=sys.stderr)
+        return 1
+
+    mi.Bitmap(mean.astype(np.float32), pixel_format=mi.Bitmap.PixelFormat.RGB).write(args.out)
+    if args.stderr:
+        mi.Bitmap(stderr.astype(np.float16), pixel_format=mi.Bitmap.PixelFormat.RGB).write(args.stderr)
+    means = mean.reshape(-1, 3).mean(axis=0)
+    noisy = stderr[stderr > 0]  # pixels that only see the background have none
+    print(f"{args.out}: mitsuba {mi.__version__} {variant}, {args.spp} spp in {args.batches} batches, "
+          f"{seconds:.1f} s; mean RGB {means[0]:.5f} {means[1]:.5f} {means[2]:.5f}; "
+          f"std error of the mean: median {np.median(noisy) if noisy.size else 0:.5f} over the "
+          f"{100 * noisy.size / stderr.size:.0f} % of values that vary, max {stderr.max():.5f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
