@@ -24,7 +24,7 @@ Q := @
 endif
 
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
-CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl \
+CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/ray_offset.cl \
               cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/scan.cl cl/render_aov.cl \
               cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
               cl/intersect_shadow.cl cl/accumulate_film.cl
