@@ -104,3 +104,38 @@ const char *test_temp_dir(void)
     cr_assert(mkdtemp(path), "mkdtemp failed");
     return path;
 }
+
+void fixture_open(RenderFixture *f, const char *scene_path, int width, int height)
+{
+    Error err = {0};
+    f->dev = test_device();
+    cr_assert(scene_load(scene_path, &f->scene, &err), "scene_load %s: %s", scene_path, err.message);
+    if (width)
+        f->scene.desc.width = width;
+    if (height)
+        f->scene.desc.height = height;
+    bvh_build(&f->bvh, f->scene.data.positions, f->scene.data.triangles, f->scene.data.num_triangles);
+    cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
+}
+
+void fixture_close(RenderFixture *f)
+{
+    scene_buffers_release(&f->buffers);
+    bvh_free(&f->bvh);
+    scene_free(&f->scene);
+    test_device_release(f->dev);
+}
+
+float *fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out)
+{
+    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
+    float *rgb = malloc(n * 3 * sizeof *rgb);
+    RenderStats stats;
+    Error err = {0};
+    s.quiet = true;
+    cr_assert(wavefront_render(f->dev, &f->scene, &f->buffers, &s, rgb, &stats, &err), "%s", err.message);
+    cr_assert_eq(stats.nonfinite, 0, "%u non-finite samples", stats.nonfinite);
+    if (stats_out)
+        *stats_out = stats;
+    return rgb;
+}

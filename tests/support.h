@@ -7,7 +7,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "bvh.h"
 #include "device.h"
+#include "scene.h"
+#include "scene_gpu.h"
+#include "wavefront.h"
 
 #define ASSETS_DIR "../shared/assets"
 
@@ -30,5 +34,19 @@ char *test_read_file(const char *path, size_t *size);
 
 /* A fresh temporary folder under /tmp; returned string is static per call site use. */
 const char *test_temp_dir(void);
+
+/* A scene loaded onto the test device, ready to render many times. */
+typedef struct {
+    Device *dev;
+    Scene scene;
+    Bvh bvh;
+    SceneBuffers buffers;
+} RenderFixture;
+
+/* width/height 0 keep the scene's film size. */
+void fixture_open(RenderFixture *f, const char *scene_path, int width, int height);
+void fixture_close(RenderFixture *f);
+/* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */
+float *fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);
 
 #endif

@@ -14,47 +14,6 @@
 #include "support.h"
 #include "wavefront.h"
 
-/* A loaded scene on the device, ready to render many times. */
-typedef struct {
-    Device *dev;
-    Scene scene;
-    Bvh bvh;
-    SceneBuffers buffers;
-} Fixture;
-
-static void fixture_open(Fixture *f, const char *scene_path, int width, int height)
-{
-    Error err = {0};
-    f->dev = test_device();
-    cr_assert(scene_load(scene_path, &f->scene, &err), "scene_load %s: %s", scene_path, err.message);
-    f->scene.desc.width = width;
-    f->scene.desc.height = height;
-    bvh_build(&f->bvh, f->scene.data.positions, f->scene.data.triangles, f->scene.data.num_triangles);
-    cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
-}
-
-static void fixture_close(Fixture *f)
-{
-    scene_buffers_release(&f->buffers);
-    bvh_free(&f->bvh);
-    scene_free(&f->scene);
-    test_device_release(f->dev);
-}
-
-static float *render(Fixture *f, RenderSettings s, RenderStats *stats_out)
-{
-    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
-    float *rgb = malloc(n * 3 * sizeof *rgb);
-    RenderStats stats;
-    Error err = {0};
-    s.quiet = true;
-    cr_assert(wavefront_render(f->dev, &f->scene, &f->buffers, &s, rgb, &stats, &err), "%s", err.message);
-    cr_assert_eq(stats.nonfinite, 0, "%u non-finite samples", stats.nonfinite);
-    if (stats_out)
-        *stats_out = stats;
-    return rgb;
-}
-
 /* Writes a UV sphere (radius r, centre c) as OBJ; inward = true flips the winding so the
  * counter-clockwise normals point inside. */
 static void write_sphere_obj(FILE *out, const float c[3], float r, int stacks, int slices, bool inward)
@@ -123,10 +82,10 @@ Test(integrator, white_furnace_sphere, .timeout = 120)
     const char *scene = write_sphere_scene(dir, "newmtl surface\nKd 0.8 0.8 0.8\n", false,
                                            "{\"eye\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": 40}",
                                            "[1, 1, 1]");
-    Fixture f;
+    RenderFixture f;
     fixture_open(&f, scene, 48, 48);
     for (int nee = 0; nee < 2; nee++) {
-        float *rgb = render(&f, (RenderSettings){.spp = 16, .max_depth = 8, .seed = 1, .no_nee = nee}, NULL);
+        float *rgb = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 8, .seed = 1, .no_nee = nee}, NULL);
         int on_sphere = 0, sky = 0;
         for (int y = 0; y < 48; y++)
             for (int x = 0; x < 48; x++) {
@@ -157,12 +116,12 @@ Test(integrator, closed_emitting_sphere_converges_to_one, .timeout = 120)
     const char *scene = write_sphere_scene(dir, "newmtl surface\nKd 0.5 0.5 0.5\nKe 0.5 0.5 0.5\n", true,
                                            "{\"eye\": [0, 0, 0.3], \"target\": [0, 0, -1], \"fov_y\": 60}",
                                            "[0, 0, 0]");
-    Fixture f;
+    RenderFixture f;
     fixture_open(&f, scene, 32, 32);
     const int depth = 12;
     double expected = 1.0 - pow(0.5, depth);
     for (int nee = 0; nee < 2; nee++) {
-        float *rgb = render(&f, (RenderSettings){.spp = 64, .max_depth = depth, .seed = 7, .no_nee = !nee}, NULL);
+        float *rgb = fixture_render(&f, (RenderSettings){.spp = 64, .max_depth = depth, .seed = 7, .no_nee = !nee}, NULL);
         for (int c = 0; c < 3; c++) {
             double mean = channel_mean(rgb, 32 * 32, c);
             cr_expect(fabs(mean - expected) < 0.01, "%s: channel %d mean %f, expected %f",
@@ -179,14 +138,14 @@ typedef struct {
     float *image; /* mean image over the K renders */
 } Estimate;
 
-static Estimate estimate(Fixture *f, RenderSettings s, int renders)
+static Estimate estimate(RenderFixture *f, RenderSettings s, int renders)
 {
     size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
     Estimate e = {.image = calloc(n * 3, sizeof(float))};
     double sums[3] = {0}, sums2[3] = {0};
     for (int k = 0; k < renders; k++) {
         s.seed = 1000u + (unsigned)k * 7919u;
-        float *rgb = render(f, s, NULL);
+        float *rgb = fixture_render(f, s, NULL);
         for (int c = 0; c < 3; c++) {
             double m = channel_mean(rgb, n, c);
             sums[c] += m, sums2[c] += m * m;
@@ -208,7 +167,7 @@ static Estimate estimate(Fixture *f, RenderSettings s, int renders)
 Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 300)
 {
     REQUIRE_ASSETS();
-    Fixture f;
+    RenderFixture f;
     fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     const int renders = 6;
     Estimate nee = estimate(&f, (RenderSettings){.spp = 64, .max_depth = 5}, renders);
@@ -227,11 +186,11 @@ Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 30
 Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
 {
     REQUIRE_ASSETS();
-    Fixture f;
+    RenderFixture f;
     fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     RenderStats with, without;
-    float *a = render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
-    float *b = render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
+    float *a = fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
+    float *b = fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
     cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
     /* Compaction really removed paths: fewer extension rays than without. */
     cr_expect(with.live_per_bounce[4] < with.live_per_bounce[0]);
@@ -242,24 +201,24 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
 Test(integrator, same_seed_same_bits_and_pass_split_independent, .timeout = 120)
 {
     REQUIRE_ASSETS();
-    Fixture f;
+    RenderFixture f;
     fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     size_t n = 32 * 32 * 3;
-    float *a = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
-    float *b = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    float *a = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    float *b = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
     cr_expect(memcmp(a, b, n * sizeof(float)) == 0, "same seed, different bits");
     /* Pool of 4 spp per batch, and of half a film per batch: same samples, other sums. */
     RenderStats stats;
-    float *c = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
+    float *c = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
     cr_expect_eq(stats.batches, 4);
-    float *d = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
+    float *d = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
     cr_expect_eq(stats.batches, 32);
     for (size_t i = 0; i < n; i++) {
         cr_expect(fabsf(a[i] - c[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "4 batches: %zu %f vs %f", i, a[i], c[i]);
         cr_expect(fabsf(a[i] - d[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "32 batches: %zu %f vs %f", i, a[i], d[i]);
     }
     /* A different seed changes the image. */
-    float *e = render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 12}, NULL);
+    float *e = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 12}, NULL);
     cr_expect(memcmp(a, e, n * sizeof(float)) != 0);
     free(a), free(b), free(c), free(d), free(e);
     fixture_close(&f);

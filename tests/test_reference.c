@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+/* Our renders against independent Mitsuba 3 references (tests/references/, made by
+ * `make references`; see its README). Tolerances come from the noise measured in this run: K
+ * independent renders give each pixel's variance and the image mean's standard error, and the
+ * reference's own per-pixel standard error is stored beside it (<scene>.stderr.exr). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include "image_io.h"
+#include "support.h"
+
+#define RENDERS 8
+
+typedef struct {
+    float *mean;     /* over the K renders */
+    float *variance; /* of the mean, per pixel and channel */
+    double image_mean[3], image_mean_se[3];
+} Measured;
+
+static Measured measure(RenderFixture *f, int spp_each, int max_depth)
+{
+    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height * 3;
+    Measured m = {.mean = calloc(n, sizeof(float)), .variance = calloc(n, sizeof(float))};
+    double *sum2 = calloc(n, sizeof(double));
+    double means[RENDERS][3] = {{0}};
+    for (int k = 0; k < RENDERS; k++) {
+        float *rgb = fixture_render(f, (RenderSettings){.spp = spp_each, .max_depth = max_depth,
+                                                        .seed = 500u + 31u * (unsigned)k}, NULL);
+        for (size_t i = 0; i < n; i++) {
+            m.mean[i] += rgb[i] / RENDERS;
+            sum2[i] += (double)rgb[i] * rgb[i];
+            means[k][i % 3] += rgb[i] / (double)(n / 3);
+        }
+        free(rgb);
+    }
+    for (size_t i = 0; i < n; i++) {
+        double var = (sum2[i] - RENDERS * (double)m.mean[i] * m.mean[i]) / (RENDERS - 1);
+        m.variance[i] = (float)(fmax(var, 0.0) / RENDERS);
+    }
+    for (int c = 0; c < 3; c++) {
+        double s = 0, s2 = 0;
+        for (int k = 0; k < RENDERS; k++)
+            s += means[k][c], s2 += means[k][c] * means[k][c];
+        m.image_mean[c] = s / RENDERS;
+        double var = (s2 - RENDERS * m.image_mean[c] * m.image_mean[c]) / (RENDERS - 1);
+        m.image_mean_se[c] = sqrt(fmax(var, 0.0) / RENDERS);
+    }
+    free(sum2);
+    return m;
+}
+
+static void compare_with_reference(const char *name, int spp_total)
+{
+    REQUIRE_ASSETS();
+    char scene[256], ref_path[256], se_path[256];
+    snprintf(scene, sizeof scene, "tests/scenes/%s/scene.json", name);
+    snprintf(ref_path, sizeof ref_path, "tests/references/%s.exr", name);
+    snprintf(se_path, sizeof se_path, "tests/references/%s.stderr.exr", name);
+    struct stat st;
+    if (stat(ref_path, &st) != 0)
+        cr_skip_test("no reference %s (make references)", ref_path);
+    Error err = {0};
+    float *ref = NULL, *ref_se = NULL;
+    int w, h, w2, h2;
+    cr_assert(image_read_exr(ref_path, &ref, &w, &h, &err), "%s", err.message);
+    cr_assert(image_read_exr(se_path, &ref_se, &w2, &h2, &err), "%s", err.message);
+    cr_assert(w == w2 && h == h2);
+
+    RenderFixture f;
+    fixture_open(&f, scene, w, h);
+    Measured m = measure(&f, spp_total / RENDERS, f.scene.desc.max_depth);
+    size_t n = (size_t)w * h;
+
+    /* 1. Per-channel image means agree within the combined standard error. */
+    for (int c = 0; c < 3; c++) {
+        double ref_mean = 0, ref_var = 0;
+        for (size_t i = 0; i < n; i++) {
+            ref_mean += ref[3 * i + c] / (double)n;
+            ref_var += (double)ref_se[3 * i + c] * ref_se[3 * i + c] / ((double)n * n);
+        }
+        double se = sqrt(m.image_mean_se[c] * m.image_mean_se[c] + ref_var);
+        /* A floor of 0.5% covers float-level differences between two renderers' geometry. */
+        double tolerance = 5.0 * se + 0.005 * fabs(ref_mean);
+        cr_expect(fabs(m.image_mean[c] - ref_mean) < tolerance,
+                  "%s channel %d: ours %f +- %f, Mitsuba %f +- %f (tolerance %f)", name, c,
+                  m.image_mean[c], m.image_mean_se[c], ref_mean, sqrt(ref_var), tolerance);
+    }
+
+    /* 2. Per pixel: the squared difference over its estimated variance is an F(1, K-1) variable,
+     * above 10 for 1.6% of values when K = 8. A variance estimated from K renders can be zero at
+     * the edge of a small bright light, so the robust statistic is that share, not the mean; a bias
+     * that covers a few percent of the image shows. relMSE must stay within what noise explains. */
+    double rel_mse = 0, rel_expected = 0;
+    size_t outliers = 0;
+    for (size_t i = 0; i < 3 * n; i++) {
+        double diff = (double)m.mean[i] - ref[i];
+        double floor_var = pow(2e-3 * fmax(fabs(ref[i]), 1e-2), 2);
+        double var = (double)m.variance[i] + (double)ref_se[i] * ref_se[i] + floor_var;
+        outliers += diff * diff / var > 10.0;
+        rel_mse += diff * diff / ((double)ref[i] * ref[i] + 1e-2);
+        rel_expected += var / ((double)ref[i] * ref[i] + 1e-2);
+    }
+    double outlier_share = (double)outliers / (3.0 * n);
+    rel_mse /= 3.0 * n;
+    rel_expected /= 3.0 * n;
+    cr_log_info("%s: %.2f%% of values with z^2 > 10 (1.6%% expected), relMSE %.3g (noise explains %.3g)",
+                name, 100.0 * outlier_share, rel_mse, rel_expected);
+    cr_expect(outlier_share < 0.05, "%s: %.1f%% of pixel values differ beyond noise (z^2 > 10; 1.6%% expected)",
+              name, 100.0 * outlier_share);
+    cr_expect(rel_mse < 1.6 * rel_expected + 1e-6, "%s: relMSE %.4g but noise explains %.4g", name,
+              rel_mse, rel_expected);
+    free(m.mean), free(m.variance), free(ref), free(ref_se);
+    fixture_close(&f);
+}
+
+Test(reference, cornell_box, .timeout = 300) { compare_with_reference("cornell", 128); }
+Test(reference, cornell_spheres_mirror_and_glass, .timeout = 300) { compare_with_reference("cornell-sphere", 64); }
+Test(reference, textured, .timeout = 300) { compare_with_reference("textured", 64); }
+Test(reference, furnace, .timeout = 300) { compare_with_reference("furnace", 32); }
