@@ -9,11 +9,13 @@ CC      ?= cc
 CXX     ?= c++
 OPT     ?= -O2 -g
 BUILD   ?= build
-PKGS    := OpenCL libcjson glfw3 tinyobjloader
+PKGS    := OpenCL libcjson glfw3 gl tinyobjloader
 CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr/include/stb \
             $(shell pkg-config --cflags-only-I $(PKGS) 2>/dev/null) -D_POSIX_C_SOURCE=200809L -DCL_TARGET_OPENCL_VERSION=120
 CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP
 CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
+# bin/pt finds the libraries of a relocatable bundle (make bundle) in ../lib.
+LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib'
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -lm -lpthread
 TEST_LDLIBS := -lcriterion
 
@@ -25,7 +27,8 @@ endif
 
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
 CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/ray_offset.cl \
-              cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/scan.cl cl/render_aov.cl \
+              cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/light_sample.cl \
+              cl/path_state.cl cl/scan.cl cl/render_aov.cl \
               cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
               cl/intersect_shadow.cl cl/accumulate_film.cl
 
@@ -39,7 +42,7 @@ TEST_SUPPORT := $(BUILD)/tests/support.o
 SCENE   ?= scenes/cornell-box
 DEVICE  ?=
 
-.PHONY: all run test asan bench clean deps references
+.PHONY: all run test asan bench clean deps references bundle
 all: $(BUILD)/pt
 
 deps:
@@ -51,7 +54,7 @@ run: deps
 
 test: deps
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
-	$(Q)./tools/run-tests.sh $(TESTS)
+	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS)
 
 asan:
 	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
@@ -63,8 +66,12 @@ bench: all
 # Re-renders tests/references/ with Mitsuba 3 (slow; only when asked, never as a dependency).
 references: ; ./tools/make-references.sh
 
+VERSION ?= $(shell git describe --always --dirty 2>/dev/null || echo dev)
+bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))
+	$(Q)./tools/bundle.sh $(BUILD) $(VERSION)
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan dist
 
 $(BUILD)/pt: $(BUILD)/host/main.o $(BUILD)/libpt.a
 	@echo "  LD    $@"
@@ -99,5 +106,22 @@ $(BUILD)/tests/%.o: tests/%.c
 $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 	@echo "  LD    $@"
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
+
+# Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
+# the tests' header-only helpers, hence -Itests).
+.PHONY: tools bench-bvh
+tools: $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
+
+bench-bvh: $(BUILD)/tools/bench_bvh
+	$(Q)$(BUILD)/tools/bench_bvh $(if $(DEVICE),--device $(DEVICE)) && python3 tools/bench_bvh.py
+
+$(BUILD)/tools/%.o: tools/%.c
+	@mkdir -p $(@D)
+	@echo "  CC    $<"
+	$(Q)$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
