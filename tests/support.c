@@ -105,7 +105,7 @@ const char *test_temp_dir(void)
     return path;
 }
 
-void fixture_open(RenderFixture *f, const char *scene_path, int width, int height)
+void render_fixture_open(RenderFixture *f, const char *scene_path, int width, int height)
 {
     Error err = {0};
     f->dev = test_device();
@@ -118,7 +118,7 @@ void fixture_open(RenderFixture *f, const char *scene_path, int width, int heigh
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
 }
 
-void fixture_close(RenderFixture *f)
+void render_fixture_close(RenderFixture *f)
 {
     scene_buffers_release(&f->buffers);
     bvh_free(&f->bvh);
@@ -126,7 +126,7 @@ void fixture_close(RenderFixture *f)
     test_device_release(f->dev);
 }
 
-float *fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out)
+float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out)
 {
     size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height;
     float *rgb = malloc(n * 3 * sizeof *rgb);

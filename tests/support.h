@@ -44,9 +44,9 @@ typedef struct {
 } RenderFixture;
 
 /* width/height 0 keep the scene's film size. */
-void fixture_open(RenderFixture *f, const char *scene_path, int width, int height);
-void fixture_close(RenderFixture *f);
+void render_fixture_open(RenderFixture *f, const char *scene_path, int width, int height);
+void render_fixture_close(RenderFixture *f);
 /* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */
-float *fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);
+float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);
 
 #endif

@@ -83,9 +83,9 @@ Test(integrator, white_furnace_sphere, .timeout = 120)
                                            "{\"eye\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": 40}",
                                            "[1, 1, 1]");
     RenderFixture f;
-    fixture_open(&f, scene, 48, 48);
+    render_fixture_open(&f, scene, 48, 48);
     for (int nee = 0; nee < 2; nee++) {
-        float *rgb = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 8, .seed = 1, .no_nee = nee}, NULL);
+        float *rgb = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 8, .seed = 1, .no_nee = nee}, NULL);
         int on_sphere = 0, sky = 0;
         for (int y = 0; y < 48; y++)
             for (int x = 0; x < 48; x++) {
@@ -104,7 +104,7 @@ Test(integrator, white_furnace_sphere, .timeout = 120)
         cr_assert(on_sphere > 400 && sky > 400);
         free(rgb);
     }
-    fixture_close(&f);
+    render_fixture_close(&f);
 }
 
 /* Inside a closed sphere whose inner wall has albedo a = 0.5 and emits Le = 0.5, radiance is
@@ -117,11 +117,11 @@ Test(integrator, closed_emitting_sphere_converges_to_one, .timeout = 120)
                                            "{\"eye\": [0, 0, 0.3], \"target\": [0, 0, -1], \"fov_y\": 60}",
                                            "[0, 0, 0]");
     RenderFixture f;
-    fixture_open(&f, scene, 32, 32);
+    render_fixture_open(&f, scene, 32, 32);
     const int depth = 12;
     double expected = 1.0 - pow(0.5, depth);
     for (int nee = 0; nee < 2; nee++) {
-        float *rgb = fixture_render(&f, (RenderSettings){.spp = 64, .max_depth = depth, .seed = 7, .no_nee = !nee}, NULL);
+        float *rgb = render_fixture_render(&f, (RenderSettings){.spp = 64, .max_depth = depth, .seed = 7, .no_nee = !nee}, NULL);
         for (int c = 0; c < 3; c++) {
             double mean = channel_mean(rgb, 32 * 32, c);
             cr_expect(fabs(mean - expected) < 0.01, "%s: channel %d mean %f, expected %f",
@@ -129,7 +129,7 @@ Test(integrator, closed_emitting_sphere_converges_to_one, .timeout = 120)
         }
         free(rgb);
     }
-    fixture_close(&f);
+    render_fixture_close(&f);
 }
 
 /* Per-channel image means and their standard errors from K independent renders (seeds). */
@@ -145,7 +145,7 @@ static Estimate estimate(RenderFixture *f, RenderSettings s, int renders)
     double sums[3] = {0}, sums2[3] = {0};
     for (int k = 0; k < renders; k++) {
         s.seed = 1000u + (unsigned)k * 7919u;
-        float *rgb = fixture_render(f, s, NULL);
+        float *rgb = render_fixture_render(f, s, NULL);
         for (int c = 0; c < 3; c++) {
             double m = channel_mean(rgb, n, c);
             sums[c] += m, sums2[c] += m * m;
@@ -168,7 +168,7 @@ Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 30
 {
     REQUIRE_ASSETS();
     RenderFixture f;
-    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     const int renders = 6;
     Estimate nee = estimate(&f, (RenderSettings){.spp = 64, .max_depth = 5}, renders);
     Estimate bsdf = estimate(&f, (RenderSettings){.spp = 256, .max_depth = 5, .no_nee = true}, renders);
@@ -180,46 +180,46 @@ Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 30
     }
     free(nee.image);
     free(bsdf.image);
-    fixture_close(&f);
+    render_fixture_close(&f);
 }
 
 Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
 {
     REQUIRE_ASSETS();
     RenderFixture f;
-    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     RenderStats with, without;
-    float *a = fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
-    float *b = fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
+    float *a = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
+    float *b = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
     cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
     /* Compaction really removed paths: fewer extension rays than without. */
     cr_expect(with.live_per_bounce[4] < with.live_per_bounce[0]);
     free(a), free(b);
-    fixture_close(&f);
+    render_fixture_close(&f);
 }
 
 Test(integrator, same_seed_same_bits_and_pass_split_independent, .timeout = 120)
 {
     REQUIRE_ASSETS();
     RenderFixture f;
-    fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
+    render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     size_t n = 32 * 32 * 3;
-    float *a = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
-    float *b = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    float *a = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
+    float *b = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
     cr_expect(memcmp(a, b, n * sizeof(float)) == 0, "same seed, different bits");
     /* Pool of 4 spp per batch, and of half a film per batch: same samples, other sums. */
     RenderStats stats;
-    float *c = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
+    float *c = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
     cr_expect_eq(stats.batches, 4);
-    float *d = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
+    float *d = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
     cr_expect_eq(stats.batches, 32);
     for (size_t i = 0; i < n; i++) {
         cr_expect(fabsf(a[i] - c[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "4 batches: %zu %f vs %f", i, a[i], c[i]);
         cr_expect(fabsf(a[i] - d[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "32 batches: %zu %f vs %f", i, a[i], d[i]);
     }
     /* A different seed changes the image. */
-    float *e = fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 12}, NULL);
+    float *e = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 12}, NULL);
     cr_expect(memcmp(a, e, n * sizeof(float)) != 0);
     free(a), free(b), free(c), free(d), free(e);
-    fixture_close(&f);
+    render_fixture_close(&f);
 }

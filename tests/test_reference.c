@@ -27,7 +27,7 @@ static Measured measure(RenderFixture *f, int spp_each, int max_depth)
     double *sum2 = calloc(n, sizeof(double));
     double means[RENDERS][3] = {{0}};
     for (int k = 0; k < RENDERS; k++) {
-        float *rgb = fixture_render(f, (RenderSettings){.spp = spp_each, .max_depth = max_depth,
+        float *rgb = render_fixture_render(f, (RenderSettings){.spp = spp_each, .max_depth = max_depth,
                                                         .seed = 500u + 31u * (unsigned)k}, NULL);
         for (size_t i = 0; i < n; i++) {
             m.mean[i] += rgb[i] / RENDERS;
@@ -70,7 +70,7 @@ static void compare_with_reference(const char *name, int spp_total)
     cr_assert(w == w2 && h == h2);
 
     RenderFixture f;
-    fixture_open(&f, scene, w, h);
+    render_fixture_open(&f, scene, w, h);
     Measured m = measure(&f, spp_total / RENDERS, f.scene.desc.max_depth);
     size_t n = (size_t)w * h;
 
@@ -113,7 +113,7 @@ static void compare_with_reference(const char *name, int spp_total)
     cr_expect(rel_mse < 1.6 * rel_expected + 1e-6, "%s: relMSE %.4g but noise explains %.4g", name,
               rel_mse, rel_expected);
     free(m.mean), free(m.variance), free(ref), free(ref_se);
-    fixture_close(&f);
+    render_fixture_close(&f);
 }
 
 Test(reference, cornell_box, .timeout = 300) { compare_with_reference("cornell", 128); }
