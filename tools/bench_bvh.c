@@ -1,0 +1,410 @@
+// SPDX-License-Identifier: MIT
+/* bench_bvh: BVH build and traversal throughput.
+ *
+ *   build/tools/bench_bvh [--device gpu|cpu|P:D] [--spp N] [--reps R] [--assets DIR]
+ *                         [--max-triangles N] [--out DIR]
+ *
+ * Build: bumpy tori of 10^3 .. 2*10^6 triangles and the dragon and skull assets; time on one core
+ * (best of several runs, wall clock and thread CPU time), Mtris/s, node count, SAH cost, and for
+ * meshes up to 200k triangles the SAH cost of the full-sweep reference build.
+ * Trace: primary rays (480x320 pixels x spp jittered samples, camera 1.4 bounding radii from the
+ * centre, 50 degrees field of view) and one diffuse bounce from their hits (cosine
+ * about the geometric normal, origin from offset_ray_origin), each as closest-hit and any-hit
+ * queries, on the dragon, the skull and tori of 10^3 .. 10^6 triangles (the scaling of time per
+ * ray). Kernel times come from profiling events: the best of R runs after a warm-up run.
+ * CSVs go to DIR/<device>/bvh_build.csv and bvh_trace.csv (DIR: bench/results); a table is
+ * printed. Run from the repository root: the batch kernels are tests/cl/bvh_test.cl. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "bvh.h"
+#include "device.h"
+#include "obj_loader.h"
+#include "procedural_mesh.h"
+
+#define KERNEL_FILE "tests/cl/bvh_test.cl"
+#define IMAGE_WIDTH 480
+#define IMAGE_HEIGHT 320
+
+typedef struct {
+    const char *device, *assets, *out;
+    int spp, reps;
+    uint32_t max_triangles;
+} Options;
+
+/* Ray as the batch kernels read it: origin with tmin in w, direction with tmax in w. */
+typedef struct {
+    float4 origin, dir;
+} Ray;
+
+static void usage(void)
+{
+    fprintf(stderr, "usage: bench_bvh [--device gpu|cpu|P:D] [--spp N] [--reps R] [--assets DIR] "
+                    "[--max-triangles N] [--out DIR]\n");
+    exit(2);
+}
+
+static Options parse_options(int argc, char **argv)
+{
+    Options o = {NULL, "../shared/assets", "bench/results", 16, 3, 2000000};
+    for (int i = 1; i < argc; i++) {
+        if (i + 1 >= argc)
+            usage();
+        const char *key = argv[i], *value = argv[++i];
+        if (!strcmp(key, "--device"))
+            o.device = value;
+        else if (!strcmp(key, "--assets"))
+            o.assets = value;
+        else if (!strcmp(key, "--out"))
+            o.out = value;
+        else if (!strcmp(key, "--spp"))
+            o.spp = atoi(value);
+        else if (!strcmp(key, "--reps"))
+            o.reps = atoi(value);
+        else if (!strcmp(key, "--max-triangles"))
+            o.max_triangles = (uint32_t)strtoul(value, NULL, 10);
+        else
+            usage();
+    }
+    if (o.spp < 1 || o.reps < 1)
+        usage();
+    return o;
+}
+
+static double seconds(clockid_t clock)
+{
+    struct timespec ts;
+    clock_gettime(clock, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3": safe as a folder name. */
+static void sanitize(const char *name, char *out, size_t size)
+{
+    size_t k = 0;
+    for (const char *p = name; *p && k + 1 < size; p++) {
+        bool keep = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+                    *p == '.' || *p == '_';
+        if (keep)
+            out[k++] = *p;
+        else if (k > 0 && out[k - 1] != '-')
+            out[k++] = '-';
+    }
+    while (k > 0 && out[k - 1] == '-')
+        k--;
+    out[k] = '\0';
+}
+
+static FILE *open_csv(const char *folder, const char *name, const char *header)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", folder, name);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        die("cannot write %s: %s", path, strerror(errno));
+    fprintf(f, "%s\n", header);
+    return f;
+}
+
+static void make_folders(const char *path)
+{
+    char buf[1100];
+    snprintf(buf, sizeof buf, "%s/", path);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0755) != 0 && errno != EEXIST)
+                die("cannot create %s: %s", buf, strerror(errno));
+            *p = '/';
+        }
+}
+
+/* ---- Build ------------------------------------------------------------------------------------ */
+
+static void bench_build(FILE *csv, const char *name, const Mesh *mesh)
+{
+    uint32_t n = mesh->num_triangles;
+    int runs = n <= 100000 ? 7 : 3;
+    double best_wall = INFINITY, best_cpu = INFINITY;
+    Bvh bvh = {0};
+    for (int r = 0; r < runs; r++) {
+        bvh_free(&bvh);
+        double wall = seconds(CLOCK_MONOTONIC), cpu = seconds(CLOCK_THREAD_CPUTIME_ID);
+        bvh_build(&bvh, mesh->positions, mesh->triangles, n);
+        cpu = seconds(CLOCK_THREAD_CPUTIME_ID) - cpu;
+        wall = seconds(CLOCK_MONOTONIC) - wall;
+        best_wall = wall < best_wall ? wall : best_wall;
+        best_cpu = cpu < best_cpu ? cpu : best_cpu;
+    }
+    /* The reference is O(n log^2 n) with qsort: only where it takes seconds, not minutes. */
+    double full_sweep = NAN;
+    if (n <= 200000) {
+        Bvh reference;
+        bvh_build_full_sweep(&reference, mesh->positions, mesh->triangles, n);
+        full_sweep = reference.sah_cost;
+        bvh_free(&reference);
+    }
+    printf("%-16s %9u %10.2f %9.2f %9.2f %9u %9.2f %9.2f %+8.2f%%\n", name, n, best_wall * 1e3,
+           n / best_wall * 1e-6, n / best_cpu * 1e-6, bvh.num_nodes, bvh.sah_cost, full_sweep,
+           100.0 * (bvh.sah_cost / full_sweep - 1.0));
+    fprintf(csv, "%s,%u,%.4f,%.4f,%.4f,%.4f,%u,%.4f,%.4f\n", name, n, best_wall * 1e3, best_cpu * 1e3,
+            n / best_wall * 1e-6, n / best_cpu * 1e-6, bvh.num_nodes, bvh.sah_cost, full_sweep);
+    fflush(stdout);
+    bvh_free(&bvh);
+}
+
+/* ---- Trace ------------------------------------------------------------------------------------ */
+
+typedef struct {
+    Device *dev;
+    cl_kernel closest, any, bounce;
+    cl_mem nodes, tris, corners;
+    uint32_t num_tris;
+} GpuMesh;
+
+static cl_mem upload(Device *dev, const char *name, size_t size, const void *data)
+{
+    Error err = {0};
+    cl_mem buf = device_buffer(dev, name, data ? CL_MEM_READ_ONLY : CL_MEM_READ_WRITE, size, data, &err);
+    if (!buf)
+        die("%s", err.message);
+    return buf;
+}
+
+/* Pinhole camera 1.4 bounding radii (half the bounds' diagonal) from the centre, looking at it
+ * from a fixed oblique direction, 50 degrees vertical field of view: the meshes fill most of the
+ * frame (a view that fits the whole bounding sphere, 91 degrees, leaves 90% of the rays to
+ * miss). Jitter from splitmix64. */
+static Ray *primary_rays(const Mesh *mesh, int spp, uint32_t *count)
+{
+    float lo[3], hi[3], center[3], radius = 0.0f;
+    mesh_bounds(mesh, lo, hi);
+    for (int k = 0; k < 3; k++) {
+        center[k] = 0.5f * (lo[k] + hi[k]);
+        radius += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    radius = sqrtf(radius);
+    const float view[3] = {0.57f, 0.42f, 0.71f}; /* from the centre toward the eye, unit length */
+    float eye[3], forward[3], right[3], up[3];
+    for (int k = 0; k < 3; k++) {
+        eye[k] = center[k] + 1.4f * radius * view[k];
+        forward[k] = -view[k];
+    }
+    /* right = forward x (0, 1, 0), up = right x forward */
+    float rlen = sqrtf(forward[2] * forward[2] + forward[0] * forward[0]);
+    right[0] = -forward[2] / rlen;
+    right[1] = 0.0f;
+    right[2] = forward[0] / rlen;
+    up[0] = right[1] * forward[2] - right[2] * forward[1];
+    up[1] = right[2] * forward[0] - right[0] * forward[2];
+    up[2] = right[0] * forward[1] - right[1] * forward[0];
+    float tan_half = tanf(0.5f * 50.0f * 3.14159265f / 180.0f), aspect = (float)IMAGE_WIDTH / IMAGE_HEIGHT;
+    uint32_t n = (uint32_t)IMAGE_WIDTH * IMAGE_HEIGHT * (uint32_t)spp;
+    Ray *rays = malloc(n * sizeof *rays);
+    if (!rays)
+        die("out of memory for %u rays", n);
+    uint64_t rng = 1;
+    uint32_t i = 0;
+    for (int y = 0; y < IMAGE_HEIGHT; y++)
+        for (int x = 0; x < IMAGE_WIDTH; x++)
+            for (int s = 0; s < spp; s++, i++) {
+                float sx = (2.0f * (x + mesh_rng_float(&rng)) / IMAGE_WIDTH - 1.0f) * tan_half * aspect;
+                float sy = (1.0f - 2.0f * (y + mesh_rng_float(&rng)) / IMAGE_HEIGHT) * tan_half;
+                float d[3];
+                for (int k = 0; k < 3; k++)
+                    d[k] = forward[k] + sx * right[k] + sy * up[k];
+                float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                float4 origin = {{eye[0], eye[1], eye[2], 0.0f}};
+                float4 dir = {{d[0] / len, d[1] / len, d[2] / len, INFINITY}};
+                rays[i].origin = origin;
+                rays[i].dir = dir;
+            }
+    *count = n;
+    return rays;
+}
+
+/* Best kernel time in ms over reps runs after a warm-up run. */
+static double time_query(GpuMesh *g, cl_kernel kernel, cl_mem rays, uint32_t n, cl_mem out, int reps)
+{
+    cl_uint num_rays = n;
+    KERNEL_ARG(kernel, 0, g->nodes);
+    KERNEL_ARG(kernel, 1, g->tris);
+    KERNEL_ARG(kernel, 2, g->num_tris);
+    KERNEL_ARG(kernel, 3, rays);
+    KERNEL_ARG(kernel, 4, num_rays);
+    KERNEL_ARG(kernel, 5, out);
+    double best = INFINITY;
+    for (int r = 0; r <= reps; r++) {
+        double ms;
+        device_run(g->dev, kernel, n, 0, &ms);
+        if (r > 0 && ms < best)
+            best = ms;
+    }
+    return best;
+}
+
+/* Times closest and any hit for one batch; returns the hit fraction and leaves hits in `hits`. */
+static void bench_queries(FILE *csv, GpuMesh *g, const char *name, const char *kind, cl_mem rays,
+                          uint32_t n, cl_mem hits, cl_mem occluded, int reps)
+{
+    double closest_ms = time_query(g, g->closest, rays, n, hits, reps);
+    double any_ms = time_query(g, g->any, rays, n, occluded, reps);
+    cl_uint *flags = malloc(n * sizeof *flags);
+    device_read(g->dev, occluded, 0, n * sizeof *flags, flags);
+    uint32_t num_hits = 0;
+    for (uint32_t i = 0; i < n; i++)
+        num_hits += flags[i];
+    free(flags);
+    double hit_fraction = n ? (double)num_hits / n : 0.0;
+    printf("%-16s %9u %-8s %9u %6.3f %10.2f %9.2f %10.2f %9.2f %9.1f\n", name, g->num_tris, kind, n,
+           hit_fraction, closest_ms, n / closest_ms * 1e-3, any_ms, n / any_ms * 1e-3,
+           closest_ms * 1e6 / n);
+    fprintf(csv, "%s,%u,%s,closest,%u,%.4f,%.4f,%.4f\n", name, g->num_tris, kind, n, closest_ms,
+            n / closest_ms * 1e-3, hit_fraction);
+    fprintf(csv, "%s,%u,%s,any,%u,%.4f,%.4f,%.4f\n", name, g->num_tris, kind, n, any_ms,
+            n / any_ms * 1e-3, hit_fraction);
+    fflush(stdout);
+}
+
+static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *mesh, const Options *o)
+{
+    GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
+                 device_kernel(dev, "bvh_test_trace_any"), device_kernel(dev, "bvh_test_bounce_rays"),
+                 NULL, NULL, NULL, mesh->num_triangles};
+    Bvh bvh;
+    bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
+    g.nodes = upload(dev, "bvh_nodes", bvh.num_nodes * sizeof(BvhNode), bvh.nodes);
+    g.tris = upload(dev, "bvh_triangles", bvh.num_tris * sizeof(BvhTriangle), bvh.tris);
+    bvh_free(&bvh);
+    float4 *corners = malloc(3 * (size_t)mesh->num_triangles * sizeof *corners);
+    for (uint32_t i = 0; i < mesh->num_triangles; i++)
+        for (int c = 0; c < 3; c++)
+            corners[3 * i + c] = mesh->positions[mesh->triangles[i].v.s[c]];
+    g.corners = upload(dev, "corners", 3 * (size_t)mesh->num_triangles * sizeof *corners, corners);
+    free(corners);
+
+    uint32_t n;
+    Ray *rays = primary_rays(mesh, o->spp, &n);
+    cl_mem ray_buf = upload(dev, "rays", n * sizeof(Ray), rays);
+    cl_mem hits = upload(dev, "hits", n * sizeof(float4), NULL);
+    cl_mem occluded = upload(dev, "occluded", n * sizeof(cl_uint), NULL);
+    cl_mem bounce = upload(dev, "bounce_rays", n * sizeof(Ray), NULL);
+    bench_queries(csv, &g, name, "primary", ray_buf, n, hits, occluded, o->reps);
+
+    /* Diffuse bounce from the closest hits (left in `hits`), compacted to the rays that hit. */
+    cl_uint num_rays = n, seed = 1, reflect = 1;
+    KERNEL_ARG(g.bounce, 0, g.corners);
+    KERNEL_ARG(g.bounce, 1, ray_buf);
+    KERNEL_ARG(g.bounce, 2, hits);
+    KERNEL_ARG(g.bounce, 3, num_rays);
+    KERNEL_ARG(g.bounce, 4, seed);
+    KERNEL_ARG(g.bounce, 5, reflect);
+    KERNEL_ARG(g.bounce, 6, bounce);
+    device_run(dev, g.bounce, n, 0, NULL);
+    device_read(dev, bounce, 0, n * sizeof(Ray), rays);
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (rays[i].dir.s[0] != 0.0f || rays[i].dir.s[1] != 0.0f || rays[i].dir.s[2] != 0.0f)
+            rays[m++] = rays[i];
+    device_write(dev, bounce, 0, m * sizeof(Ray), rays);
+    bench_queries(csv, &g, name, "diffuse", bounce, m, hits, occluded, o->reps);
+
+    free(rays);
+    cl_mem buffers[] = {g.nodes, g.tris, g.corners, ray_buf, hits, occluded, bounce};
+    for (size_t i = 0; i < sizeof buffers / sizeof buffers[0]; i++)
+        CL_CHECK(clReleaseMemObject(buffers[i]));
+    CL_CHECK(clReleaseKernel(g.closest));
+    CL_CHECK(clReleaseKernel(g.any));
+    CL_CHECK(clReleaseKernel(g.bounce));
+}
+
+/* ---- Main ------------------------------------------------------------------------------------- */
+
+static bool load_asset(const Options *o, const char *relative, Mesh *mesh)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", o->assets, relative);
+    ObjMesh obj;
+    Error err = {0};
+    warnings_set_quiet(true);
+    if (!obj_load(path, &obj, &err)) {
+        fprintf(stderr, "bench_bvh: skipping %s: %s\n", relative, err.message);
+        return false;
+    }
+    *mesh = mesh_from_obj(&obj);
+    obj_free(&obj);
+    return true;
+}
+
+int main(int argc, char **argv)
+{
+    Options o = parse_options(argc, argv);
+    Device dev;
+    Error err = {0};
+    if (!device_open(&dev, o.device, &err))
+        die("%s", err.message);
+    char *source = NULL;
+    FILE *f = fopen(KERNEL_FILE, "rb");
+    if (!f)
+        die("cannot read %s: run bench_bvh from the repository root", KERNEL_FILE);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    source = calloc((size_t)size + 1, 1);
+    if (!source || fread(source, 1, (size_t)size, f) != (size_t)size)
+        die("cannot read %s", KERNEL_FILE);
+    fclose(f);
+    if (!device_build(&dev, source, KERNEL_FILE, &err))
+        die("%s", err.message);
+    free(source);
+    char device_folder[256], folder[1024];
+    sanitize(dev.name, device_folder, sizeof device_folder);
+    snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
+    make_folders(folder);
+    printf("bench_bvh: %s (%s, %s), %d spp, best of %d\n", dev.name, dev.platform_name,
+           dev.driver_version, o.spp, o.reps);
+
+    const uint32_t sizes[] = {1000, 10000, 100000, 1000000, 2000000};
+    const struct {
+        const char *name, *path;
+    } assets[] = {{"dragon", "stanford-dragon/dragon.obj"}, {"skull", "skull/skull.obj"}};
+    Mesh meshes[7];
+    char names[7][32];
+    int count = 0;
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
+        if (sizes[i] <= o.max_triangles) {
+            meshes[count] = mesh_torus(sizes[i]);
+            snprintf(names[count++], sizeof names[0], "torus");
+        }
+    for (size_t i = 0; i < sizeof assets / sizeof assets[0]; i++)
+        if (load_asset(&o, assets[i].path, &meshes[count]))
+            snprintf(names[count++], sizeof names[0], "%s", assets[i].name);
+
+    printf("\nbuild (one core)  triangles    wall ms  Mtris/s  Mtris/s    nodes       SAH   SAH full  binned vs\n"
+           "                                        (wall)    (cpu)                         sweep  full sweep\n");
+    FILE *build_csv = open_csv(folder, "bvh_build.csv",
+                               "mesh,triangles,build_ms,build_cpu_ms,mtris_per_s,mtris_per_s_cpu,nodes,"
+                               "sah,sah_full_sweep");
+    for (int i = 0; i < count; i++)
+        bench_build(build_csv, names[i], &meshes[i]);
+    fclose(build_csv);
+
+    printf("\ntrace             triangles rays          count   hits closest ms   Mrays/s     any ms   "
+           "Mrays/s  ns/ray\n");
+    FILE *trace_csv = open_csv(folder, "bvh_trace.csv",
+                               "mesh,triangles,rays,query,count,ms,mrays_per_s,hit_fraction");
+    for (int i = 0; i < count; i++)
+        if (meshes[i].num_triangles <= 1100000)
+            bench_trace(trace_csv, &dev, names[i], &meshes[i], &o);
+    fclose(trace_csv);
+    printf("\nwrote %s/bvh_build.csv and %s/bvh_trace.csv\n", folder, folder);
+    for (int i = 0; i < count; i++)
+        mesh_free(&meshes[i]);
+    device_close(&dev);
+    return 0;
+}
