@@ -124,21 +124,4 @@ $(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
 	@echo "  LD    $@"
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-# Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
-# the tests' header-only helpers, hence -Itests).
-.PHONY: tools bench-bvh
-tools: $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
-
-bench-bvh: $(BUILD)/tools/bench_bvh
-	$(Q)$(BUILD)/tools/bench_bvh $(if $(DEVICE),--device $(DEVICE)) && python3 tools/bench_bvh.py
-
-$(BUILD)/tools/%.o: tools/%.c
-	@mkdir -p $(@D)
-	@echo "  CC    $<"
-	$(Q)$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -c -o $@ $<
-
-$(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
-	@echo "  LD    $@"
-	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
-
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
