@@ -37,7 +37,13 @@ void cli_print_help(void)
          "  --profile          per-kernel timing table\n"
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
          "                     default ~/.cache/pt) holds them\n"
-         "  --quiet            no progress output");
+         "  --quiet            no progress output\n"
+         "\n"
+         "pt view (keys: press H in the window; --spp N stops sampling at N):\n"
+         "  --camera JSON      start pose, e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
+         "                     (keys of the scene's camera; the C key prints one)\n"
+         "  --frames N         quit after N frames\n"
+         "  --screenshot FILE  at exit, save the window's framebuffer as a PNG");
 }
 
 static bool parse_int(const char *arg, const char *value, int min, int max, int *out, Error *err)
@@ -108,6 +114,9 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
         } else if (!strcmp(a, "--device")) ok = need_value(a, v, err), o->device = v;
         else if (!strcmp(a, "-o") || !strcmp(a, "--output")) ok = need_value(a, v, err), o->output = v;
         else if (!strcmp(a, "--csv")) ok = need_value(a, v, err), o->csv = v;
+        else if (!strcmp(a, "--frames")) ok = parse_int(a, v, 1, INT_MAX, &o->frames, err);
+        else if (!strcmp(a, "--screenshot")) ok = need_value(a, v, err), o->screenshot = v;
+        else if (!strcmp(a, "--camera")) ok = need_value(a, v, err), o->camera_json = v;
         else if (!strcmp(a, "--exposure")) ok = parse_float(a, v, &o->exposure, err);
         else if (!strcmp(a, "--aov")) {
             ok = need_value(a, v, err);

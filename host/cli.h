@@ -24,6 +24,9 @@ typedef struct {
     bool no_nee, no_compaction, profile;
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     const char *csv; /* pt bench: append results to this CSV file */
+    int frames;              /* pt view: quit after this many frames; 0 = run until closed */
+    const char *screenshot;  /* pt view: PNG of the window's framebuffer at exit */
+    const char *camera_json; /* pt view: start pose, a JSON object like the scene's camera */
 } Options;
 
 /* Parses argv; returns false with ERR_USAGE naming the offending argument. */

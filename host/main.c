@@ -21,6 +21,7 @@
 #include "wavefront.h"
 #include "bench.h"
 #include "session.h"
+#include "viewer.h"
 #include <signal.h>
 
 typedef struct {
@@ -235,7 +236,7 @@ int main(int argc, char **argv)
     case CMD_RENDER:
         return command_render(&o);
     case CMD_VIEW:
-        die("'pt view' is not available in this build yet; use 'pt render'");
+        return command_view(&o);
     case CMD_BENCH:
         return command_bench(&o);
     }

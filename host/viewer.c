@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: MIT
+/* viewer.c: 'pt view'. Each frame: read the input, apply it to the camera (a change empties the
+ * film), trace about FRAME_BUDGET_S worth of paths at the measured rate, stream the film to the
+ * screen. Batches are sized from the same measurement so that one is never long enough to make
+ * the window unresponsive, on a GPU or on PoCL. */
+#include "viewer.h"
+
+#include <libgen.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "aov.h"
+#include "camera.h"
+#include "image_io.h"
+#include "session.h"
+#include "viewer_camera.h"
+#include "viewer_display.h"
+#include "viewer_input.h"
+#include "wavefront.h"
+
+#define FRAME_BUDGET_S 0.040   /* device time asked for per frame */
+#define BATCHES_PER_FRAME 3    /* a batch cannot be interrupted: keep it a fraction of a frame */
+#define TITLE_INTERVAL_S 0.25
+#define UNLIMITED_SPP (1 << 30)
+
+typedef struct {
+    const Options *options;
+    Session session;         /* session.scene.desc holds the live camera and the film size */
+    GLFWwindow *window;
+    ViewerInput input;
+    ViewerDisplay display;
+    Wavefront *wavefront;
+    RenderSettings settings;
+    char scene_name[256];
+    int target_spp;
+    float exposure;          /* stops */
+    bool paused, film_changed;
+    float scene_size;        /* bounding-box diagonal: the scale of flying and of the lens */
+    double paths_per_second; /* measured; 0 before the first batch */
+    double recent_paths, recent_seconds; /* decaying sums behind paths_per_second */
+    uint64_t last_paths;     /* traced in the last sampling step */
+    /* Statistics for the title and the summary at exit. */
+    int frames;
+    double first_frame_ms, frame_ms_sum, frame_ms_max, render_ms_max;
+    double title_time, title_frame_ms;
+    uint64_t title_paths;
+} Viewer;
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static char glfw_error_text[512] = "unknown error";
+static void on_glfw_error(int code, const char *description)
+{
+    (void)code;
+    snprintf(glfw_error_text, sizeof glfw_error_text, "%s", description);
+}
+
+/* ---- The film: a Wavefront sized to the framebuffer ---------------------------------------- */
+
+/* Paths per batch for a rate: a power of two near a fraction of the frame budget. */
+static uint32_t pool_for_rate(double paths_per_second)
+{
+    double wanted = paths_per_second * FRAME_BUDGET_S / BATCHES_PER_FRAME;
+    uint32_t pool = 1024;
+    while (pool < (1u << 22) && 2.0 * pool <= wanted)
+        pool *= 2;
+    return pool;
+}
+
+static void create_film(Viewer *v, uint32_t pool_size)
+{
+    Error err = {0};
+    if (v->wavefront)
+        wavefront_destroy(v->wavefront);
+    v->settings.pool_size = pool_size;
+    v->wavefront = wavefront_create(&v->session.dev, &v->session.scene, &v->session.buffers,
+                                    &v->settings, &err);
+    if (!v->wavefront)
+        die("%s", err.message);
+    v->film_changed = true;
+}
+
+/* A new pool when the measured rate calls for one at least 4x larger or smaller (the first
+ * frames, or a device much faster than guessed); the film restarts, which costs little then. */
+static void adapt_pool(Viewer *v)
+{
+    if (v->recent_seconds < 0.1) /* too young a measurement */
+        return;
+    uint32_t current = wavefront_stats(v->wavefront)->pool_size;
+    uint32_t wanted = pool_for_rate(v->paths_per_second);
+    uint64_t film = (uint64_t)v->session.scene.desc.width * (uint64_t)v->session.scene.desc.height;
+    bool capped = current >= film * (uint64_t)v->target_spp; /* the whole render fits already */
+    if ((wanted >= 4ull * current && !capped) || current >= 4ull * wanted)
+        create_film(v, wanted);
+}
+
+static void apply_camera(Viewer *v)
+{
+    const SceneDesc *d = &v->session.scene.desc;
+    Camera camera = camera_from_desc(&d->camera, d->width, d->height);
+    wavefront_set_camera(v->wavefront, &camera);
+    v->film_changed = true;
+    v->paused = false; /* a new view is always wanted rendered */
+}
+
+/* The film follows the framebuffer (zero while minimised: keep the old one). */
+static void resize_film(Viewer *v)
+{
+    int width, height;
+    glfwGetFramebufferSize(v->window, &width, &height);
+    SceneDesc *d = &v->session.scene.desc;
+    if (width <= 0 || height <= 0 || (width == d->width && height == d->height))
+        return;
+    d->width = width, d->height = height;
+    create_film(v, wavefront_stats(v->wavefront)->pool_size);
+    viewer_display_resize(&v->display, width, height);
+}
+
+/* ---- Actions ---------------------------------------------------------------------------------- */
+
+/* The cursor in film pixels (the window may be scaled on high-density screens). */
+static void cursor_in_film(const Viewer *v, double *x, double *y)
+{
+    int window_width, window_height;
+    glfwGetWindowSize(v->window, &window_width, &window_height);
+    const SceneDesc *d = &v->session.scene.desc;
+    *x = v->input.cursor_x * d->width / (window_width > 0 ? window_width : 1);
+    *y = v->input.cursor_y * d->height / (window_height > 0 ? window_height : 1);
+}
+
+/* Ray distance to the first surface along dir from the eye, 0 on a miss: the depth AOV of a 1x1
+ * film whose camera looks along dir through a tiny field of view. */
+static float depth_along(Viewer *v, const float dir[3])
+{
+    Scene probe = v->session.scene; /* shallow: aov_render reads desc and the device buffers */
+    CameraDesc *c = &probe.desc.camera;
+    Camera basis = camera_from_desc(c, 1, 1);
+    for (int i = 0; i < 3; i++)
+        c->target[i] = c->eye[i] + dir[i], c->up[i] = basis.up.s[i];
+    c->fov_y = 1e-3f, c->aperture = 0.0f, c->focus_distance = 0.0f;
+    probe.desc.width = probe.desc.height = 1;
+    float rgb[3];
+    aov_render(&v->session.dev, &probe, &v->session.buffers, AOV_DEPTH, 1, 0, rgb);
+    return rgb[0];
+}
+
+static bool focus_under_cursor(Viewer *v)
+{
+    CameraDesc *c = &v->session.scene.desc.camera;
+    double x, y;
+    cursor_in_film(v, &x, &y);
+    float dir[3];
+    viewer_camera_pixel_direction(c, v->session.scene.desc.width, v->session.scene.desc.height, x,
+                                  y, dir);
+    float t = depth_along(v, dir);
+    if (!(t > 0.0f)) {
+        printf("focus: nothing under the cursor\n");
+        return false;
+    }
+    c->focus_distance = viewer_camera_axis_distance(c, dir, t);
+    printf("focus distance %.4g%s\n", c->focus_distance,
+           c->aperture > 0.0f ? "" : " (aperture 0: press ] to open the lens)");
+    return true;
+}
+
+static void change_aperture(Viewer *v, int steps)
+{
+    CameraDesc *c = &v->session.scene.desc.camera;
+    float smallest = 0.01f * v->scene_size;
+    for (; steps > 0; steps--)
+        c->aperture = c->aperture > 0.0f ? c->aperture * 1.5f : smallest;
+    for (; steps < 0; steps++)
+        c->aperture = c->aperture / 1.5f < smallest * 0.99f ? 0.0f : c->aperture / 1.5f;
+    printf("aperture %.4g (focus distance %.4g)\n", c->aperture, c->focus_distance);
+}
+
+/* PNG + EXR of the film as out/<scene>-view-N, N the first free number. */
+static void save_film(Viewer *v)
+{
+    mkdir("out", 0777);
+    char png[1100], exr[1100];
+    struct stat st;
+    for (int n = 1;; n++) {
+        snprintf(png, sizeof png, "out/%s-view-%d.png", v->scene_name, n);
+        snprintf(exr, sizeof exr, "out/%s-view-%d.exr", v->scene_name, n);
+        if (stat(png, &st) != 0 && stat(exr, &st) != 0)
+            break;
+    }
+    const SceneDesc *d = &v->session.scene.desc;
+    float *rgb = malloc((size_t)d->width * (size_t)d->height * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    wavefront_read_film(v->wavefront, rgb);
+    Error err = {0};
+    if (image_write_exr(exr, rgb, d->width, d->height, &err) &&
+        image_write_png(png, rgb, d->width, d->height, v->exposure, &err))
+        printf("wrote %s\nwrote %s (%d spp, exposure %+.1f)\n", exr, png,
+               wavefront_spp_done(v->wavefront), v->exposure);
+    else
+        fprintf(stderr, "pt: %s\n", err.message); /* the window stays open */
+    free(rgb);
+}
+
+static void print_camera(const Viewer *v)
+{
+    char json[1024];
+    viewer_camera_format(&v->session.scene.desc.camera, json, sizeof json);
+    printf("%s\n", json);
+}
+
+/* ---- One frame ------------------------------------------------------------------------------ */
+
+/* Applies what the user did since the last frame; seconds: time since then (for flying). */
+static void apply_input(Viewer *v, double seconds)
+{
+    ViewerInput *in = &v->input;
+    CameraDesc *c = &v->session.scene.desc.camera;
+    int film_height = v->session.scene.desc.height, window_width, window_height;
+    glfwGetWindowSize(v->window, &window_width, &window_height);
+    float to_film = (float)film_height / (float)(window_height > 0 ? window_height : 1);
+    bool moved = false;
+    if (in->resized)
+        resize_film(v);
+    if (in->orbit_dx != 0.0 || in->orbit_dy != 0.0) /* grab the scene: it turns with the cursor */
+        viewer_camera_orbit(c, -0.005f * (float)in->orbit_dx, -0.005f * (float)in->orbit_dy), moved = true;
+    if (in->pan_dx != 0.0 || in->pan_dy != 0.0)
+        viewer_camera_pan(c, to_film * (float)in->pan_dx, to_film * (float)in->pan_dy, film_height), moved = true;
+    if (in->dolly_steps != 0.0)
+        viewer_camera_dolly(c, (float)in->dolly_steps), moved = true;
+    float move[3];
+    bool fast;
+    if (viewer_input_fly(v->window, move, &fast)) {
+        double step = fmin(seconds, 0.1) * 0.3 * v->scene_size * (fast ? 4.0 : 1.0);
+        viewer_camera_fly(c, move, (float)step), moved = true;
+    }
+    if (in->aperture_steps)
+        change_aperture(v, in->aperture_steps), moved = true;
+    if ((in->actions & VIEWER_FOCUS) && focus_under_cursor(v))
+        moved = true;
+    if (moved)
+        apply_camera(v);
+    if (in->exposure_steps) {
+        v->exposure += 0.5f * (float)in->exposure_steps;
+        printf("exposure %+.1f EV\n", v->exposure);
+    }
+    if (in->actions & VIEWER_PAUSE) {
+        v->paused = !v->paused;
+        printf("%s at %d spp\n", v->paused ? "paused" : "resumed", wavefront_spp_done(v->wavefront));
+    }
+    if (in->actions & VIEWER_RESET)
+        wavefront_reset(v->wavefront), v->film_changed = true;
+    if (in->actions & VIEWER_SAVE)
+        save_film(v);
+    if (in->actions & VIEWER_PRINT_CAMERA)
+        print_camera(v);
+    if (in->actions & VIEWER_HELP)
+        viewer_input_print_help(stdout);
+    fflush(stdout);
+    viewer_input_clear(in);
+}
+
+static bool converged(const Viewer *v) { return wavefront_spp_done(v->wavefront) >= v->target_spp; }
+
+/* About FRAME_BUDGET_S of paths at the measured rate (one batch before any measurement). */
+static void render_step(Viewer *v)
+{
+    if (v->paused || converged(v))
+        return;
+    uint64_t wanted = (uint64_t)(v->paths_per_second * FRAME_BUDGET_S);
+    /* Slow start: a young measurement can be far off (the first batch may be quick), so ask for
+     * at most twice what the last frame did. */
+    if (wanted > 2 * v->last_paths)
+        wanted = 2 * v->last_paths;
+    double start = seconds_now();
+    uint64_t done = wavefront_advance(v->wavefront, wanted ? wanted : 1, v->target_spp);
+    double seconds = seconds_now() - start;
+    /* Paths over time, both decaying: a steadier rate than averaging per-frame rates, in which
+     * a short frame (a pass ending) weighs as much as a long one. */
+    v->recent_paths = 0.7 * v->recent_paths + (double)done;
+    v->recent_seconds = 0.7 * v->recent_seconds + seconds;
+    if (v->recent_seconds > 1e-4)
+        v->paths_per_second = v->recent_paths / v->recent_seconds;
+    v->render_ms_max = fmax(v->render_ms_max, 1e3 * seconds);
+    v->title_paths += done;
+    v->last_paths = done;
+    v->film_changed = true;
+    adapt_pool(v);
+}
+
+static void show_film(Viewer *v)
+{
+    if (v->film_changed) {
+        wavefront_read_film(v->wavefront, viewer_display_upload_begin(&v->display));
+        viewer_display_upload_end(&v->display);
+        v->film_changed = false;
+    }
+    viewer_display_draw(&v->display, v->exposure, v->session.scene.desc.width,
+                        v->session.scene.desc.height);
+}
+
+static void update_title(Viewer *v, double now, double frame_ms)
+{
+    v->title_frame_ms = v->title_frame_ms > 0.0 ? 0.8 * v->title_frame_ms + 0.2 * frame_ms : frame_ms;
+    if (now - v->title_time < TITLE_INTERVAL_S)
+        return;
+    char title[1400];
+    snprintf(title, sizeof title, "pt view %s | %d spp%s | %.2f Msamples/s | %s | %.0f ms",
+             v->scene_name, wavefront_spp_done(v->wavefront),
+             v->paused ? " (paused)" : converged(v) ? " (done)" : "",
+             (double)v->title_paths / (now - v->title_time) * 1e-6, v->session.dev.name,
+             v->title_frame_ms);
+    glfwSetWindowTitle(v->window, title);
+    v->title_time = now, v->title_paths = 0;
+}
+
+static void count_frame(Viewer *v, double frame_ms)
+{
+    if (v->frames++ == 0)
+        v->first_frame_ms = frame_ms;
+    else
+        v->frame_ms_sum += frame_ms, v->frame_ms_max = fmax(v->frame_ms_max, frame_ms);
+}
+
+/* The frame loop: input, samples, display, until Esc, the window closes, or --frames. */
+static void run_frames(Viewer *v)
+{
+    double last = seconds_now();
+    while (!glfwWindowShouldClose(v->window)) {
+        bool idle = (v->paused || converged(v)) && !v->options->frames;
+        if (idle)
+            glfwWaitEventsTimeout(TITLE_INTERVAL_S); /* nothing to trace: sleep until input */
+        else
+            glfwPollEvents();
+        double start = seconds_now();
+        apply_input(v, start - last);
+        render_step(v);
+        show_film(v);
+        glfwSwapBuffers(v->window);
+        double now = seconds_now(), frame_ms = 1e3 * (now - start);
+        last = start;
+        count_frame(v, frame_ms);
+        update_title(v, now, frame_ms);
+        if (v->options->frames && v->frames >= v->options->frames)
+            break;
+    }
+}
+
+/* ---- Setup ---------------------------------------------------------------------------------- */
+
+static void scene_name_of(const char *path, char *out, size_t size)
+{
+    char copy[1024];
+    snprintf(copy, sizeof copy, "%s", path);
+    for (size_t n = strlen(copy); n > 1 && copy[n - 1] == '/'; n--)
+        copy[n - 1] = '\0';
+    snprintf(out, size, "%s", basename(copy));
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
+}
+
+static void open_window(Viewer *v)
+{
+    SceneDesc *d = &v->session.scene.desc;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+    v->window = glfwCreateWindow(d->width, d->height, "pt view", NULL, NULL);
+    if (!v->window)
+        die("cannot open a %dx%d OpenGL 2.1 window (%s); use 'pt render' to render to a file",
+            d->width, d->height, glfw_error_text);
+    glfwMakeContextCurrent(v->window);
+    glfwSwapInterval(0); /* the frame budget paces the loop; vsync would add up to a refresh */
+    glfwGetFramebufferSize(v->window, &d->width, &d->height); /* the film is the framebuffer */
+    Error err = {0};
+    if (!viewer_display_create(&v->display, d->width, d->height, &err))
+        die("%s", err.message);
+    viewer_input_attach(v->window, &v->input);
+}
+
+static void print_summary(const Viewer *v)
+{
+    if (v->options->quiet)
+        return;
+    fprintf(stderr,
+            "pt: view: %d frames, %d spp; first frame %.0f ms, then frame time mean %.1f ms, max %.1f "
+            "ms; longest sampling step %.1f ms\n",
+            v->frames, wavefront_spp_done(v->wavefront), v->first_frame_ms,
+            v->frames > 1 ? v->frame_ms_sum / (v->frames - 1) : 0.0, v->frame_ms_max,
+            v->render_ms_max);
+}
+
+int command_view(const Options *o)
+{
+    static Viewer viewer; /* large; and the GLFW callbacks hold a pointer into it */
+    Viewer *v = &viewer;
+    memset(v, 0, sizeof *v);
+    v->options = o;
+    v->exposure = o->exposure;
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit())
+        die("cannot open a window: no display (%s); use 'pt render' to render to a file",
+            glfw_error_text);
+    Error err = {0};
+    if (!session_open(&v->session, o, &err))
+        die("%s", err.message);
+    SceneDesc *d = &v->session.scene.desc;
+    if (o->camera_json && !viewer_camera_parse(o->camera_json, &d->camera, &err))
+        die("%s", err.message);
+    scene_name_of(o->scene, v->scene_name, sizeof v->scene_name);
+    const float *lo = v->session.scene.data.bounds_min, *hi = v->session.scene.data.bounds_max;
+    v->scene_size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                          (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (!(v->scene_size > 0.0f))
+        v->scene_size = 1.0f;
+    v->target_spp = o->spp ? o->spp : UNLIMITED_SPP;
+    v->settings = (RenderSettings){.spp = v->target_spp, .max_depth = d->max_depth,
+                                   .seed = o->seed, .no_nee = o->no_nee,
+                                   .no_compaction = o->no_compaction, .quiet = true};
+    if (!o->quiet) {
+        session_print_summary(&v->session);
+        fprintf(stderr, "pt: view: press H in the window for the keys\n");
+    }
+    open_window(v);
+    /* A first guess at the batch, refined from the first frames' rate. */
+    create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 18 : 1u << 12);
+    v->title_time = seconds_now();
+    run_frames(v);
+
+    bool saved = true;
+    if (o->screenshot) {
+        show_film(v); /* the last frame again, into the back buffer that is read */
+        saved = viewer_display_save_screenshot(o->screenshot, d->width, d->height, &err);
+        if (saved && !o->quiet)
+            printf("wrote %s\n", o->screenshot);
+    }
+    print_summary(v);
+    wavefront_destroy(v->wavefront);
+    viewer_display_destroy(&v->display);
+    glfwDestroyWindow(v->window);
+    glfwTerminate();
+    session_close(&v->session);
+    if (!saved)
+        die("%s", err.message);
+    return 0;
+}
