@@ -61,7 +61,7 @@ asan:
 	    LDFLAGS="-fsanitize=address,undefined" all
 
 bench: all
-	$(Q)./tools/bench.sh
+	$(Q)PT=$(BUILD)/pt ./tools/bench.sh $(if $(DEVICE),--device $(DEVICE))
 
 # Re-renders tests/references/ with Mitsuba 3 (slow; only when asked, never as a dependency).
 references: ; ./tools/make-references.sh
