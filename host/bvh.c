@@ -35,11 +35,8 @@ typedef struct {
     double cost;   /* SAH cost of splitting, C_t + C_i (A_l N_l + A_r N_r) / A */
     int axis;      /* -1: no split found */
     int bin;       /* binned: first bin of the right side */
-    int bins;      /* binned: bins used on this node */
     float scale;   /* binned: bins per unit of (doubled) centroid along axis */
     uint32_t mid;  /* full sweep: index of the first right-side record */
-    uint32_t left_count;     /* binned: records on the left side */
-    Box left_box, right_box; /* binned: triangle bounds of each side */
 } Split;
 
 /* The two sides of an inner node: prims[begin, mid) and prims[mid, end). */
@@ -124,18 +121,10 @@ static int ceil_log2(uint32_t n)
     return bits;
 }
 
-/* The bin of a centroid; binning and partitioning must agree, so both call this. */
-static inline int bin_of(const BuildPrim *prim, int axis, float origin, float scale, int bins)
-{
-    float f = (prim->lo[axis] + prim->hi[axis] - origin) * scale;
-    return (int)(f < (float)(bins - 1) ? f : (float)(bins - 1));
-}
-
 /* Sweeps one axis's bins: the cheapest cut between bins, written to best when it beats it. */
 static void sweep_bins(const Box *bin_box, const uint32_t *bin_count, int bins, int axis, float unit,
                        Split *best, float *best_sum)
 {
-    Box right_box[BVH_BINS];
     float right_area[BVH_BINS];
     uint32_t right_count[BVH_BINS];
     Box acc = empty_box;
@@ -143,7 +132,6 @@ static void sweep_bins(const Box *bin_box, const uint32_t *bin_count, int bins, 
     for (int i = bins - 1; i > 0; i--) {
         box_grow(&acc, &bin_box[i]);
         count += bin_count[i];
-        right_box[i] = acc;
         right_area[i] = box_half_area_in(&acc, unit);
         right_count[i] = count;
     }
@@ -159,9 +147,6 @@ static void sweep_bins(const Box *bin_box, const uint32_t *bin_count, int bins, 
             *best_sum = sum;
             best->axis = axis;
             best->bin = i;
-            best->left_count = count;
-            best->left_box = acc;
-            best->right_box = right_box[i];
         }
     }
 }
@@ -182,7 +167,7 @@ static void bin_set_clear(BinSet *set, int bins)
         }
 }
 
-/* The same arithmetic as bin_of, four lanes at a time. */
+/* The bins of one record on all three axes, four lanes at a time. */
 static inline void bin_prim(BinSet *set, const BuildPrim *prim, const float origin[4],
                             const float scale[4], float last)
 {
@@ -200,12 +185,24 @@ static inline void bin_prim(BinSet *set, const BuildPrim *prim, const float orig
     box_grow(&set->box[2][z], prim);
 }
 
+/* Binning looks at every k-th record of a large node only: the split position it finds from a
+ * sample is about as good, at a fraction of the cost (the partition then computes the sides'
+ * exact bounds). k grows with log10(n), after Wald 2007. */
+static uint32_t bin_stride(uint32_t n)
+{
+    uint32_t stride = 1;
+    for (uint32_t m = n; m >= BVH_BIN_SAMPLE_FROM; m /= 10)
+        stride++;
+    return stride;
+}
+
 /* Best binned split of prims[begin, end); axis -1 when no axis has a centroid extent. Small
  * nodes get one bin per triangle: the sweep, not the binning, dominates their cost. */
 static Split find_binned_split(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
                                const Box *centroids)
 {
     int bins = end - begin < BVH_BINS ? (int)(end - begin) : BVH_BINS;
+    uint32_t stride = bin_stride(end - begin);
     float origin[4] = {centroids->lo[0], centroids->lo[1], centroids->lo[2], 0.0f};
     float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int axis = 0; axis < 3; axis++) {
@@ -213,31 +210,91 @@ static Split find_binned_split(const Builder *b, uint32_t begin, uint32_t end, c
         /* Slightly under bins / extent so that the largest centroid stays in the last bin. */
         scale[axis] = extent > 0.0f ? (float)bins * 0.99999f / extent : 0.0f;
     }
+    /* Two sets pay off only where runs are long enough to stall on memory. */
     BinSet set[2];
+    bool two_sets = end - begin >= 64;
     bin_set_clear(&set[0], bins);
-    bin_set_clear(&set[1], bins);
+    if (two_sets)
+        bin_set_clear(&set[1], bins);
     const float last = (float)(bins - 1);
     uint32_t i = begin;
-    for (; i + 1 < end; i += 2) {
+    for (; two_sets && i + stride < end; i += 2 * stride) {
         bin_prim(&set[0], &b->prims[i], origin, scale, last);
-        bin_prim(&set[1], &b->prims[i + 1], origin, scale, last);
+        bin_prim(&set[1], &b->prims[i + stride], origin, scale, last);
     }
-    if (i < end)
+    for (; i < end; i += stride)
         bin_prim(&set[0], &b->prims[i], origin, scale, last);
-    for (int axis = 0; axis < 3; axis++)
+    for (int axis = 0; two_sets && axis < 3; axis++)
         for (int k = 0; k < bins; k++) {
             box_grow(&set[0].box[axis][k], &set[1].box[axis][k]);
             set[0].count[axis][k] += set[1].count[axis][k];
         }
-    Split best = {.cost = INFINITY, .axis = -1, .bins = bins};
+    Split best = {.cost = INFINITY, .axis = -1};
     float best_sum = INFINITY, unit = box_unit(box);
     for (int axis = 0; axis < 3; axis++)
         if (scale[axis] > 0.0f)
             sweep_bins(set[0].box[axis], set[0].count[axis], bins, axis, unit, &best, &best_sum);
     if (best.axis >= 0) {
         best.scale = scale[best.axis];
-        best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area_in(box, unit);
+        best.cost = BVH_COST_TRAVERSAL +
+                    BVH_COST_INTERSECT * (float)stride * best_sum / box_half_area_in(box, unit);
     }
+    return best;
+}
+
+/* Exact split of a small node (n <= BVH_SMALL_NODE, where most nodes are): insertion-sort the
+ * records by centroid along each axis and sweep every position. Cheaper than binning there, and
+ * exact. Leaves the range ordered along the best axis. */
+static Split find_small_split(Builder *b, uint32_t begin, uint32_t end, const Box *box)
+{
+    uint32_t n = end - begin;
+    BuildPrim *prims = b->prims + begin;
+    uint8_t order[3][BVH_SMALL_NODE];
+    Split best = {.cost = INFINITY, .axis = -1};
+    float best_sum = INFINITY, unit = box_unit(box);
+    if (n == 2) {
+        /* A pair has one split, whatever the axis (the most common node: about half of them). */
+        best.axis = 0;
+        best.mid = begin + 1;
+        best_sum = box_half_area_in(&prims[0], unit) + box_half_area_in(&prims[1], unit);
+        best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area_in(box, unit);
+        return best;
+    }
+    for (int axis = 0; axis < 3; axis++) {
+        float key[BVH_SMALL_NODE];
+        uint8_t *o = order[axis];
+        for (uint32_t i = 0; i < n; i++) {
+            float c = prims[i].lo[axis] + prims[i].hi[axis];
+            uint32_t j = i;
+            for (; j > 0 && key[j - 1] > c; j--) {
+                key[j] = key[j - 1];
+                o[j] = o[j - 1];
+            }
+            key[j] = c;
+            o[j] = (uint8_t)i;
+        }
+        float right_area[BVH_SMALL_NODE];
+        Box acc = empty_box;
+        for (uint32_t i = n - 1; i > 0; i--) {
+            box_grow(&acc, &prims[o[i]]);
+            right_area[i] = box_half_area_in(&acc, unit);
+        }
+        acc = empty_box;
+        for (uint32_t i = 1; i < n; i++) {
+            box_grow(&acc, &prims[o[i - 1]]);
+            float sum = box_half_area_in(&acc, unit) * (float)i + right_area[i] * (float)(n - i);
+            if (sum < best_sum) {
+                best_sum = sum;
+                best.axis = axis;
+                best.mid = begin + i;
+            }
+        }
+    }
+    BuildPrim sorted[BVH_SMALL_NODE];
+    for (uint32_t i = 0; i < n; i++)
+        sorted[i] = prims[order[best.axis][i]];
+    memcpy(prims, sorted, n * sizeof *prims);
+    best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area_in(box, unit);
     return best;
 }
 
@@ -253,32 +310,39 @@ static Partition partition_at(const Builder *b, uint32_t begin, uint32_t mid, ui
     return part;
 }
 
-/* Partitions by bin (left: bins below split.bin), collecting each side's centroid bounds; the
- * triangle bounds come from the bins. */
-static Partition partition_by_bin(Builder *b, uint32_t begin, uint32_t end, const Box *centroids,
-                                  const Split *split)
+/* Partitions at the split's bin boundary, Hoare style: only misplaced pairs move. Collects both
+ * sides' bounds and centroid bounds on the way (the bins may have seen a sample only, and a
+ * record right at the boundary may round to either side: the partition decides). */
+static Partition partition_at_plane(Builder *b, uint32_t begin, uint32_t end, int axis, float plane)
 {
-    Partition part = {0, split->left_box, empty_box, split->right_box, empty_box};
-    int axis = split->axis;
-    float origin = centroids->lo[axis];
+    Partition part = {0, empty_box, empty_box, empty_box, empty_box};
+    BuildPrim *prims = b->prims;
     uint32_t i = begin, j = end;
-    while (i < j) {
-        if (bin_of(&b->prims[i], axis, origin, split->scale, split->bins) < split->bin) {
-            box_grow_centroid(&part.left_centroids, &b->prims[i]);
+    for (;;) {
+        while (i < j && prims[i].lo[axis] + prims[i].hi[axis] < plane) {
+            box_grow(&part.left_box, &prims[i]);
+            box_grow_centroid(&part.left_centroids, &prims[i]);
             i++;
-        } else {
-            j--;
-            BuildPrim tmp = b->prims[i];
-            b->prims[i] = b->prims[j];
-            b->prims[j] = tmp;
-            box_grow_centroid(&part.right_centroids, &b->prims[j]);
         }
+        while (i < j && !(prims[j - 1].lo[axis] + prims[j - 1].hi[axis] < plane)) {
+            j--;
+            box_grow(&part.right_box, &prims[j]);
+            box_grow_centroid(&part.right_centroids, &prims[j]);
+        }
+        if (i == j)
+            break;
+        /* prims[i] belongs right and prims[j - 1] left. */
+        j--;
+        BuildPrim tmp = prims[i];
+        prims[i] = prims[j];
+        prims[j] = tmp;
+        box_grow(&part.left_box, &prims[i]);
+        box_grow_centroid(&part.left_centroids, &prims[i]);
+        box_grow(&part.right_box, &prims[j]);
+        box_grow_centroid(&part.right_centroids, &prims[j]);
+        i++;
     }
     part.mid = i;
-    /* Binning and partitioning evaluate the same expression; should a compiler still round them
-     * differently (contracting one into an fma), the bins' boxes would not match the sides. */
-    if (part.mid - begin != split->left_count)
-        return partition_at(b, begin, part.mid, end);
     return part;
 }
 
@@ -345,13 +409,19 @@ static Partition choose_split(Builder *b, uint32_t begin, uint32_t end, const Bo
     if (n == 1 || (n <= BVH_MAX_LEAF_SIZE && must_balance))
         return leaf;
     if (!must_balance) {
+        bool small = n <= BVH_SMALL_NODE;
         Split split = b->full_sweep ? find_full_sweep_split(b, begin, end, box)
+                      : small       ? find_small_split(b, begin, end, box)
                                     : find_binned_split(b, begin, end, box, centroids);
         if (split.axis >= 0) {
             if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_INTERSECT * (double)n <= split.cost)
                 return leaf;
-            return b->full_sweep ? partition_at(b, begin, split.mid, end)
-                                 : partition_by_bin(b, begin, end, centroids, &split);
+            if (b->full_sweep || small)
+                return partition_at(b, begin, split.mid, end);
+            float plane = centroids->lo[split.axis] + (float)split.bin / split.scale;
+            Partition part = partition_at_plane(b, begin, end, split.axis, plane);
+            if (part.mid != begin && part.mid != end)
+                return part;
         }
     }
     if (n <= BVH_MAX_LEAF_SIZE)

@@ -11,6 +11,8 @@
  * costs about one triangle test: it is one 64-byte fetch and two box tests, against the
  * watertight test's permutation, shear and three edge functions. */
 #define BVH_BINS 16
+#define BVH_BIN_SAMPLE_FROM 1000 /* nodes this large bin every 2nd record, 10x larger every 3rd... */
+#define BVH_SMALL_NODE 8          /* nodes up to this size sweep every split exactly instead */
 #define BVH_MAX_LEAF_SIZE 8
 #define BVH_COST_TRAVERSAL 1.0f
 #define BVH_COST_INTERSECT 1.0f
