@@ -15,7 +15,9 @@ CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr
 CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP
 CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
 # bin/pt finds the libraries of a relocatable bundle (make bundle) in ../lib.
-LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib'
+# DT_RPATH rather than RUNPATH (--disable-new-dtags): it also applies to the libraries' own
+# dependencies (libGL.so.1 -> libGLdispatch.so.0), which a RUNPATH would leave to the system.
+LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib' -Wl,--disable-new-dtags
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -lm -lpthread
 TEST_LDLIBS := -lcriterion
 

@@ -22,6 +22,7 @@ typedef struct {
     size_t max_work_group;
     cl_uint compute_units;
     bool is_nvidia;
+    char build_options[256]; /* see device_build_options */
     int platform_index, device_index;
     char name[256];
     char platform_name[256];
