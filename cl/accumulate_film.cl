@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* accumulate_film: adds the batch's finished paths to the film, one work item per pixel of the
- * batch, summing that pixel's slots in a fixed order (deterministic, no atomics on floats).
- * Reads: radiance. Writes: film[pixel] += (sum, samples in w); counters[COUNTER_NONFINITE] counts
+/* accumulate_film: adds the window's finished samples to the film, one work item per pixel of the
+ * window, summing that pixel's samples in a fixed order (deterministic, no atomics on floats).
+ * Reads: radiance (per window sample). Writes: film[pixel] += (sum, samples in w); counters[COUNTER_NONFINITE] counts
  * samples whose radiance was NaN or Inf: they count as black samples, never reach the film. */
 
 kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global float4 *film,
@@ -13,8 +13,8 @@ kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global f
         return;
     float3 sum = (float3)(0.0f);
     float count = 0.0f;
-    for (uint slot = i; slot < p->batch_size; slot += num_pixels) {
-        float3 L = xyz(radiance[slot]);
+    for (uint k = i; k < p->batch_size; k += num_pixels) {
+        float3 L = xyz(radiance[k]);
         if (isfinite(L.x) && isfinite(L.y) && isfinite(L.z))
             sum += L;
         else

@@ -1,14 +1,22 @@
 /* SPDX-License-Identifier: MIT */
-/* generate_camera_rays: starts one path per slot of the batch.
- * Reads: params. Writes: ray_origin, ray_direction (w = 0: the camera ray counts as specular for
- * MIS), throughput = 1, radiance = 0, alive = 1, active[slot] = slot. Next: intersect_closest. */
+/* generate_camera_rays: starts the window's samples first_sample .. first_sample + n_new - 1 in
+ * free slots and appends those slots to the active list after its n_live live entries. The free
+ * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
+ * fresh != 0 (an empty pool: every slot is free).
+ * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
+ * counts as specular for MIS), throughput = 1, radiance[k] = 0, alive = 1 (depth of the camera
+ * ray), active[n_live + j]. Next: intersect_closest. */
 
-kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active)
+kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
+                                 const global uint *free_slots, uint n_live, uint first_sample,
+                                 uint n_new, uint fresh)
 {
-    uint slot = get_global_id(0);
-    if (slot >= p->batch_size)
+    uint j = get_global_id(0);
+    if (j >= n_new)
         return;
-    uint pixel = slot_pixel(p, slot), sample = slot_sample(p, slot);
+    uint slot = fresh ? j : free_slots[j];
+    uint k = first_sample + j;
+    uint pixel = window_pixel(p, k), sample = window_sample(p, k);
     float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
                              rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
     float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
@@ -18,8 +26,9 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(dir, 0.0f);
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
-    radiance[slot] = (float4)(0.0f);
     shadow_contribution[slot] = (float4)(0.0f);
+    sample_id[slot] = k;
     alive[slot] = 1u;
-    active[slot] = slot;
+    radiance[k] = (float4)(0.0f);
+    active[n_live + j] = slot;
 }

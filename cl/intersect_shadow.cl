@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_shadow: resolves the next-event shadow rays that shade_surface queued.
  * Reads: active[0..n_active), shadow_origin, shadow_direction, shadow_contribution (w = 1: a ray
- * waits). Writes: radiance += contribution when unoccluded; shadow_contribution.w = 0.
+ * waits), sample_id. Writes: radiance[sample_id] += contribution when unoccluded;
+ * shadow_contribution.w = 0.
  * Runs before compaction: a path killed by Russian roulette may still have a shadow ray.
  * counters[COUNTER_SHADOW_RAYS] counts the rays traced (one global atomic per work-group). */
 
@@ -21,7 +22,7 @@ kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_P
             float4 origin = shadow_origin[slot];
             if (!trace_any(bvh_nodes, bvh_tris, p->num_triangles, xyz(origin),
                            xyz(shadow_direction[slot]), 0.0f, origin.w))
-                radiance[slot] += (float4)(xyz(contribution), 0.0f);
+                radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
             shadow_contribution[slot] = (float4)(0.0f);
         }
     }

@@ -3,8 +3,8 @@
  * clSetKernelArg order and every stage's signature cannot drift apart. */
 
 #define PATH_STATE_PARAM(type, name) global type *name,
-/* Every PATH_STATE_FIELDS buffer, each followed by a comma. */
-#define PATH_STATE_PARAMS PATH_STATE_FIELDS(PATH_STATE_PARAM)
+/* Every PATH_STATE_FIELDS and SAMPLE_STATE_FIELDS buffer, each followed by a comma. */
+#define PATH_STATE_PARAMS PATH_STATE_FIELDS(PATH_STATE_PARAM) SAMPLE_STATE_FIELDS(PATH_STATE_PARAM)
 
 /* The scene's read-only buffers, in the order host/wavefront.c sets them; ends with a comma. */
 #define SCENE_PARAMS                                                                               \
@@ -14,13 +14,13 @@
         const global Material *materials, const global uint *texels,                               \
         const global TextureInfo *textures, const global LightEntry *lights,
 
-/* The path sample a slot traces (see PATH_STATE_FIELDS in shared.h). */
-inline uint slot_pixel(constant RenderParams *p, uint slot)
+/* The pixel and sample index of window sample k (see PATH_STATE_FIELDS in shared.h). */
+inline uint window_pixel(constant RenderParams *p, uint k)
 {
-    return (p->batch_start + slot) % (p->width * p->height);
+    return (p->batch_start + k) % (p->width * p->height);
 }
 
-inline uint slot_sample(constant RenderParams *p, uint slot)
+inline uint window_sample(constant RenderParams *p, uint k)
 {
-    return p->sample_index + (p->batch_start + slot) / (p->width * p->height);
+    return p->sample_index + (p->batch_start + k) / (p->width * p->height);
 }

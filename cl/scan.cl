@@ -185,19 +185,28 @@ kernel void scan_exclusive_values(global uint *values, uint m, uint per_item,
  * scatter 4 to 10 times slower on an H100. staged: 32 size ushorts; scratch: 2 size uints. */
 kernel void scan_scatter_indices(global const uint *mask, global const uint *tile_sums,
                                  uint sum_counts, global uint *total, global uint *indices,
-                                 local ushort *staged, local uint *scratch)
+                                 uint n, uint complement, local ushort *staged, local uint *scratch)
 {
     const uint lid = get_local_id(0);
     const uint size = get_local_size(0);
     const uint tile = get_group_id(0);
     uint word = mask[tile * size + lid];
+    const uint tile_first = tile * size * SCAN_FLAGS_PER_ITEM;
+    if (complement) {
+        /* The dead slots below n: clear bits become set ones, and the slots before this tile that
+         * are dead number tile_first minus the live ones (the offsets below). */
+        const uint word_first = tile_first + lid * SCAN_FLAGS_PER_ITEM;
+        const uint valid = word_first >= n ? 0u : min(n - word_first, SCAN_FLAGS_PER_ITEM);
+        word = ~word & (valid == 32u ? 0xffffffffu : (1u << valid) - 1u);
+    }
 
     const uint tiles_before = sum_counts ? tile : 0u;
     uint partial = 0;
     for (uint t = lid; t < tiles_before; t += size) /* no barrier inside */
         partial += tile_sums[t];
     const uint sum_before = group_sum(partial, scratch); /* 0 when not summing */
-    const uint tile_offset = sum_counts ? sum_before : tile_sums[tile];
+    const uint live_before = sum_counts ? sum_before : tile_sums[tile];
+    const uint tile_offset = complement ? tile_first - live_before : live_before;
 
     uint tile_count;
     uint rank = group_exclusive_sum(popcount(word), scratch, &tile_count);
@@ -209,9 +218,8 @@ kernel void scan_scatter_indices(global const uint *mask, global const uint *til
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     global uint *out = indices + tile_offset;
-    const uint tile_first = tile * size * SCAN_FLAGS_PER_ITEM;
     for (uint i = lid; i < tile_count; i += size)
         out[i] = tile_first + staged[i];
-    if (sum_counts && lid == 0 && tile == get_num_groups(0) - 1)
+    if (!complement && sum_counts && lid == 0 && tile == get_num_groups(0) - 1)
         total[0] = tile_offset + tile_count;
 }

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* shade_surface: one path vertex. Adds emission (MIS-weighted against light sampling), queues a
  * next-event shadow ray for diffuse surfaces, samples the BSDF for the next segment and applies
- * Russian roulette. depth = segments traced so far (1 after the camera ray).
- * Reads: hit, ray_*, throughput, scene. Writes: radiance, throughput, ray_* (next segment),
- * shadow_* (w = 1 when queued), alive. Next: intersect_shadow, then compaction. */
+ * Russian roulette. depth = alive[slot] = segments traced so far (1 after the camera ray); paths
+ * of different depths share a launch once slots are refilled.
+ * Reads: hit, ray_*, throughput, alive, sample_id, scene. Writes: radiance[sample_id], throughput,
+ * ray_* (next segment), shadow_* (w = 1 when queued), alive (depth + 1, or 0 when the path ends).
+ * Next: intersect_shadow, then compaction. */
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
 inline float3 emission_seen(constant RenderParams *p, Material m, float t, float cos_light,
@@ -21,20 +23,22 @@ inline float3 emission_seen(constant RenderParams *p, Material m, float t, float
 }
 
 kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                          const global uint *active, uint n_active, uint depth)
+                          const global uint *active, uint n_active)
 {
     uint i = get_global_id(0);
     if (i >= n_active)
         return;
     uint slot = active[i];
-    if (!alive[slot])
+    uint depth = alive[slot];
+    if (depth == 0u)
         return;
+    uint k = sample_id[slot];
     float4 h = hit[slot];
     float4 dir4 = ray_direction[slot];
     float3 beta = xyz(throughput[slot]);
     uint prim = as_uint(h.w);
     if (prim == HIT_NONE) {
-        radiance[slot] += (float4)(beta * xyz(p->background), 0.0f);
+        radiance[k] += (float4)(beta * xyz(p->background), 0.0f);
         alive[slot] = 0u;
         return;
     }
@@ -55,7 +59,7 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     bool path_continues = depth < p->max_depth;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
-        uint pixel = slot_pixel(p, slot), sample = slot_sample(p, slot), bounce = depth - 1u;
+        uint pixel = window_pixel(p, k), sample = window_sample(p, k), bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
             albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
@@ -106,6 +110,6 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
             throughput[slot] = (float4)(beta, 0.0f);
         }
     }
-    radiance[slot] += (float4)(gathered, 0.0f);
-    alive[slot] = path_continues ? 1u : 0u;
+    radiance[k] += (float4)(gathered, 0.0f);
+    alive[slot] = path_continues ? depth + 1u : 0u;
 }

@@ -102,8 +102,8 @@ typedef struct {
     uint aov;            /* AOV_* for render_aov */
     float emissive_power; /* total emitted power of the light table (for pdfs) */
     uint flags;          /* RENDER_* */
-    uint batch_start;    /* pixel of the batch's first path (see PATH_STATE_FIELDS) */
-    uint batch_size;     /* paths in the batch */
+    uint batch_start;    /* pixel of the window's first sample (see PATH_STATE_FIELDS) */
+    uint batch_size;     /* samples in the window */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -121,19 +121,25 @@ typedef struct {
 
 /* ---- Wavefront path state ------------------------------------------------------------------ */
 
-/* Structure of arrays, one slot per path of the current batch. With s = batch_start + slot, the
- * slot traces pixel s % num_pixels, sample sample_index + s / num_pixels. The host's
- * buffers, the clSetKernelArg loop and the kernels' parameter lists all expand from this list. */
+/* Structure of arrays. The host renders a window of batch_size samples at a time: window sample k
+ * traces pixel (batch_start + k) % num_pixels, sample index sample_index + (batch_start + k) /
+ * num_pixels. A pool of path slots (often fewer than the window's samples) traces them: a slot
+ * whose path ends is refilled with the window's next sample (generate_camera_rays), so the pool
+ * stays full until the window runs dry. PATH_STATE_FIELDS are per slot, SAMPLE_STATE_FIELDS per
+ * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
+ * expand from these lists. */
 #define PATH_STATE_FIELDS(X)                                                                       \
     X(float4, ray_origin)          /* xyz; w unused */                                              \
     X(float4, ray_direction)       /* xyz; w: solid-angle pdf of the BSDF sample, 0 if specular */  \
     X(float4, throughput)          /* rgb path weight; w unused */                                 \
-    X(float4, radiance)            /* rgb gathered so far */                                       \
     X(float4, hit)                 /* t, u, v, as_float(triangle) or HIT_NONE */                    \
     X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
     X(float4, shadow_direction)    /* xyz; w unused */                                             \
     X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
-    X(uint, alive)                 /* 1 while the path continues */
+    X(uint, sample_id)             /* the window sample k the slot traces */                       \
+    X(uint, alive)                 /* 0: free; else the depth of the ray to trace (1: camera ray) */
+#define SAMPLE_STATE_FIELDS(X)                                                                     \
+    X(float4, radiance)            /* rgb gathered so far by sample k's path */
 
 /* Wavefront counters (one uint buffer). */
 #define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 /* pt bench: a warm-up render (kernel compilation and first-launch costs stay out of the figures),
- * then timed renders with and without compaction, then one profiled render for per-stage times
- * (profiling waits after every launch, so its wall time is not used for throughput). */
+ * then timed renders of each mode (with and without compaction and refills), then one profiled
+ * render for per-stage times (profiling waits after every launch, so its wall time is not used for
+ * throughput). */
 #include "bench.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -35,15 +37,31 @@ static void append_csv(const char *path, const Session *s, const char *mode, con
         die("cannot append to %s", path);
     if (ftell(f) == 0)
         fprintf(f, "device,scene,width,height,spp,max_depth,mode,seconds,mpaths_per_s,mrays_per_s,"
-                   "mext_per_s,mshadow_per_s,pool\n");
-    fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u\n", s->dev.name,
+                   "mext_per_s,mshadow_per_s,pool,window,state_mib\n");
+    fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%u,%.1f\n", s->dev.name,
             s->scene.desc.path, s->scene.desc.width, s->scene.desc.height, st->spp_done,
             s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
             (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
             st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
-            st->pool_size);
+            st->pool_size, st->window_size, st->device_bytes / 1048576.0);
     fclose(f);
 }
+
+/* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools),
+ * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
+ * neither (every bounce over the whole pool). */
+typedef struct {
+    const char *name;
+    bool no_compaction;
+    uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
+} BenchMode;
+
+static const BenchMode modes[] = {
+    {"refill", false, 0},
+    {"no-refill", false, 1},
+    {"no-compaction", true, 0},
+};
+#define NUM_MODES (sizeof modes / sizeof modes[0])
 
 int command_bench(const Options *o)
 {
@@ -62,20 +80,24 @@ int command_bench(const Options *o)
     RenderSettings warm = base;
     warm.spp = 1;
     bench_render(&s, warm, rgb);
-    RenderSettings off = base;
-    off.no_compaction = true;
-    RenderStats with = bench_render(&s, base, rgb);
-    RenderStats without = bench_render(&s, off, rgb);
+    RenderStats stats[NUM_MODES];
+    for (size_t m = 0; m < NUM_MODES; m++) {
+        RenderSettings settings = base;
+        settings.no_compaction = modes[m].no_compaction;
+        settings.window_size = modes[m].window_size;
+        stats[m] = bench_render(&s, settings, rgb);
+    }
 
-    printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths\n", d->path,
-           d->width, d->height, d->spp, d->max_depth, s.dev.name, with.pool_size);
+    printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths, window %u samples, "
+           "%.1f MiB of path state\n",
+           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name, stats[0].pool_size,
+           stats[0].window_size, stats[0].device_bytes / 1048576.0);
     printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
            "Mshadow/s", "rays/path");
-    print_row("compaction", &with);
-    print_row("no-compaction", &without);
-    if (o->csv) {
-        append_csv(o->csv, &s, "compaction", &with);
-        append_csv(o->csv, &s, "no-compaction", &without);
+    for (size_t m = 0; m < NUM_MODES; m++) {
+        print_row(modes[m].name, &stats[m]);
+        if (o->csv)
+            append_csv(o->csv, &s, modes[m].name, &stats[m]);
     }
 
     RenderSettings profiled = base;
@@ -88,7 +110,7 @@ int command_bench(const Options *o)
     for (int k = 0; k < STAGE_COUNT; k++)
         printf("%-22s %9u %11.2f %6.1f%%\n", stage_names[k], prof.stage_launches[k], prof.stage_ms[k],
                total > 0 ? 100.0 * prof.stage_ms[k] / total : 0.0);
-    printf("live paths per bounce:");
+    printf("live paths per step (all windows):");
     for (int b = 0; b < 64 && prof.live_per_bounce[b]; b++)
         printf(" %llu", (unsigned long long)prof.live_per_bounce[b]);
     printf("\n");

@@ -25,6 +25,9 @@ struct Compactor {
     cl_mem tile_sums[MAX_LEVELS];  /* [1]: per flag tile; [k + 1]: per tile of level k */
     cl_mem zero;                   /* {0}: the top level's tile offset */
     cl_mem count;                  /* compactor_run's count */
+    uint32_t last_n;               /* the last compaction's n, tiles and mode (for free lists) */
+    size_t last_tiles;
+    cl_uint last_sum_counts;
     double *profile_ms;
     cl_event events[MAX_LAUNCHES];
     int num_events;
@@ -213,17 +216,20 @@ static void reduce_level(Compactor *c, const size_t *sizes, int k)
 
 /* Mask + level 1 (tile counts when sum_counts, else tile offsets) -> indices. */
 static void scatter_indices(Compactor *c, cl_mem indices, cl_mem count_buf, size_t tiles,
-                            cl_uint sum_counts)
+                            cl_uint sum_counts, uint32_t n, cl_uint complement)
 {
     size_t local = c->group_size;
+    cl_uint n_arg = n;
     KERNEL_ARG(c->scatter_indices, 0, c->mask);
     KERNEL_ARG(c->scatter_indices, 1, c->tile_sums[1]);
     KERNEL_ARG(c->scatter_indices, 2, sum_counts);
     KERNEL_ARG(c->scatter_indices, 3, count_buf);
     KERNEL_ARG(c->scatter_indices, 4, indices);
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 5, FLAGS_PER_ITEM * local * sizeof(cl_ushort),
+    KERNEL_ARG(c->scatter_indices, 5, n_arg);
+    KERNEL_ARG(c->scatter_indices, 6, complement);
+    CL_CHECK(clSetKernelArg(c->scatter_indices, 7, FLAGS_PER_ITEM * local * sizeof(cl_ushort),
                             NULL));
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 6, 2 * local * sizeof(cl_uint), NULL));
+    CL_CHECK(clSetKernelArg(c->scatter_indices, 8, 2 * local * sizeof(cl_uint), NULL));
     launch(c, c->scatter_indices, tiles);
 }
 
@@ -231,6 +237,7 @@ void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_
 {
     if (n > c->max_n)
         die("compactor: %u flags, above the %zu it was created for", n, c->max_n);
+    c->last_n = n;
     if (n == 0) {
         cl_uint zero = 0;
         CL_CHECK(clEnqueueFillBuffer(c->dev->queue, count_buf, &zero, sizeof zero, 0, sizeof zero,
@@ -250,7 +257,18 @@ void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_
         for (int k = top; k >= 1; k--)
             scan_level(c, sizes, k, top, count_buf);
     }
-    scatter_indices(c, indices, count_buf, sizes[1], sum_counts);
+    scatter_indices(c, indices, count_buf, sizes[1], sum_counts, n, 0);
+    c->last_tiles = sizes[1];
+    c->last_sum_counts = sum_counts;
+    if (c->profile_ms)
+        collect_profile(c);
+}
+
+void compactor_enqueue_free(Compactor *c, cl_mem indices)
+{
+    if (c->last_n == 0)
+        return;
+    scatter_indices(c, indices, c->count, c->last_tiles, c->last_sum_counts, c->last_n, 1);
     if (c->profile_ms)
         collect_profile(c);
 }

@@ -31,6 +31,11 @@ Compactor *compactor_create_sized(Device *dev, size_t max_n, size_t group_size, 
  * device buffer of at least one uint) without waiting. n <= max_n; n = 0 writes a count of 0. */
 void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_buf, uint32_t n);
 
+/* Enqueues the complement of the last compaction: the i < n with flags[i] == 0, in increasing
+ * order, into indices[] (n - count of them). One launch: it reuses that compaction's bit mask and
+ * tile sums, so the flags must not have changed since. Nothing when the last n was 0. */
+void compactor_enqueue_free(Compactor *c, cl_mem indices);
+
 /* compactor_enqueue into the compactor's own count buffer, then a blocking read of the count. */
 uint32_t compactor_run(Compactor *c, cl_mem flags, cl_mem indices, uint32_t n);
 

@@ -138,11 +138,12 @@ static void report_render(const Options *o, const RenderStats *stats, int spp)
     if (!o->quiet)
         fprintf(stderr,
                 "pt: %d spp in %.2f s: %.2f Mpaths/s, %.2f Mrays/s (%.2f extension + %.2f shadow); "
-                "pool %u paths, %u batches\n",
+                "pool %u paths, %u windows of %u samples\n",
                 stats->spp_done, stats->seconds, stats->paths / stats->seconds * 1e-6,
                 (stats->extension_rays + stats->shadow_rays) / stats->seconds * 1e-6,
                 stats->extension_rays / stats->seconds * 1e-6,
-                stats->shadow_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches);
+                stats->shadow_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches,
+                stats->window_size);
     if (o->profile) {
         double total = 0.0;
         for (int k = 0; k < STAGE_COUNT; k++)
@@ -151,7 +152,7 @@ static void report_render(const Options *o, const RenderStats *stats, int spp)
         for (int k = 0; k < STAGE_COUNT; k++)
             fprintf(stderr, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
                     stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
-        fprintf(stderr, "live paths per bounce (all batches):");
+        fprintf(stderr, "live paths per step (all windows):");
         for (int b = 0; b < 64 && stats->live_per_bounce[b]; b++)
             fprintf(stderr, " %llu", (unsigned long long)stats->live_per_bounce[b]);
         fputc('\n', stderr);

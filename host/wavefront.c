@@ -28,9 +28,10 @@ struct Wavefront {
     RenderSettings settings;
     RenderParams params;
     RenderStats *stats;
-    cl_mem params_buf, lights_buf, film, counters, active, count_buf;
+    cl_mem params_buf, lights_buf, film, counters, active, free_slots, count_buf;
 #define PATH_STATE_MEMBER(type, name) cl_mem name;
     PATH_STATE_FIELDS(PATH_STATE_MEMBER)
+    SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
 #undef PATH_STATE_MEMBER
     cl_kernel kernels[STAGE_COUNT];
     Compactor *compactor;
@@ -46,14 +47,33 @@ static double seconds_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Paths in flight: enough to fill a GPU, modest on a CPU, and within the device's limits. */
-static uint32_t choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples)
+/* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
+ * bits per slot aside). */
+#define FIELD_BYTES(type, name) +sizeof(type)
+static const uint64_t bytes_per_slot = 2 * sizeof(uint32_t) /* active, free_slots */ PATH_STATE_FIELDS(FIELD_BYTES);
+static const uint64_t bytes_per_sample = 0 SAMPLE_STATE_FIELDS(FIELD_BYTES);
+#undef FIELD_BYTES
+
+/* Path slots and window: enough paths in flight to fill a GPU, modest on a CPU; both shrink until
+ * every buffer fits the device's max allocation and all of them half its memory. */
+static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples,
+                             uint32_t *pool_out, uint32_t *window_out)
 {
-    uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 18;
-    const uint64_t bytes_per_path = 8 * sizeof(float4) + 2 * sizeof(uint32_t);
-    while (pool > 1024 && (pool * sizeof(float4) > dev->max_alloc || pool * bytes_per_path > dev->global_mem / 2))
+    uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 16;
+    uint64_t window = s->window_size ? s->window_size : WINDOW_PER_POOL * pool;
+    if (s->no_compaction || window < pool)
+        window = pool; /* without compaction there are no free slots to refill */
+    while (pool > 1024 && (window * sizeof(float4) > dev->max_alloc ||
+                           pool * bytes_per_slot + window * bytes_per_sample > dev->global_mem / 2)) {
         pool /= 2;
-    return (uint32_t)(pool < total_samples ? pool : total_samples);
+        window /= 2;
+    }
+    if (window > total_samples)
+        window = total_samples;
+    if (pool > window)
+        pool = window;
+    *pool_out = (uint32_t)pool;
+    *window_out = (uint32_t)window;
 }
 
 static void set_all_args(Wavefront *w);
@@ -73,8 +93,12 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->dev = dev, w->scene = buffers, w->settings = *s, w->stats = stats;
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
-    uint32_t pool = choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp);
+    uint32_t pool, window;
+    choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, &pool, &window);
     stats->pool_size = pool;
+    stats->window_size = window;
+    stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
+                          (uint64_t)w->num_pixels * sizeof(float4);
 
     LightTable lights;
     light_table_build(&lights, &scene->data);
@@ -99,12 +123,20 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->film = state_buffer(w, "film", (size_t)w->num_pixels * sizeof(float4), err);
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
+    w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
     w->count_buf = state_buffer(w, "live_count", sizeof(uint32_t), err);
 #define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
     PATH_STATE_FIELDS(PATH_STATE_ALLOC)
 #undef PATH_STATE_ALLOC
+#define SAMPLE_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, window * sizeof(type), err);
+    SAMPLE_STATE_FIELDS(SAMPLE_STATE_ALLOC)
+#undef SAMPLE_STATE_ALLOC
     if (error_is_set(err))
         return false;
+    /* Every slot starts free: compaction reads the flags of the whole pool. */
+    uint32_t zero = 0;
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->alive, &zero, sizeof zero, 0, pool * sizeof(uint32_t),
+                                 0, NULL, NULL));
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
@@ -124,9 +156,11 @@ void wavefront_reset(Wavefront *w)
                                  (size_t)w->num_pixels * sizeof(float4), 0, NULL, NULL));
     CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
                                  COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
-    uint32_t pool = w->stats->pool_size;
+    RenderStats sizes = *w->stats;
     memset(w->stats, 0, sizeof *w->stats);
-    w->stats->pool_size = pool;
+    w->stats->pool_size = sizes.pool_size;
+    w->stats->window_size = sizes.window_size;
+    w->stats->device_bytes = sizes.device_bytes;
     w->next_sample = w->next_pixel = 0;
 }
 
@@ -136,10 +170,13 @@ void wavefront_set_camera(Wavefront *w, const Camera *camera)
     wavefront_reset(w);
 }
 
-/* The index of the first argument after the active list (n_active, then depth for shading). */
+/* The index of the first argument after the active list (n_active, then the counters). */
 #define ARG_AFTER_ACTIVE (1 + 11 + PATH_STATE_FIELD_COUNT + 1)
 #define PATH_STATE_COUNT_ONE(type, name) +1
-#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE))
+#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE) SAMPLE_STATE_FIELDS(PATH_STATE_COUNT_ONE))
+/* generate_camera_rays: params, the state, active, free_slots, then n_live, first_sample, n_new,
+ * fresh. */
+#define ARG_GENERATE_COUNTS (1 + PATH_STATE_FIELD_COUNT + 2)
 
 /* Arguments in the order of cl/path_state.cl: params, [scene buffers], path state, then extras. */
 static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
@@ -155,6 +192,7 @@ static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
     }
 #define PATH_STATE_ARG(type, name) KERNEL_ARG(k, i++, w->name);
     PATH_STATE_FIELDS(PATH_STATE_ARG)
+    SAMPLE_STATE_FIELDS(PATH_STATE_ARG)
 #undef PATH_STATE_ARG
     return i;
 }
@@ -162,7 +200,8 @@ static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
 static void set_all_args(Wavefront *w)
 {
     cl_uint i = set_path_args(w, w->kernels[STAGE_GENERATE], false);
-    KERNEL_ARG(w->kernels[STAGE_GENERATE], i, w->active);
+    KERNEL_ARG(w->kernels[STAGE_GENERATE], i++, w->active);
+    KERNEL_ARG(w->kernels[STAGE_GENERATE], i, w->free_slots);
     for (int k = STAGE_EXTEND; k <= STAGE_CONNECT; k++) {
         i = set_path_args(w, w->kernels[k], true);
         KERNEL_ARG(w->kernels[k], i, w->active);
@@ -190,40 +229,86 @@ static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
     run(w, stage, n_active);
 }
 
-static uint32_t compact_paths(Wavefront *w, uint32_t batch_size)
+static uint32_t compact_paths(Wavefront *w, uint32_t pool)
 {
     double t = seconds_now();
-    uint32_t live = compactor_run(w->compactor, w->alive, w->active, batch_size);
+    uint32_t live = compactor_run(w->compactor, w->alive, w->active, pool);
     if (w->settings.profile)
         w->stats->stage_ms[STAGE_COMPACT] += 1e3 * (seconds_now() - t);
     w->stats->stage_launches[STAGE_COMPACT]++;
     return live;
 }
 
-/* One batch of camera paths, traced to the end: the wavefront loop. */
-static void render_batch(Wavefront *w, uint32_t batch_start, uint32_t batch_size, uint32_t sample_index)
+/* The slots that the last compaction found dead, into free_slots (timed with the compaction). */
+static void list_free_slots(Wavefront *w)
 {
-    w->params.batch_start = batch_start;
-    w->params.batch_size = batch_size;
+    double t = seconds_now();
+    compactor_enqueue_free(w->compactor, w->free_slots);
+    if (w->settings.profile) {
+        CL_CHECK(clFinish(w->dev->queue));
+        w->stats->stage_ms[STAGE_COMPACT] += 1e3 * (seconds_now() - t);
+    }
+}
+
+/* Starts window samples first .. first + n_new - 1 in free slots (slots 0.. when fresh) and
+ * appends them to the active list after its n_live entries. */
+static void generate(Wavefront *w, uint32_t n_live, uint32_t first, uint32_t n_new, bool fresh)
+{
+    cl_kernel k = w->kernels[STAGE_GENERATE];
+    cl_uint args[4] = {n_live, first, n_new, fresh ? 1u : 0u};
+    for (cl_uint a = 0; a < 4; a++)
+        KERNEL_ARG(k, ARG_GENERATE_COUNTS + a, args[a]);
+    run(w, STAGE_GENERATE, n_new);
+}
+
+/* One step of every path in the active list: extend, shade, connect. */
+static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
+{
+    if (step < 64)
+        w->stats->live_per_bounce[step] += n_active;
+    run_over_active(w, STAGE_EXTEND, n_active);
+    run_over_active(w, STAGE_SHADE, n_active);
+    run_over_active(w, STAGE_CONNECT, n_active);
+}
+
+/* One window of samples, traced to the end: the wavefront loop. With compaction, each step's live
+ * paths are compacted into the active list and the slots of the paths that ended are refilled
+ * with the window's next samples, so the pool stays full until the window runs dry; the host
+ * reads back one count per step. Without compaction (window = pool) every step runs over the
+ * whole window, dead slots idle. The film gets the window's samples at the end, in a fixed order. */
+static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_size, uint32_t sample_index)
+{
+    w->params.batch_start = window_start;
+    w->params.batch_size = window_size;
     w->params.sample_index = sample_index;
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 
-    run(w, STAGE_GENERATE, batch_size);
-    uint32_t n_active = batch_size;
-    for (cl_uint depth = 1; depth <= (cl_uint)w->settings.max_depth && n_active > 0; depth++) {
-        if (depth - 1 < 64)
-            w->stats->live_per_bounce[depth - 1] += n_active;
-        run_over_active(w, STAGE_EXTEND, n_active);
-        KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, depth);
-        run_over_active(w, STAGE_SHADE, n_active);
-        run_over_active(w, STAGE_CONNECT, n_active);
-        if (!w->settings.no_compaction)
-            n_active = compact_paths(w, batch_size);
+    uint32_t pool = w->stats->pool_size;
+    if (w->settings.no_compaction) {
+        generate(w, 0, 0, window_size, true);
+        for (uint32_t depth = 1; depth <= (uint32_t)w->settings.max_depth; depth++)
+            trace_step(w, window_size, depth - 1);
+    } else {
+        uint32_t n_live = 0, next = 0;
+        for (uint32_t step = 0;; step++) {
+            uint32_t n_new = pool - n_live < window_size - next ? pool - n_live : window_size - next;
+            if (n_new > 0) {
+                if (step > 0)
+                    list_free_slots(w);
+                generate(w, n_live, next, n_new, step == 0);
+                next += n_new;
+            }
+            uint32_t n_active = n_live + n_new;
+            if (n_active == 0)
+                break;
+            trace_step(w, n_active, step);
+            n_live = compact_paths(w, pool);
+        }
     }
-    run(w, STAGE_ACCUMULATE, batch_size < w->num_pixels ? batch_size : w->num_pixels);
-    w->stats->paths += batch_size;
+    run(w, STAGE_ACCUMULATE, window_size < w->num_pixels ? window_size : w->num_pixels);
+    w->stats->paths += window_size;
     w->stats->batches++;
-    /* The per-batch ray counters stay far below 2^32; fold them into the 64-bit totals. */
+    /* The per-window ray counters stay far below 2^32; fold them into the 64-bit totals. */
     uint32_t rays[2], zeros[2] = {0, 0};
     _Static_assert(COUNTER_EXTENSION_RAYS == COUNTER_SHADOW_RAYS + 1, "ray counters are adjacent");
     device_read(w->dev, w->counters, COUNTER_SHADOW_RAYS * sizeof(uint32_t), sizeof rays, rays);
@@ -242,21 +327,21 @@ static void print_progress(const RenderStats *stats, int spp, double elapsed, ui
     fflush(stderr);
 }
 
-/* The next batch from the cursor: whole samples per pixel when the pool holds the film, else a
+/* The next window from the cursor: whole samples per pixel when the window holds the film, else a
  * slice of pixels of one sample. Returns the paths traced. */
-static uint32_t render_next_batch(Wavefront *w, uint32_t max_spp)
+static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
 {
-    uint32_t pool = w->stats->pool_size, np = w->num_pixels, n;
-    if (pool >= np && w->next_pixel == 0) {
-        uint32_t k = pool / np;
+    uint32_t window = w->stats->window_size, np = w->num_pixels, n;
+    if (window >= np && w->next_pixel == 0) {
+        uint32_t k = window / np;
         if (k > max_spp - w->next_sample)
             k = max_spp - w->next_sample;
         n = k * np;
-        render_batch(w, 0, n, w->next_sample);
+        render_window(w, 0, n, w->next_sample);
         w->next_sample += k;
     } else {
-        n = np - w->next_pixel < pool ? np - w->next_pixel : pool;
-        render_batch(w, w->next_pixel, n, w->next_sample);
+        n = np - w->next_pixel < window ? np - w->next_pixel : window;
+        render_window(w, w->next_pixel, n, w->next_sample);
         w->next_pixel += n;
         if (w->next_pixel == np)
             w->next_pixel = 0, w->next_sample++;
@@ -270,7 +355,7 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
     double start = seconds_now();
     uint64_t done = 0;
     while (done < min_paths && (int)w->next_sample < max_spp)
-        done += render_next_batch(w, (uint32_t)max_spp);
+        done += render_next_window(w, (uint32_t)max_spp);
     CL_CHECK(clFinish(w->dev->queue));
     w->stats->seconds += seconds_now() - start;
     return done;
@@ -321,9 +406,10 @@ static void wavefront_release(Wavefront *w)
             CL_CHECK(clReleaseKernel(w->kernels[k]));
     if (w->compactor)
         compactor_destroy(w->compactor);
-    cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->count_buf,
+    cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->free_slots,
+                    w->count_buf,
 #define PATH_STATE_LIST(type, name) w->name,
-                    PATH_STATE_FIELDS(PATH_STATE_LIST)
+                    PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
 #undef PATH_STATE_LIST
     };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)

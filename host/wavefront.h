@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* wavefront.h: the path tracer. One kernel per stage (cl/<stage>.cl), a path pool sized to the
- * device, parallel-scan compaction of live paths between bounces (host/compact.h). */
+/* wavefront.h: the path tracer. One kernel per stage (cl/<stage>.cl), a pool of path slots sized
+ * to the device, parallel-scan compaction of live paths between bounces (host/compact.h), and
+ * slots refilled with new camera paths as paths end, a window of samples at a time. */
 #ifndef PT_WAVEFRONT_H
 #define PT_WAVEFRONT_H
 
@@ -15,11 +16,17 @@ typedef struct {
     int spp, max_depth;  /* required */
     unsigned seed;
     bool no_nee;         /* BSDF sampling only */
-    bool no_compaction;  /* every bounce runs over the whole batch; dead slots idle */
+    bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
     bool quiet;          /* no progress line */
     bool profile;        /* time every kernel (waits after each launch) */
-    uint32_t pool_size;  /* paths in flight; 0 = chosen from the device */
+    uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
+    uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
+                           * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
 } RenderSettings;
+
+/* Default window: long enough that the pool stays full for most of it (the tail, where the last
+ * paths of the window run with no refills, is about a pool's worth of work). */
+#define WINDOW_PER_POOL 4
 
 enum { STAGE_GENERATE, STAGE_EXTEND, STAGE_SHADE, STAGE_CONNECT, STAGE_COMPACT, STAGE_ACCUMULATE, STAGE_COUNT };
 
@@ -31,10 +38,13 @@ typedef struct {
     uint64_t shadow_rays;      /* any-hit rays traced for next-event estimation */
     uint32_t nonfinite;        /* samples dropped as NaN/Inf */
     uint32_t pool_size;
-    uint32_t batches;
+    uint32_t window_size;
+    uint32_t batches;          /* windows rendered */
+    uint64_t device_bytes;     /* path state, window and film on the device */
     double stage_ms[STAGE_COUNT];   /* with settings.profile */
     uint32_t stage_launches[STAGE_COUNT];
-    uint64_t live_per_bounce[64];   /* live paths entering each bounce, summed over batches */
+    uint64_t live_per_bounce[64];   /* live paths entering each step (= bounce without refills),
+                                     * summed over windows */
 } RenderStats;
 
 typedef struct Wavefront Wavefront;
@@ -43,8 +53,8 @@ typedef struct Wavefront Wavefront;
  * stopped; the image is the same whatever the steps (the RNG is keyed on pixel and sample). */
 Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                             const RenderSettings *settings, Error *err);
-/* Traces batches until at least min_paths camera paths are done or max_spp samples per pixel are
- * complete (a batch is a pool's worth: lower settings.pool_size for short steps); waits for them. */
+/* Traces windows until at least min_paths camera paths are done or max_spp samples per pixel are
+ * complete (lower settings.window_size for short steps); waits for them. */
 uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
 int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel so far */
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */

@@ -188,13 +188,22 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     REQUIRE_ASSETS();
     RenderFixture f;
     render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
-    RenderStats with, without;
+    RenderStats with, without, refilled;
     float *a = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
     float *b = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
     cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
     /* Compaction really removed paths: fewer extension rays than without. */
     cr_expect(with.live_per_bounce[4] < with.live_per_bounce[0]);
-    free(a), free(b);
+    /* 256 slots tracing the same one window of 8192 samples: slots are refilled as paths end (so
+     * there are more steps than bounces), and the image keeps every bit. */
+    float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192}, &refilled);
+    cr_expect_eq(refilled.batches, 1);
+    cr_expect_eq(refilled.pool_size, 256);
+    cr_expect(refilled.live_per_bounce[40] == 256, "the pool is not kept full: %llu paths at step 40",
+              (unsigned long long)refilled.live_per_bounce[40]);
+    cr_expect_eq(refilled.extension_rays, with.extension_rays);
+    cr_expect(memcmp(a, c, 32 * 32 * 3 * sizeof(float)) == 0, "refilling slots changed the image");
+    free(a), free(b), free(c);
     render_fixture_close(&f);
 }
 
@@ -207,11 +216,12 @@ Test(integrator, same_seed_same_bits_and_pass_split_independent, .timeout = 120)
     float *a = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
     float *b = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11}, NULL);
     cr_expect(memcmp(a, b, n * sizeof(float)) == 0, "same seed, different bits");
-    /* Pool of 4 spp per batch, and of half a film per batch: same samples, other sums. */
+    /* Windows of 4 spp, and of half a film (traced by 128 refilled slots): same samples, other
+     * sums. */
     RenderStats stats;
-    float *c = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32}, &stats);
+    float *c = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32, .window_size = 4 * 32 * 32}, &stats);
     cr_expect_eq(stats.batches, 4);
-    float *d = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 512}, &stats);
+    float *d = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 128, .window_size = 512}, &stats);
     cr_expect_eq(stats.batches, 32);
     for (size_t i = 0; i < n; i++) {
         cr_expect(fabsf(a[i] - c[i]) <= 1e-5f * fmaxf(1.0f, fabsf(a[i])), "4 batches: %zu %f vs %f", i, a[i], c[i]);

@@ -89,8 +89,9 @@ static void fixture_close(Fixture *f)
     test_device_release(f->dev);
 }
 
-/* Compacts fresh random flags of size n on the device and compares with the reference. The index
- * buffer is filled with a sentinel first, so a write past the count is caught too. */
+/* Compacts fresh random flags of size n on the device and compares with the reference, then the
+ * free list (compactor_enqueue_free) likewise. The index buffer is filled with a sentinel first,
+ * so a write past the count is caught too. */
 static void check_compaction(Fixture *f, uint32_t n, double density, uint64_t seed)
 {
     random_flags(f->host_flags, n, density, seed);
@@ -113,6 +114,24 @@ static void check_compaction(Fixture *f, uint32_t n, double density, uint64_t se
     for (uint32_t i = count; i < readback; i++)
         if (f->actual[i] != SENTINEL)
             cr_assert_fail("indices[%u] written past the count %u" CONTEXT_FORMAT, i, count,
+                           CONTEXT);
+
+    /* The free list of the same compaction: the dead slots, ascending, n - count of them. */
+    uint32_t num_free = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (!f->host_flags[i])
+            f->expected[num_free++] = i;
+    CL_CHECK(clEnqueueFillBuffer(f->dev->queue, f->indices, &sentinel, sizeof sentinel, 0,
+                                 f->capacity * sizeof(uint32_t), 0, NULL, NULL));
+    compactor_enqueue_free(f->compactor, f->indices);
+    device_read(f->dev, f->indices, 0, readback * sizeof(uint32_t), f->actual);
+    for (uint32_t i = 0; i < num_free; i++)
+        if (f->actual[i] != f->expected[i])
+            cr_assert_fail("free[%u] = %u, expected %u" CONTEXT_FORMAT, i, f->actual[i],
+                           f->expected[i], CONTEXT);
+    for (uint32_t i = num_free; i < readback; i++)
+        if (f->actual[i] != SENTINEL)
+            cr_assert_fail("free[%u] written past the %u free slots" CONTEXT_FORMAT, i, num_free,
                            CONTEXT);
 #undef CONTEXT
 #undef CONTEXT_FORMAT
