@@ -4,18 +4,22 @@
  * waits), sample_id. Writes: radiance[sample_id] += contribution when unoccluded;
  * shadow_contribution.w = 0.
  * Runs before compaction: a path killed by Russian roulette may still have a shadow ray.
+ * Launched over the active list; with RENDER_SHADOW_QUEUE only the first shadow_count[0] items
+ * work, on the slots that shade_surface appended to shadow_queue.
  * counters[COUNTER_SHADOW_RAYS] counts the rays traced (one global atomic per work-group). */
 
 kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                             const global uint *active, uint n_active, global uint *counters)
+                             const global uint *active, uint n_active, global uint *counters,
+                             const global uint *shadow_queue, const global uint *shadow_count)
 {
     local uint group_rays;
     if (get_local_id(0) == 0)
         group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
-    if (i < n_active) {
-        uint slot = active[i];
+    bool queue = (p->flags & RENDER_SHADOW_QUEUE) != 0u;
+    if (i < (queue ? shadow_count[0] : n_active)) {
+        uint slot = queue ? shadow_queue[i] : active[i];
         float4 contribution = shadow_contribution[slot];
         if (contribution.w != 0.0f) {
             atomic_inc(&group_rays);

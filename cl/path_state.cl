@@ -6,6 +6,13 @@
 /* Every PATH_STATE_FIELDS and SAMPLE_STATE_FIELDS buffer, each followed by a comma. */
 #define PATH_STATE_PARAMS PATH_STATE_FIELDS(PATH_STATE_PARAM) SAMPLE_STATE_FIELDS(PATH_STATE_PARAM)
 
+#define PATH_STATE_ARG(type, name) name,
+/* The same buffers as arguments of a call, each followed by a comma. */
+#define PATH_STATE_ARGS PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)
+#define SCENE_ARGS                                                                                 \
+    bvh_nodes, bvh_tris, positions, normals, uvs, triangles, material_ids, materials, texels,      \
+        textures, lights,
+
 /* The scene's read-only buffers, in the order host/wavefront.c sets them; ends with a comma. */
 #define SCENE_PARAMS                                                                               \
     const global BvhNode *bvh_nodes, const global BvhTriangle *bvh_tris,                           \

@@ -22,16 +22,12 @@ inline float3 emission_seen(constant RenderParams *p, Material m, float t, float
     return xyz(m.ke) * mis_power(prev_pdf_w, light_pdf);
 }
 
-kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                          const global uint *active, uint n_active)
+/* Shades the path in slot; true when it queued a shadow ray. */
+inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint slot)
 {
-    uint i = get_global_id(0);
-    if (i >= n_active)
-        return;
-    uint slot = active[i];
     uint depth = alive[slot];
     if (depth == 0u)
-        return;
+        return false;
     uint k = sample_id[slot];
     float4 h = hit[slot];
     float4 dir4 = ray_direction[slot];
@@ -40,7 +36,7 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     if (prim == HIT_NONE) {
         radiance[k] += (float4)(beta * xyz(p->background), 0.0f);
         alive[slot] = 0u;
-        return;
+        return false;
     }
     Hit hh = {h.x, h.y, h.z, prim};
     SurfaceHit surf = surface_at(hh, positions, normals, uvs, triangles, material_ids);
@@ -57,6 +53,7 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     float3 gathered = beta * L;
 
     bool path_continues = depth < p->max_depth;
+    bool queued = false;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
         uint pixel = window_pixel(p, k), sample = window_sample(p, k), bounce = depth - 1u;
@@ -83,6 +80,7 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
                 shadow_origin[slot] = (float4)(origin, dist * (1.0f - 1e-4f));
                 shadow_direction[slot] = (float4)((ls.position - origin) / dist, 0.0f);
                 shadow_contribution[slot] = (float4)(contribution, 1.0f);
+                queued = true;
             }
         }
 
@@ -112,4 +110,30 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     }
     radiance[k] += (float4)(gathered, 0.0f);
     alive[slot] = path_continues ? depth + 1u : 0u;
+    return queued;
+}
+
+/* With shadow_queue != 0 (RENDER_SHADOW_QUEUE), the slots that queued a shadow ray are appended to
+ * shadow_queue[] (one global atomic per work-group, on shadow_count[0]) so that intersect_shadow
+ * runs over those only; otherwise intersect_shadow checks every active slot's flag. */
+kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
+                          const global uint *active, uint n_active, global uint *shadow_queue,
+                          global uint *shadow_count)
+{
+    local uint group_count, group_base;
+    uint i = get_global_id(0);
+    uint slot = i < n_active ? active[i] : 0u;
+    bool queued = i < n_active && shade_path(p, SCENE_ARGS PATH_STATE_ARGS slot);
+    if (!(p->flags & RENDER_SHADOW_QUEUE))
+        return; /* uniform: no barrier below is reached by anyone */
+    if (get_local_id(0) == 0)
+        group_count = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    uint rank = queued ? atomic_inc(&group_count) : 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0 && group_count > 0)
+        group_base = atomic_add(shadow_count, group_count);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (queued)
+        shadow_queue[group_base + rank] = slot;
 }

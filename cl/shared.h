@@ -107,6 +107,7 @@ typedef struct {
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
+#define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
 
 /* ---- Lights --------------------------------------------------------------------------------- */
 

@@ -29,6 +29,7 @@ struct Wavefront {
     RenderParams params;
     RenderStats *stats;
     cl_mem params_buf, lights_buf, film, counters, active, free_slots, count_buf;
+    cl_mem shadow_queue, shadow_count; /* with settings.shadow_queue */
 #define PATH_STATE_MEMBER(type, name) cl_mem name;
     PATH_STATE_FIELDS(PATH_STATE_MEMBER)
     SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
@@ -112,7 +113,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .num_triangles = buffers->num_triangles,
         .num_emissive = lights.count,
         .emissive_power = lights.total_power,
-        .flags = s->no_nee ? RENDER_NO_NEE : 0u,
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_queue ? RENDER_SHADOW_QUEUE : 0u),
     };
     w->lights_buf = device_buffer(dev, "lights", CL_MEM_READ_ONLY, lights.count * sizeof(LightEntry),
                                   lights.entries, err);
@@ -125,6 +126,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
     w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
     w->count_buf = state_buffer(w, "live_count", sizeof(uint32_t), err);
+    w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_queue ? pool : 1) * sizeof(uint32_t), err);
+    w->shadow_count = state_buffer(w, "shadow_count", sizeof(uint32_t), err);
 #define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
     PATH_STATE_FIELDS(PATH_STATE_ALLOC)
 #undef PATH_STATE_ALLOC
@@ -207,7 +210,11 @@ static void set_all_args(Wavefront *w)
         KERNEL_ARG(w->kernels[k], i, w->active);
     }
     KERNEL_ARG(w->kernels[STAGE_EXTEND], ARG_AFTER_ACTIVE + 1, w->counters);
+    KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, w->shadow_queue);
+    KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 2, w->shadow_count);
     KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 1, w->counters);
+    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 2, w->shadow_queue);
+    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 3, w->shadow_count);
     i = set_path_args(w, w->kernels[STAGE_ACCUMULATE], false);
     KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film);
     KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i, w->counters);
@@ -267,6 +274,11 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
     if (step < 64)
         w->stats->live_per_bounce[step] += n_active;
     run_over_active(w, STAGE_EXTEND, n_active);
+    if (w->settings.shadow_queue) {
+        uint32_t zero = 0;
+        CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->shadow_count, &zero, sizeof zero, 0,
+                                     sizeof zero, 0, NULL, NULL));
+    }
     run_over_active(w, STAGE_SHADE, n_active);
     run_over_active(w, STAGE_CONNECT, n_active);
 }
@@ -407,7 +419,7 @@ static void wavefront_release(Wavefront *w)
     if (w->compactor)
         compactor_destroy(w->compactor);
     cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->free_slots,
-                    w->count_buf,
+                    w->count_buf, w->shadow_queue, w->shadow_count,
 #define PATH_STATE_LIST(type, name) w->name,
                     PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
 #undef PATH_STATE_LIST

@@ -19,6 +19,8 @@ typedef struct {
     bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
     bool quiet;          /* no progress line */
     bool profile;        /* time every kernel (waits after each launch) */
+    bool shadow_queue;   /* shadow rays appended to a queue by atomics, rather than a flag per
+                          * active path checked by every work item of intersect_shadow */
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
