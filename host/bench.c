@@ -47,19 +47,19 @@ static void append_csv(const char *path, const Session *s, const char *mode, con
     fclose(f);
 }
 
-/* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools),
- * the same with shadow rays appended to a queue by atomics, compaction without refills (window = pool: each pool's worth of paths runs to the end), and
+/* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools,
+ * shadow rays queued), the same with a shadow flag per active path, compaction without refills (window = pool: each pool's worth of paths runs to the end), and
  * neither (every bounce over the whole pool). */
 typedef struct {
     const char *name;
     bool no_compaction;
     uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
-    bool shadow_queue;
+    bool shadow_flags;
 } BenchMode;
 
 static const BenchMode modes[] = {
     {"refill", false, 0, false},
-    {"refill+shadowq", false, 0, true},
+    {"shadow-flags", false, 0, true},
     {"no-refill", false, 1, false},
     {"no-compaction", true, 0, false},
 };
@@ -87,7 +87,7 @@ int command_bench(const Options *o)
         RenderSettings settings = base;
         settings.no_compaction = modes[m].no_compaction;
         settings.window_size = modes[m].window_size;
-        settings.shadow_queue = modes[m].shadow_queue;
+        settings.shadow_flags = modes[m].shadow_flags;
         stats[m] = bench_render(&s, settings, rgb);
     }
 

@@ -29,7 +29,7 @@ struct Wavefront {
     RenderParams params;
     RenderStats *stats;
     cl_mem params_buf, lights_buf, film, counters, active, free_slots, count_buf;
-    cl_mem shadow_queue, shadow_count; /* with settings.shadow_queue */
+    cl_mem shadow_queue, shadow_count; /* unless settings.shadow_flags */
 #define PATH_STATE_MEMBER(type, name) cl_mem name;
     PATH_STATE_FIELDS(PATH_STATE_MEMBER)
     SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
@@ -113,7 +113,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .num_triangles = buffers->num_triangles,
         .num_emissive = lights.count,
         .emissive_power = lights.total_power,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_queue ? RENDER_SHADOW_QUEUE : 0u),
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
     };
     w->lights_buf = device_buffer(dev, "lights", CL_MEM_READ_ONLY, lights.count * sizeof(LightEntry),
                                   lights.entries, err);
@@ -126,7 +126,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
     w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
     w->count_buf = state_buffer(w, "live_count", sizeof(uint32_t), err);
-    w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_queue ? pool : 1) * sizeof(uint32_t), err);
+    w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_flags ? 1 : pool) * sizeof(uint32_t), err);
     w->shadow_count = state_buffer(w, "shadow_count", sizeof(uint32_t), err);
 #define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
     PATH_STATE_FIELDS(PATH_STATE_ALLOC)
@@ -274,7 +274,7 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
     if (step < 64)
         w->stats->live_per_bounce[step] += n_active;
     run_over_active(w, STAGE_EXTEND, n_active);
-    if (w->settings.shadow_queue) {
+    if (!w->settings.shadow_flags) {
         uint32_t zero = 0;
         CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->shadow_count, &zero, sizeof zero, 0,
                                      sizeof zero, 0, NULL, NULL));

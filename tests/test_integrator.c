@@ -203,11 +203,11 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
               (unsigned long long)refilled.live_per_bounce[40]);
     cr_expect_eq(refilled.extension_rays, with.extension_rays);
     cr_expect(memcmp(a, c, 32 * 32 * 3 * sizeof(float)) == 0, "refilling slots changed the image");
-    /* Shadow rays through an atomically appended queue: the same rays, the same bits. */
+    /* Shadow rays by a flag per active path instead of the queue: the same rays, the same bits. */
     RenderStats queued;
-    float *q = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .shadow_queue = true}, &queued);
+    float *q = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .shadow_flags = true}, &queued);
     cr_expect_eq(queued.shadow_rays, with.shadow_rays);
-    cr_expect(memcmp(a, q, 32 * 32 * 3 * sizeof(float)) == 0, "the shadow queue changed the image");
+    cr_expect(memcmp(a, q, 32 * 32 * 3 * sizeof(float)) == 0, "shadow flags changed the image");
     free(a), free(b), free(c), free(q);
     render_fixture_close(&f);
 }
