@@ -52,7 +52,7 @@ static Measured measure(RenderFixture *f, int spp_each, int max_depth)
     return m;
 }
 
-static void compare_with_reference(const char *name, int spp_total)
+static void compare_with_reference(const char *name, int spp_total, int reference_spp)
 {
     REQUIRE_ASSETS();
     char scene[256], ref_path[256], se_path[256];
@@ -60,8 +60,7 @@ static void compare_with_reference(const char *name, int spp_total)
     snprintf(ref_path, sizeof ref_path, "tests/references/%s.exr", name);
     snprintf(se_path, sizeof se_path, "tests/references/%s.stderr.exr", name);
     struct stat st;
-    if (stat(ref_path, &st) != 0)
-        cr_skip_test("no reference %s (make references)", ref_path);
+    cr_assert(stat(ref_path, &st) == 0, "no reference %s (make references renders it)", ref_path);
     Error err = {0};
     float *ref = NULL, *ref_se = NULL;
     int w, h, w2, h2;
@@ -87,18 +86,29 @@ static void compare_with_reference(const char *name, int spp_total)
         cr_expect(fabs(m.image_mean[c] - ref_mean) < tolerance,
                   "%s channel %d: ours %f +- %f, Mitsuba %f +- %f (tolerance %f)", name, c,
                   m.image_mean[c], m.image_mean_se[c], ref_mean, sqrt(ref_var), tolerance);
+        /* The test can fail: an image 3% too bright would not pass. */
+        cr_expect(fabs(1.03 * m.image_mean[c] - ref_mean) >= tolerance,
+                  "%s channel %d: tolerance %f too loose to see a 3%% bias", name, c, tolerance);
     }
 
     /* 2. Per pixel: the squared difference over its estimated variance is an F(1, K-1) variable,
      * above 10 for 1.6% of values when K = 8. A variance estimated from K renders can be zero at
      * the edge of a small bright light, so the robust statistic is that share, not the mean; a bias
-     * that covers a few percent of the image shows. relMSE must stay within what noise explains. */
+     * that covers a few percent of the image shows. relMSE must stay within what noise explains.
+     * Where a pixel's samples are heavy-tailed (caustics: the ceiling lit through the mirror
+     * sphere), K renders of a few spp mostly miss the rare bright paths: their mean is low and
+     * their spread lower still, which reads as a bias that is not there (8.5% of values on the
+     * sphere box, whose row means match Mitsuba's within 0.2% at 1024 spp). So our variance is
+     * also estimated from the reference's standard error, scaled from its spp to ours (the same
+     * kind of estimator: path tracing with NEE and MIS), and the larger of the two is used. */
     double rel_mse = 0, rel_expected = 0;
     size_t outliers = 0;
     for (size_t i = 0; i < 3 * n; i++) {
         double diff = (double)m.mean[i] - ref[i];
         double floor_var = pow(2e-3 * fmax(fabs(ref[i]), 1e-2), 2);
-        double var = (double)m.variance[i] + (double)ref_se[i] * ref_se[i] + floor_var;
+        double ref_var = (double)ref_se[i] * ref_se[i];
+        double ours_from_ref = ref_var * reference_spp / spp_total;
+        double var = fmax((double)m.variance[i], ours_from_ref) + ref_var + floor_var;
         outliers += diff * diff / var > 10.0;
         rel_mse += diff * diff / ((double)ref[i] * ref[i] + 1e-2);
         rel_expected += var / ((double)ref[i] * ref[i] + 1e-2);
@@ -116,7 +126,8 @@ static void compare_with_reference(const char *name, int spp_total)
     render_fixture_close(&f);
 }
 
-Test(reference, cornell_box, .timeout = 300) { compare_with_reference("cornell", 128); }
-Test(reference, cornell_spheres_mirror_and_glass, .timeout = 300) { compare_with_reference("cornell-sphere", 64); }
-Test(reference, textured, .timeout = 300) { compare_with_reference("textured", 64); }
-Test(reference, furnace, .timeout = 300) { compare_with_reference("furnace", 32); }
+/* The reference spp are those of tools/make-references.sh. */
+Test(reference, cornell_box, .timeout = 300) { compare_with_reference("cornell", 128, 16384); }
+Test(reference, cornell_spheres_mirror_and_glass, .timeout = 300) { compare_with_reference("cornell-sphere", 64, 32768); }
+Test(reference, textured, .timeout = 300) { compare_with_reference("textured", 64, 16384); }
+Test(reference, furnace, .timeout = 300) { compare_with_reference("furnace", 32, 16384); }
