@@ -25,18 +25,27 @@ inline BoxRay box_ray(float3 origin, float3 dir)
     return ray;
 }
 
+/* max and min that drop a NaN in x (when acc is not NaN): one maxss/minss on x86, one selp on
+ * NVIDIA, where OpenCL's fmax/fmin cost PoCL a compare-unordered and a blend per call. */
+inline float max_into(float x, float acc) { return x > acc ? x : acc; }
+inline float min_into(float x, float acc) { return x < acc ? x : acc; }
+
 /* Whether the ray meets [lo, hi] within [tmin, tmax]; *t_entry gets the clipped entry distance.
  * The entry and exit planes are chosen by the direction's sign, so (plane - origin) * inv_dir only
- * gives NaN (0 * inf) when the ray lies in that plane; fmin/fmax drop the NaN operand, which
- * treats the ray as inside the slab: boxes are closed. */
+ * gives NaN (0 * inf) when the ray lies in that plane; max_into/min_into drop the NaN, which
+ * treats the ray as inside the slab: boxes are closed. Scalar code: PoCL turns float3 selects
+ * into shuffles and blends. */
 inline bool box_entry(BoxRay ray, float4 lo, float4 hi, float tmin, float tmax, float *t_entry)
 {
-    float3 entry_plane = select(xyz(lo), xyz(hi), ray.dir_negative);
-    float3 exit_plane = select(xyz(hi), xyz(lo), ray.dir_negative);
-    float3 t_in = (entry_plane - ray.origin) * ray.inv_dir;
-    float3 t_out = (exit_plane - ray.origin) * ray.inv_dir;
-    float t0 = fmax(fmax(t_in.x, t_in.y), fmax(t_in.z, tmin));
-    float t1 = fmin(fmin(t_out.x, t_out.y), fmin(t_out.z, tmax));
+    float ex = ray.dir_negative.x ? hi.x : lo.x, xx = ray.dir_negative.x ? lo.x : hi.x;
+    float ey = ray.dir_negative.y ? hi.y : lo.y, xy = ray.dir_negative.y ? lo.y : hi.y;
+    float ez = ray.dir_negative.z ? hi.z : lo.z, xz = ray.dir_negative.z ? lo.z : hi.z;
+    float t0 = max_into((ex - ray.origin.x) * ray.inv_dir.x, tmin);
+    t0 = max_into((ey - ray.origin.y) * ray.inv_dir.y, t0);
+    t0 = max_into((ez - ray.origin.z) * ray.inv_dir.z, t0);
+    float t1 = min_into((xx - ray.origin.x) * ray.inv_dir.x, tmax);
+    t1 = min_into((xy - ray.origin.y) * ray.inv_dir.y, t1);
+    t1 = min_into((xz - ray.origin.z) * ray.inv_dir.z, t1);
     *t_entry = t0;
     return t0 <= t1 * BOX_EXIT_SCALE;
 }

@@ -370,8 +370,11 @@ void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *p
             *profile_ms = 0.0;
         return;
     }
-    if (local == 0)
-        local = 64;
+    if (local == 0) {
+        /* PT_LOCAL_SIZE: the work-group size of the wavefront kernels, for tuning experiments. */
+        const char *env = getenv("PT_LOCAL_SIZE");
+        local = env ? (size_t)atoi(env) : 64;
+    }
     if (local > dev->max_work_group)
         local = dev->max_work_group;
     size_t global = (n + local - 1) / local * local;
