@@ -20,6 +20,7 @@
 #include "viewer_camera.h"
 #include "viewer_display.h"
 #include "viewer_input.h"
+#include "viewer_stats.h"
 #include "wavefront.h"
 
 #define FRAME_BUDGET_S 0.040   /* device time asked for per frame */
@@ -43,9 +44,7 @@ typedef struct {
     double paths_per_second; /* measured; 0 before the first batch */
     double recent_paths, recent_seconds; /* decaying sums behind paths_per_second */
     uint64_t last_paths;     /* traced in the last sampling step */
-    /* Statistics for the title and the summary at exit. */
-    int frames;
-    double first_frame_ms, frame_ms_sum, frame_ms_max, render_ms_max;
+    ViewerStats stats;       /* for the summary at exit */
     double title_time, title_frame_ms;
     uint64_t title_paths;
 } Viewer;
@@ -289,7 +288,7 @@ static void render_step(Viewer *v)
     v->recent_seconds = 0.7 * v->recent_seconds + seconds;
     if (v->recent_seconds > 1e-4)
         v->paths_per_second = v->recent_paths / v->recent_seconds;
-    v->render_ms_max = fmax(v->render_ms_max, 1e3 * seconds);
+    viewer_stats_add_sampling(&v->stats, done, seconds);
     v->title_paths += done;
     v->last_paths = done;
     v->film_changed = true;
@@ -322,14 +321,6 @@ static void update_title(Viewer *v, double now, double frame_ms)
     v->title_time = now, v->title_paths = 0;
 }
 
-static void count_frame(Viewer *v, double frame_ms)
-{
-    if (v->frames++ == 0)
-        v->first_frame_ms = frame_ms;
-    else
-        v->frame_ms_sum += frame_ms, v->frame_ms_max = fmax(v->frame_ms_max, frame_ms);
-}
-
 /* The frame loop: input, samples, display, until Esc, the window closes, or --frames. */
 static void run_frames(Viewer *v)
 {
@@ -347,9 +338,9 @@ static void run_frames(Viewer *v)
         glfwSwapBuffers(v->window);
         double now = seconds_now(), frame_ms = 1e3 * (now - start);
         last = start;
-        count_frame(v, frame_ms);
+        viewer_stats_add_frame(&v->stats, frame_ms);
         update_title(v, now, frame_ms);
-        if (v->options->frames && v->frames >= v->options->frames)
+        if (v->options->frames && v->stats.frames >= v->options->frames)
             break;
     }
 }
@@ -384,18 +375,6 @@ static void open_window(Viewer *v)
     if (!viewer_display_create(&v->display, d->width, d->height, &err))
         die("%s", err.message);
     viewer_input_attach(v->window, &v->input);
-}
-
-static void print_summary(const Viewer *v)
-{
-    if (v->options->quiet)
-        return;
-    fprintf(stderr,
-            "pt: view: %d frames, %d spp; first frame %.0f ms, then frame time mean %.1f ms, max %.1f "
-            "ms; longest sampling step %.1f ms\n",
-            v->frames, wavefront_spp_done(v->wavefront), v->first_frame_ms,
-            v->frames > 1 ? v->frame_ms_sum / (v->frames - 1) : 0.0, v->frame_ms_max,
-            v->render_ms_max);
 }
 
 int command_view(const Options *o)
@@ -442,7 +421,9 @@ int command_view(const Options *o)
         if (saved && !o->quiet)
             printf("wrote %s\n", o->screenshot);
     }
-    print_summary(v);
+    if (!o->quiet)
+        viewer_stats_print(&v->stats, wavefront_spp_done(v->wavefront), v->session.dev.name, stderr);
+    viewer_stats_destroy(&v->stats);
     wavefront_destroy(v->wavefront);
     viewer_display_destroy(&v->display);
     glfwDestroyWindow(v->window);

@@ -258,12 +258,28 @@ bool viewer_camera_parse(const char *json, CameraDesc *c, Error *err)
     return ok;
 }
 
+/* The shortest %g text (6 to 9 digits) that reads back as exactly x: a pasted camera gives the
+ * very same view, and round values stay short. */
+static void format_float(char out[24], float x)
+{
+    for (int digits = 6; digits <= 9; digits++) {
+        snprintf(out, 24, "%.*g", digits, x);
+        if (strtof(out, NULL) == x)
+            return;
+    }
+}
+
 void viewer_camera_format(const CameraDesc *c, char *out, size_t size)
 {
+    const float *values[] = {&c->eye[0],    &c->eye[1],    &c->eye[2], &c->target[0],
+                             &c->target[1], &c->target[2], &c->up[0],  &c->up[1],
+                             &c->up[2],     &c->fov_y,     &c->aperture, &c->focus_distance};
+    char text[12][24];
+    for (int i = 0; i < 12; i++)
+        format_float(text[i], *values[i]);
     snprintf(out, size,
-             "\"camera\": {\"eye\": [%.6g, %.6g, %.6g], \"target\": [%.6g, %.6g, %.6g], "
-             "\"up\": [%.6g, %.6g, %.6g], \"fov_y\": %.6g, \"aperture\": %.6g, "
-             "\"focus_distance\": %.6g}",
-             c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0],
-             c->up[1], c->up[2], c->fov_y, c->aperture, c->focus_distance);
+             "\"camera\": {\"eye\": [%s, %s, %s], \"target\": [%s, %s, %s], \"up\": [%s, %s, %s], "
+             "\"fov_y\": %s, \"aperture\": %s, \"focus_distance\": %s}",
+             text[0], text[1], text[2], text[3], text[4], text[5], text[6], text[7], text[8],
+             text[9], text[10], text[11]);
 }
