@@ -25,10 +25,16 @@ inline BoxRay box_ray(float3 origin, float3 dir)
     return ray;
 }
 
-/* max and min that drop a NaN in x (when acc is not NaN): one maxss/minss on x86, one selp on
- * NVIDIA, where OpenCL's fmax/fmin cost PoCL a compare-unordered and a blend per call. */
+/* max and min that drop a NaN in x (acc is never NaN). NVIDIA's fmax/fmin are single
+ * instructions with that behaviour; elsewhere (PoCL on x86) OpenCL's fmax/fmin cost a
+ * compare-unordered and a blend per call, and a comparison is one maxss/minss. */
+#ifdef PT_VENDOR_NVIDIA
+inline float max_into(float x, float acc) { return fmax(x, acc); }
+inline float min_into(float x, float acc) { return fmin(x, acc); }
+#else
 inline float max_into(float x, float acc) { return x > acc ? x : acc; }
 inline float min_into(float x, float acc) { return x < acc ? x : acc; }
+#endif
 
 /* Whether the ray meets [lo, hi] within [tmin, tmax]; *t_entry gets the clipped entry distance.
  * The entry and exit planes are chosen by the direction's sign, so (plane - origin) * inv_dir only

@@ -2,7 +2,9 @@
 /* path_state.cl: kernel parameter lists expanded from the shared lists, so that the host's
  * clSetKernelArg order and every stage's signature cannot drift apart. */
 
-#define PATH_STATE_PARAM(type, name) global type *name,
+/* restrict: every buffer is a separate cl_mem, so no two parameters alias; NVIDIA can then read
+ * the read-only ones through the non-coherent texture path. */
+#define PATH_STATE_PARAM(type, name) global type *restrict name,
 /* Every PATH_STATE_FIELDS and SAMPLE_STATE_FIELDS buffer, each followed by a comma. */
 #define PATH_STATE_PARAMS PATH_STATE_FIELDS(PATH_STATE_PARAM) SAMPLE_STATE_FIELDS(PATH_STATE_PARAM)
 
@@ -15,11 +17,12 @@
 
 /* The scene's read-only buffers, in the order host/wavefront.c sets them; ends with a comma. */
 #define SCENE_PARAMS                                                                               \
-    const global BvhNode *bvh_nodes, const global BvhTriangle *bvh_tris,                           \
-        const global float4 *positions, const global float4 *normals, const global float2 *uvs,    \
-        const global Triangle *triangles, const global uint *material_ids,                         \
-        const global Material *materials, const global uint *texels,                               \
-        const global TextureInfo *textures, const global LightEntry *lights,
+    const global BvhNode *restrict bvh_nodes, const global BvhTriangle *restrict bvh_tris,         \
+        const global float4 *restrict positions, const global float4 *restrict normals,            \
+        const global float2 *restrict uvs, const global Triangle *restrict triangles,              \
+        const global uint *restrict material_ids, const global Material *restrict materials,       \
+        const global uint *restrict texels, const global TextureInfo *restrict textures,           \
+        const global LightEntry *restrict lights,
 
 /* The pixel and sample index of window sample k (see PATH_STATE_FIELDS in shared.h). */
 inline uint window_pixel(constant RenderParams *p, uint k)

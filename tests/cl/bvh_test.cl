@@ -6,9 +6,10 @@
 
 inline float4 bvh_test_hit_record(Hit hit) { return (float4)(hit.t, hit.u, hit.v, as_float(hit.prim)); }
 
-kernel void bvh_test_trace_closest(const global BvhNode *nodes, const global BvhTriangle *tris,
-                                   uint num_tris, const global float4 *rays, uint num_rays,
-                                   global float4 *hits)
+kernel void bvh_test_trace_closest(const global BvhNode *restrict nodes,
+                                   const global BvhTriangle *restrict tris, uint num_tris,
+                                   const global float4 *restrict rays, uint num_rays,
+                                   global float4 *restrict hits)
 {
     uint i = get_global_id(0);
     if (i >= num_rays)
@@ -18,9 +19,10 @@ kernel void bvh_test_trace_closest(const global BvhNode *nodes, const global Bvh
     hits[i] = bvh_test_hit_record(hit);
 }
 
-kernel void bvh_test_trace_any(const global BvhNode *nodes, const global BvhTriangle *tris,
-                               uint num_tris, const global float4 *rays, uint num_rays,
-                               global uint *occluded)
+kernel void bvh_test_trace_any(const global BvhNode *restrict nodes,
+                               const global BvhTriangle *restrict tris, uint num_tris,
+                               const global float4 *restrict rays, uint num_rays,
+                               global uint *restrict occluded)
 {
     uint i = get_global_id(0);
     if (i >= num_rays)
