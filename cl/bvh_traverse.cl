@@ -173,6 +173,15 @@ inline Hit trace_bvh(const global BvhNode *nodes, const global BvhTriangle *tris
     return walk.hit;
 }
 
+/* Every triangle, no BVH: the baseline of the brute-force ablation (RENDER_BRUTE_FORCE). */
+inline Hit trace_brute_force(const global BvhTriangle *tris, uint num_tris, float3 origin,
+                             float3 dir, float tmin, float tmax, bool any_hit)
+{
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
+    intersect_leaf(tris, 0u, num_tris, watertight_ray(origin, dir), tmin, any_hit, &hit);
+    return hit;
+}
+
 Hit trace_closest(const global BvhNode *nodes, const global BvhTriangle *tris, uint num_tris,
                   float3 origin, float3 dir, float tmin, float tmax)
 {

@@ -15,8 +15,10 @@ kernel void intersect_closest(constant RenderParams *p, SCENE_PARAMS PATH_STATE_
     uint slot = i < n_active ? active[i] : 0u;
     if (i < n_active && alive[slot]) {
         atomic_inc(&group_rays);
-        Hit h = trace_closest(bvh_nodes, bvh_tris, p->num_triangles, xyz(ray_origin[slot]),
-                              xyz(ray_direction[slot]), 0.0f, INFINITY);
+        float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
+        Hit h = (p->flags & RENDER_BRUTE_FORCE)
+                    ? trace_brute_force(bvh_tris, p->num_triangles, o, d, 0.0f, INFINITY, false)
+                    : trace_closest(bvh_nodes, bvh_tris, p->num_triangles, o, d, 0.0f, INFINITY);
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
     }
     /* Every work item reaches this barrier: no early return above. */

@@ -108,6 +108,7 @@ typedef struct {
 
 #define RENDER_NO_NEE 1u
 #define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
+#define RENDER_BRUTE_FORCE 4u  /* every ray against every triangle (benchmark ablation) */
 
 /* ---- Lights --------------------------------------------------------------------------------- */
 

@@ -55,14 +55,17 @@ typedef struct {
     bool no_compaction;
     uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
     bool shadow_flags;
+    bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
 } BenchMode;
 
 static const BenchMode modes[] = {
-    {"refill", false, 0, false},
-    {"shadow-flags", false, 0, true},
-    {"no-refill", false, 1, false},
-    {"no-compaction", true, 0, false},
+    {"refill", false, 0, false, false},
+    {"shadow-flags", false, 0, true, false},
+    {"no-refill", false, 1, false, false},
+    {"no-compaction", true, 0, false, false},
+    {"brute-force", false, 0, false, true},
 };
+#define BRUTE_FORCE_MAX_TRIANGLES 4096
 #define NUM_MODES (sizeof modes / sizeof modes[0])
 
 int command_bench(const Options *o)
@@ -79,17 +82,25 @@ int command_bench(const Options *o)
     RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed, .quiet = true,
                            .no_nee = o->no_nee};
 
-    RenderSettings warm = base;
-    warm.spp = 1;
-    bench_render(&s, warm, rgb);
     RenderStats stats[NUM_MODES];
-    for (size_t m = 0; m < NUM_MODES; m++) {
-        RenderSettings settings = base;
-        settings.no_compaction = modes[m].no_compaction;
-        settings.window_size = modes[m].window_size;
-        settings.shadow_flags = modes[m].shadow_flags;
-        stats[m] = bench_render(&s, settings, rgb);
+    size_t num_modes = NUM_MODES;
+    if (s.buffers.num_triangles > BRUTE_FORCE_MAX_TRIANGLES)
+        num_modes--; /* the brute-force row comes last */
+    RenderSettings settings[NUM_MODES];
+    for (size_t m = 0; m < num_modes; m++) {
+        settings[m] = base;
+        settings[m].no_compaction = modes[m].no_compaction;
+        settings[m].window_size = modes[m].window_size;
+        settings[m].shadow_flags = modes[m].shadow_flags;
+        settings[m].brute_force = modes[m].brute_force;
+        /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
+         * more, once per machine); keep that out of the figures. */
+        RenderSettings warm = settings[m];
+        warm.spp = 1;
+        bench_render(&s, warm, rgb);
     }
+    for (size_t m = 0; m < num_modes; m++)
+        stats[m] = bench_render(&s, settings[m], rgb);
 
     printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths, window %u samples, "
            "%.1f MiB of path state\n",
@@ -97,7 +108,7 @@ int command_bench(const Options *o)
            stats[0].window_size, stats[0].device_bytes / 1048576.0);
     printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
            "Mshadow/s", "rays/path");
-    for (size_t m = 0; m < NUM_MODES; m++) {
+    for (size_t m = 0; m < num_modes; m++) {
         print_row(modes[m].name, &stats[m]);
         if (o->csv)
             append_csv(o->csv, &s, modes[m].name, &stats[m]);

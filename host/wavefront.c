@@ -113,7 +113,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .num_triangles = buffers->num_triangles,
         .num_emissive = lights.count,
         .emissive_power = lights.total_power,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+                 (s->brute_force ? RENDER_BRUTE_FORCE : 0u),
     };
     w->lights_buf = device_buffer(dev, "lights", CL_MEM_READ_ONLY, lights.count * sizeof(LightEntry),
                                   lights.entries, err);

@@ -19,6 +19,7 @@ typedef struct {
     bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
     bool quiet;          /* no progress line */
     bool profile;        /* time every kernel (waits after each launch) */
+    bool brute_force;    /* no BVH: every ray against every triangle (benchmark ablation) */
     bool shadow_flags;   /* intersect_shadow checks a flag per active path instead of reading
                           * the queue that shade_surface appends to with atomics (the default:
                           * 1.5 to 6% faster on an H100; pt bench measures both) */
