@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "error.h"
 #include "session.h"
@@ -44,6 +45,43 @@ static void append_csv(const char *path, const Session *s, const char *mode, con
             (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
             st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
             st->pool_size, st->window_size, st->device_bytes / 1048576.0);
+    fclose(f);
+}
+
+/* FILE.csv -> FILE_<suffix>.csv */
+static void sibling_path(char *out, size_t size, const char *csv, const char *suffix)
+{
+    size_t n = strlen(csv);
+    if (n >= 4 && !strcmp(csv + n - 4, ".csv"))
+        n -= 4;
+    snprintf(out, size, "%.*s_%s.csv", (int)n, csv, suffix);
+}
+
+/* The profiled run: per-stage launches and ms into FILE_stages.csv, live paths per step into
+ * FILE_live.csv (next to the --csv FILE). */
+static void append_profile_csv(const char *csv, const Session *s, const RenderStats *st)
+{
+    char path[4096];
+    sibling_path(path, sizeof path, csv, "stages");
+    FILE *f = fopen(path, "a");
+    if (!f)
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,stage,launches,ms\n");
+    for (int k = 0; k < STAGE_COUNT; k++)
+        fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%s,%u,%.4f\n", s->dev.name, s->scene.desc.path,
+                s->scene.desc.width, s->scene.desc.height, st->spp_done, stage_names[k],
+                st->stage_launches[k], st->stage_ms[k]);
+    fclose(f);
+    sibling_path(path, sizeof path, csv, "live");
+    if (!(f = fopen(path, "a")))
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,step,live_paths\n");
+    for (int b = 0; b < 64 && st->live_per_bounce[b]; b++)
+        fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
+                s->scene.desc.width, s->scene.desc.height, st->spp_done, b,
+                (unsigned long long)st->live_per_bounce[b]);
     fclose(f);
 }
 
@@ -124,6 +162,8 @@ int command_bench(const Options *o)
     for (int k = 0; k < STAGE_COUNT; k++)
         printf("%-22s %9u %11.2f %6.1f%%\n", stage_names[k], prof.stage_launches[k], prof.stage_ms[k],
                total > 0 ? 100.0 * prof.stage_ms[k] / total : 0.0);
+    if (o->csv)
+        append_profile_csv(o->csv, &s, &prof);
     printf("live paths per step (all windows):");
     for (int b = 0; b < 64 && prof.live_per_bounce[b]; b++)
         printf(" %llu", (unsigned long long)prof.live_per_bounce[b]);

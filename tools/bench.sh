@@ -1,9 +1,10 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # bench.sh [--device D] [--quick]: the wavefront benchmark suite (make bench). Runs `pt bench` on
-# the suite's scenes (with and without compaction; per-stage times), at several resolutions, and
-# writes bench/results/<device>/wavefront.csv plus the full text output (wavefront.txt).
-# PT=path/to/pt overrides the binary (default build/pt). Scenes that need ../shared/assets are
+# the suite's scenes (its ablations: refills, shadow queue, compaction, brute force on small
+# scenes; per-stage times), on procedural tori of 10^3 .. 10^6 triangles, at several resolutions,
+# and writes bench/results/<device>/wavefront.csv plus the full text output (wavefront.txt).
+# PT=path/to/pt overrides the binary (default build/pt); PYTHON one with matplotlib for the plots. Scenes that need ../shared/assets are
 # skipped when it is absent. --quick: fewer samples (for slow CPU devices).
 set -eu
 PT=${PT:-build/pt}
@@ -25,7 +26,7 @@ name=$($PT bench scenes/cornell-box --width 16 --height 16 --spp 1 $dev_args 2>/
 out=bench/results/$name
 mkdir -p "$out"
 csv=$out/wavefront.csv; txt=$out/wavefront.txt
-rm -f "$csv"
+rm -f "$csv" "$out/wavefront_stages.csv" "$out/wavefront_live.csv"
 : >"$txt"
 
 run() { # scene, then extra pt bench arguments
@@ -40,9 +41,15 @@ if [ -d ../shared/assets ]; then
     run scenes/bench/dragon.json --width 1024 --height 1024 --spp $spp --max-depth 8
     run scenes/bench/skull.json --width 1024 --height 1024 --spp $spp --max-depth 8
 fi
+# Triangle-count scaling, up to the 1M-triangle procedural scene (generated: too large to commit).
+tori=${TMPDIR:-/tmp}/pt-bench-tori
+[ -f "$tori/torus-1000000.json" ] || python3 tools/make_bench_scenes.py --tori "$tori" >/dev/null
+for n in 1000 10000 100000 1000000; do
+    run "$tori/torus-$n.json" --width 1024 --height 1024 --spp $spp --max-depth 8
+done
 # Resolution scaling on the classic box (4K exercises the sliced batches on small pools).
 for size in 256x256 512x512 1024x1024 1920x1080 3840x2160; do
     run scenes/cornell-box --width ${size%x*} --height ${size#*x} --spp $spp --max-depth 8
 done
 echo "bench.sh: wrote $csv and $txt"
-python3 tools/bench_plot.py "$out" || true
+${PYTHON:-python3} tools/bench_plot.py "$out" || true

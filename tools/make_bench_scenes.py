@@ -3,9 +3,15 @@
 """Writes scenes/bench/: the benchmark scenes that put a public mesh (read from ../shared/assets, not
 copied: Stanford's terms) inside a lit box sized to the mesh. The box is ours (MIT): floor, back,
 ceiling, red left and green right walls facing inward, an emissive ceiling quad facing down, open
-front. Deterministic; run again after changing it."""
+front. Deterministic; run again after changing it.
+
+With --tori DIR it writes procedural scenes instead (too large to commit; tools/bench.sh makes
+them on the fly): DIR/torus-N.json, a bumpy torus of about N triangles (N = 10^3 .. 10^6) in the
+same lit box, for the triangle-count scaling and the 1M-triangle scene of the suite."""
 import json
+import math
 import os
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "scenes", "bench")
@@ -65,7 +71,58 @@ def box_obj(lo, hi):
     return "\n".join(lines) + "\n", camera
 
 
+def torus_obj(n_triangles):
+    """A bumpy torus (major radius 1, minor 0.35, bumps of 0.03) of 2 nu nv ~ n_triangles, lying
+    on y = 0, as OBJ text; returns the text and its bounds."""
+    nu = max(4, round(math.sqrt(n_triangles)))
+    nv = max(3, nu // 2)
+    big, small = 1.0, 0.35
+    lines = ["# Procedural bumpy torus (tools/make_bench_scenes.py). MIT.", "usemtl white"]
+    for i in range(nu):
+        u = 2 * math.pi * i / nu
+        for j in range(nv):
+            v = 2 * math.pi * j / nv
+            r = small + 0.03 * math.sin(7 * u) * math.sin(5 * v)
+            x = (big + r * math.cos(v)) * math.cos(u)
+            z = (big + r * math.cos(v)) * math.sin(u)
+            y = r * math.sin(v) + small + 0.03
+            lines.append(f"v {x:.6f} {y:.6f} {z:.6f}")
+    for i in range(nu):
+        for j in range(nv):
+            a = i * nv + j + 1
+            b = ((i + 1) % nu) * nv + j + 1
+            c = ((i + 1) % nu) * nv + (j + 1) % nv + 1
+            d = i * nv + (j + 1) % nv + 1
+            lines.append(f"f {a} {d} {c}")
+            lines.append(f"f {a} {c} {b}")
+    top = 2 * (small + 0.03) + 0.01
+    return "\n".join(lines) + "\n", (-1.4, 0.0, -1.4), (1.4, top, 1.4), 2 * nu * nv
+
+
+def write_tori(out):
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "lit-box.mtl"), "w") as f:
+        f.write(MTL)
+    for n in (1000, 10000, 100000, 1000000):
+        obj, lo, hi, count = torus_obj(n)
+        with open(os.path.join(out, f"torus-{n}.obj"), "w") as f:
+            f.write("mtllib lit-box.mtl\n" + obj)
+        box, camera = box_obj(lo, hi)
+        with open(os.path.join(out, f"torus-{n}-box.obj"), "w") as f:
+            f.write(box)
+        scene = {"camera": camera, "film": {"width": 1024, "height": 1024},
+                 "render": {"spp": 16, "max_depth": 8},
+                 "objects": [{"obj": f"torus-{n}.obj"}, {"obj": f"torus-{n}-box.obj"}]}
+        with open(os.path.join(out, f"torus-{n}.json"), "w") as f:
+            json.dump(scene, f, indent=2)
+            f.write("\n")
+        print(f"{out}/torus-{n}.json: {count} torus triangles")
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--tori":
+        write_tori(sys.argv[2])
+        return
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "lit-box.mtl"), "w") as f:
         f.write(MTL)
