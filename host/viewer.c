@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* viewer.c: 'pt view'. Each frame: read the input, apply it to the camera (a change empties the
- * film), trace about FRAME_BUDGET_S worth of paths at the measured rate, stream the film to the
- * screen. Batches are sized from the same measurement so that one is never long enough to make
- * the window unresponsive, on a GPU or on PoCL. */
+ * film), trace what is left of FRAME_BUDGET_S after showing the film, in paths at the measured
+ * rate, then stream the film to the screen. Windows (the wavefront's indivisible steps) are sized
+ * from the same measurement so that one is never long enough to make the window unresponsive, on
+ * a GPU or on PoCL. */
 #include "viewer.h"
 
 #include <libgen.h>
@@ -23,10 +24,13 @@
 #include "viewer_stats.h"
 #include "wavefront.h"
 
-#define FRAME_BUDGET_S 0.040   /* device time asked for per frame */
-#define BATCHES_PER_FRAME 3    /* a batch cannot be interrupted: keep it a fraction of a frame */
+#define FRAME_BUDGET_S 0.040   /* a frame: sampling, then showing the film */
+#define WINDOWS_PER_FRAME 3    /* a window cannot be interrupted: keep it a fraction of a frame */
 #define TITLE_INTERVAL_S 0.25
 #define UNLIMITED_SPP (1 << 30)
+/* Below this many slots, launch overheads dominate on PoCL: 1024-slot pools traced about a third
+ * fewer paths per second than 4096-slot ones in our runs at 512x512. */
+#define SMALLEST_EFFICIENT_POOL (1u << 14)
 
 typedef struct {
     const Options *options;
@@ -41,9 +45,11 @@ typedef struct {
     float exposure;          /* stops */
     bool paused, film_changed;
     float scene_size;        /* bounding-box diagonal: the scale of flying and of the lens */
-    double paths_per_second; /* measured; 0 before the first batch */
+    double paths_per_second; /* measured; 0 before the first window */
     double recent_paths, recent_seconds; /* decaying sums behind paths_per_second */
     uint64_t last_paths;     /* traced in the last sampling step */
+    double last_sampling_seconds; /* that step's time; 0 when the frame traced nothing */
+    double display_seconds;  /* decaying mean of a frame's time outside sampling */
     ViewerStats stats;       /* for the summary at exit */
     double title_time, title_frame_ms;
     uint64_t title_paths;
@@ -65,22 +71,29 @@ static void on_glfw_error(int code, const char *description)
 
 /* ---- The film: a Wavefront sized to the framebuffer ---------------------------------------- */
 
-/* Paths per batch for a rate: a power of two near a fraction of the frame budget. */
-static uint32_t pool_for_rate(double paths_per_second)
+/* Samples per window for a rate: a power of two near a fraction of the frame budget. The window,
+ * not the pool, is what wavefront_advance cannot split (wavefront.h). */
+static uint32_t window_for_rate(double paths_per_second)
 {
-    double wanted = paths_per_second * FRAME_BUDGET_S / BATCHES_PER_FRAME;
-    uint32_t pool = 1024;
-    while (pool < (1u << 22) && 2.0 * pool <= wanted)
-        pool *= 2;
-    return pool;
+    double wanted = paths_per_second * FRAME_BUDGET_S / WINDOWS_PER_FRAME;
+    uint32_t window = 1024;
+    while (window < (1u << 24) && 2.0 * window <= wanted)
+        window *= 2;
+    return window;
 }
 
-static void create_film(Viewer *v, uint32_t pool_size)
+/* A film whose steps are windows of window_size samples, traced by a pool of the usual fraction
+ * of a window (slots are refilled from the window as paths end), or the whole window if small. */
+static void create_film(Viewer *v, uint32_t window_size)
 {
     Error err = {0};
     if (v->wavefront)
         wavefront_destroy(v->wavefront);
-    v->settings.pool_size = pool_size;
+    v->settings.window_size = window_size;
+    uint32_t pool = window_size / WINDOW_PER_POOL;
+    if (pool < SMALLEST_EFFICIENT_POOL)
+        pool = window_size < SMALLEST_EFFICIENT_POOL ? window_size : SMALLEST_EFFICIENT_POOL;
+    v->settings.pool_size = pool;
     v->wavefront = wavefront_create(&v->session.dev, &v->session.scene, &v->session.buffers,
                                     &v->settings, &err);
     if (!v->wavefront)
@@ -88,14 +101,14 @@ static void create_film(Viewer *v, uint32_t pool_size)
     v->film_changed = true;
 }
 
-/* A new pool when the measured rate calls for one at least 4x larger or smaller (the first
+/* A new window when the measured rate calls for one at least 4x larger or smaller (the first
  * frames, or a device much faster than guessed); the film restarts, which costs little then. */
-static void adapt_pool(Viewer *v)
+static void adapt_window(Viewer *v)
 {
     if (v->recent_seconds < 0.1) /* too young a measurement */
         return;
-    uint32_t current = wavefront_stats(v->wavefront)->pool_size;
-    uint32_t wanted = pool_for_rate(v->paths_per_second);
+    uint32_t current = wavefront_stats(v->wavefront)->window_size;
+    uint32_t wanted = window_for_rate(v->paths_per_second);
     uint64_t film = (uint64_t)v->session.scene.desc.width * (uint64_t)v->session.scene.desc.height;
     bool capped = current >= film * (uint64_t)v->target_spp; /* the whole render fits already */
     if ((wanted >= 4ull * current && !capped) || current >= 4ull * wanted)
@@ -120,7 +133,7 @@ static void resize_film(Viewer *v)
     if (width <= 0 || height <= 0 || (width == d->width && height == d->height))
         return;
     d->width = width, d->height = height;
-    create_film(v, wavefront_stats(v->wavefront)->pool_size);
+    create_film(v, wavefront_stats(v->wavefront)->window_size);
     viewer_display_resize(&v->display, width, height);
 }
 
@@ -269,13 +282,17 @@ static void apply_input(Viewer *v, double seconds)
 
 static bool converged(const Viewer *v) { return wavefront_spp_done(v->wavefront) >= v->target_spp; }
 
-/* About FRAME_BUDGET_S of paths at the measured rate (one batch before any measurement). */
+/* What is left of FRAME_BUDGET_S once the film is shown, in paths at the measured rate (one window
+ * before any measurement). Showing the film has a cost of its own (about 13 ms at 512x512 on
+ * llvmpipe), which is why it counts; sampling keeps at least a quarter of the frame. */
 static void render_step(Viewer *v)
 {
+    v->last_sampling_seconds = 0.0;
     if (v->paused || converged(v))
         return;
-    uint64_t wanted = (uint64_t)(v->paths_per_second * FRAME_BUDGET_S);
-    /* Slow start: a young measurement can be far off (the first batch may be quick), so ask for
+    double budget = fmax(FRAME_BUDGET_S - v->display_seconds, 0.25 * FRAME_BUDGET_S);
+    uint64_t wanted = (uint64_t)(v->paths_per_second * budget);
+    /* Slow start: a young measurement can be far off (the first window may be quick), so ask for
      * at most twice what the last frame did. */
     if (wanted > 2 * v->last_paths)
         wanted = 2 * v->last_paths;
@@ -291,8 +308,9 @@ static void render_step(Viewer *v)
     viewer_stats_add_sampling(&v->stats, done, seconds);
     v->title_paths += done;
     v->last_paths = done;
+    v->last_sampling_seconds = seconds;
     v->film_changed = true;
-    adapt_pool(v);
+    adapt_window(v);
 }
 
 static void show_film(Viewer *v)
@@ -339,6 +357,8 @@ static void run_frames(Viewer *v)
         double now = seconds_now(), frame_ms = 1e3 * (now - start);
         last = start;
         viewer_stats_add_frame(&v->stats, frame_ms);
+        double display = now - start - v->last_sampling_seconds;
+        v->display_seconds = v->stats.frames > 1 ? 0.9 * v->display_seconds + 0.1 * display : display;
         update_title(v, now, frame_ms);
         if (v->options->frames && v->stats.frames >= v->options->frames)
             break;
@@ -409,8 +429,8 @@ int command_view(const Options *o)
         fprintf(stderr, "pt: view: press H in the window for the keys\n");
     }
     open_window(v);
-    /* A first guess at the batch, refined from the first frames' rate. */
-    create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 18 : 1u << 12);
+    /* A first guess at the window, refined from the first frames' rate. */
+    create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 20 : 1u << 14);
     v->title_time = seconds_now();
     run_frames(v);
 

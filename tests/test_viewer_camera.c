@@ -161,3 +161,22 @@ Test(viewer_camera, json_errors_name_the_key_and_change_nothing)
         cr_expect(memcmp(&c, &before, sizeof c) == 0, "%s changed the camera", cases[i].json);
     }
 }
+
+/* What C prints reads back as the very same floats (a pasted camera is the same view, as the
+ * viewer tests rely on), and round values stay as short as they were typed. */
+Test(viewer_camera, printed_camera_reads_back_exactly)
+{
+    CameraDesc c = box_camera();
+    char json[1024];
+    viewer_camera_format(&c, json, sizeof json);
+    cr_expect(strstr(json, "\"eye\": [0, 1, 3.9]") && strstr(json, "\"fov_y\": 39.3"), "short: %s",
+              json);
+    viewer_camera_orbit(&c, 0.123f, -0.456f); /* values that need all nine digits */
+    viewer_camera_dolly(&c, 0.7f);
+    c.focus_distance = 1.0f / 3.0f;
+    viewer_camera_format(&c, json, sizeof json);
+    CameraDesc back = box_camera();
+    Error err = {0};
+    cr_assert(viewer_camera_parse(json, &back, &err), "%s", err.message);
+    cr_expect(memcmp(&back, &c, sizeof c) == 0, "not the same floats: %s", json);
+}
