@@ -30,7 +30,7 @@ endif
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
 CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/ray_offset.cl \
               cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/light_sample.cl \
-              cl/path_state.cl cl/scan.cl cl/render_aov.cl \
+              cl/path_state.cl cl/scan.cl cl/sort_materials.cl cl/render_aov.cl \
               cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
               cl/intersect_shadow.cl cl/accumulate_film.cl
 

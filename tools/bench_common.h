@@ -1,0 +1,81 @@
+/* SPDX-License-Identifier: MIT */
+/* bench_common.h: what the benchmark tools share: the device name made safe as a folder name
+ * (results go to bench/results/<device>/NAME.csv), opening that CSV, and device timing from
+ * profiling events. Header-only (static functions) so that each tools/NAME.c stays one
+ * translation unit; bench_scan.c and bench_bvh.c still hold their own copies of the first and
+ * the last two and can include this instead. */
+#ifndef PT_BENCH_COMMON_H
+#define PT_BENCH_COMMON_H
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "device.h"
+#include "error.h"
+
+/* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3". */
+static inline void bench_folder_name(const char *device_name, char *out, size_t size)
+{
+    size_t k = 0;
+    for (const char *p = device_name; *p && k + 1 < size; p++) {
+        bool keep = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+                    (*p >= '0' && *p <= '9') || *p == '.' || *p == '_';
+        if (keep)
+            out[k++] = *p;
+        else if (k > 0 && out[k - 1] != '-')
+            out[k++] = '-';
+    }
+    while (k > 0 && out[k - 1] == '-')
+        k--;
+    out[k] = '\0';
+}
+
+/* Opens path for writing after creating its folders (mkdir -p); dies when it cannot. */
+static inline FILE *bench_open_csv(const char *path)
+{
+    char folder[1024];
+    snprintf(folder, sizeof folder, "%s", path);
+    for (char *p = folder + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        if (mkdir(folder, 0755) != 0 && errno != EEXIST)
+            die("cannot create %s: %s", folder, strerror(errno));
+        *p = '/';
+    }
+    FILE *csv = fopen(path, "w");
+    if (!csv)
+        die("cannot write %s: %s", path, strerror(errno));
+    return csv;
+}
+
+/* Device time of a finished command in ms; releases the event. */
+static inline double bench_event_ms(cl_event event)
+{
+    cl_ulong start, end;
+    CL_CHECK(clWaitForEvents(1, &event));
+    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL));
+    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
+    CL_CHECK(clReleaseEvent(event));
+    return (double)(end - start) * 1e-6;
+}
+
+/* Mean device time of one copy of bytes from src to dst over reps copies, after one warm-up: the
+ * scale a memory-bound stage is measured against. */
+static inline double bench_copy_ms(Device *dev, cl_mem src, cl_mem dst, size_t bytes, int reps)
+{
+    double total = 0.0;
+    for (int r = -1; r < reps; r++) {
+        cl_event event;
+        CL_CHECK(clEnqueueCopyBuffer(dev->queue, src, dst, 0, 0, bytes, 0, NULL, &event));
+        double ms = bench_event_ms(event);
+        if (r >= 0)
+            total += ms;
+    }
+    return total / reps;
+}
+
+#endif
