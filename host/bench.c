@@ -86,22 +86,25 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
 }
 
 /* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools,
- * shadow rays queued), the same with a shadow flag per active path, compaction without refills (window = pool: each pool's worth of paths runs to the end), and
+ * shadow rays queued), the same with a shadow flag per active path, with material sorting,
+ * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
  * neither (every bounce over the whole pool). */
 typedef struct {
     const char *name;
     bool no_compaction;
     uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
     bool shadow_flags;
+    bool sort_materials;
     bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
 } BenchMode;
 
 static const BenchMode modes[] = {
-    {"refill", false, 0, false, false},
-    {"shadow-flags", false, 0, true, false},
-    {"no-refill", false, 1, false, false},
-    {"no-compaction", true, 0, false, false},
-    {"brute-force", false, 0, false, true},
+    {"refill", false, 0, false, false, false},
+    {"shadow-flags", false, 0, true, false, false},
+    {"no-refill", false, 1, false, false, false},
+    {"no-compaction", true, 0, false, false, false},
+    {"sort-materials", false, 0, false, true, false},
+    {"brute-force", false, 0, false, false, true},
 };
 #define BRUTE_FORCE_MAX_TRIANGLES 4096
 #define NUM_MODES (sizeof modes / sizeof modes[0])
@@ -131,6 +134,7 @@ int command_bench(const Options *o)
         settings[m].window_size = modes[m].window_size;
         settings[m].shadow_flags = modes[m].shadow_flags;
         settings[m].brute_force = modes[m].brute_force;
+        settings[m].sort_materials = modes[m].sort_materials;
         /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
          * more, once per machine); keep that out of the figures. */
         RenderSettings warm = settings[m];

@@ -21,7 +21,7 @@ typedef struct {
     float exposure; /* stops, PNG only */
     bool quiet;
     bool preview;   /* with -o X.exr, also write X.png */
-    bool no_nee, no_compaction, profile;
+    bool no_nee, no_compaction, profile, sort_materials;
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     const char *csv; /* pt bench: append results to this CSV file */
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */

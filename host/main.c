@@ -190,6 +190,7 @@ static int command_render(const Options *o)
             .max_depth = desc->max_depth,
             .seed = seed,
             .no_nee = o->no_nee,
+            .sort_materials = o->sort_materials,
             .no_compaction = o->no_compaction,
             .quiet = o->quiet,
             .profile = o->profile,

@@ -422,7 +422,7 @@ int command_view(const Options *o)
         v->scene_size = 1.0f;
     v->target_spp = o->spp ? o->spp : UNLIMITED_SPP;
     v->settings = (RenderSettings){.spp = v->target_spp, .max_depth = d->max_depth,
-                                   .seed = o->seed, .no_nee = o->no_nee,
+                                   .seed = o->seed, .no_nee = o->no_nee, .sort_materials = o->sort_materials,
                                    .no_compaction = o->no_compaction, .quiet = true};
     if (!o->quiet) {
         session_print_summary(&v->session);

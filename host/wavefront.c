@@ -12,9 +12,10 @@
 #include "camera.h"
 #include "compact.h"
 #include "lights.h"
+#include "material_sort.h"
 
 const char *const stage_names[STAGE_COUNT] = {
-    "generate_camera_rays", "intersect_closest", "shade_surface",
+    "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
     "intersect_shadow",     "compact_paths",     "accumulate_film",
 };
 
@@ -30,6 +31,8 @@ struct Wavefront {
     RenderStats *stats;
     cl_mem params_buf, lights_buf, film, counters, active, free_slots, count_buf;
     cl_mem shadow_queue, shadow_count; /* unless settings.shadow_flags */
+    cl_mem sorted_active;              /* with settings.sort_materials: shade_surface's list */
+    MaterialSorter *sorter;
 #define PATH_STATE_MEMBER(type, name) cl_mem name;
     PATH_STATE_FIELDS(PATH_STATE_MEMBER)
     SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
@@ -144,8 +147,14 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
+    if (s->sort_materials) {
+        w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
+        w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
+        if (!w->sorter)
+            return false;
+    }
     for (int k = 0; k < STAGE_COUNT; k++)
-        if (k != STAGE_COMPACT)
+        if (k != STAGE_COMPACT && k != STAGE_SORT)
             w->kernels[k] = device_kernel(dev, stage_names[k]);
     set_all_args(w);
     wavefront_reset(w);
@@ -206,9 +215,12 @@ static void set_all_args(Wavefront *w)
     cl_uint i = set_path_args(w, w->kernels[STAGE_GENERATE], false);
     KERNEL_ARG(w->kernels[STAGE_GENERATE], i++, w->active);
     KERNEL_ARG(w->kernels[STAGE_GENERATE], i, w->free_slots);
-    for (int k = STAGE_EXTEND; k <= STAGE_CONNECT; k++) {
-        i = set_path_args(w, w->kernels[k], true);
-        KERNEL_ARG(w->kernels[k], i, w->active);
+    const int traced[] = {STAGE_EXTEND, STAGE_SHADE, STAGE_CONNECT};
+    for (int j = 0; j < 3; j++) {
+        cl_kernel k = w->kernels[traced[j]];
+        i = set_path_args(w, k, true);
+        cl_mem list = traced[j] == STAGE_SHADE && w->sorted_active ? w->sorted_active : w->active;
+        KERNEL_ARG(k, i, list);
     }
     KERNEL_ARG(w->kernels[STAGE_EXTEND], ARG_AFTER_ACTIVE + 1, w->counters);
     KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, w->shadow_queue);
@@ -275,6 +287,14 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
     if (step < 64)
         w->stats->live_per_bounce[step] += n_active;
     run_over_active(w, STAGE_EXTEND, n_active);
+    if (w->sorter) {
+        double ms = 0.0;
+        material_sorter_set_profile(w->sorter, w->settings.profile ? &ms : NULL);
+        material_sorter_run(w->sorter, w->hit, w->scene->material_ids, w->active, w->sorted_active,
+                            n_active);
+        w->stats->stage_ms[STAGE_SORT] += ms;
+        w->stats->stage_launches[STAGE_SORT]++;
+    }
     if (!w->settings.shadow_flags) {
         uint32_t zero = 0;
         CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->shadow_count, &zero, sizeof zero, 0,
@@ -419,8 +439,10 @@ static void wavefront_release(Wavefront *w)
             CL_CHECK(clReleaseKernel(w->kernels[k]));
     if (w->compactor)
         compactor_destroy(w->compactor);
+    if (w->sorter)
+        material_sorter_destroy(w->sorter);
     cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->free_slots,
-                    w->count_buf, w->shadow_queue, w->shadow_count,
+                    w->count_buf, w->shadow_queue, w->shadow_count, w->sorted_active,
 #define PATH_STATE_LIST(type, name) w->name,
                     PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
 #undef PATH_STATE_LIST
