@@ -3,9 +3,11 @@
  * Volume Hierarchies"), written straight into the node array in the order cl/bvh_traverse.cl walks
  * it: depth first, pre-order, so an inner left child sits right after its parent. The build
  * reorders one array of per-triangle records in place; every leaf is a contiguous range of it,
- * and bvh->tris is that array's order. */
+ * and bvh->tris is that array's order. Box arithmetic runs on x, y, z (and a spare lane) at once:
+ * SSE2 where the compiler offers it (every x86-64), plain C with the same results elsewhere. */
 #include "bvh.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -13,16 +15,158 @@
 
 #include "error.h"
 
-/* An axis-aligned box; lane 3 is spare so that min/max run four lanes at a time. */
+/* ---- Four lanes at a time ---------------------------------------------------------------------- */
+
+/* GCC's -O2 inliner judges the plain versions of the helpers below too big and calls them, which
+ * halves the speed of a plain build; they are all meant to melt into their loops. */
+#ifdef __GNUC__
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
+/* lanes_min(a, b) and lanes_max(a, b) return b where a lane of either is NaN (SSE's rule; the
+ * plain versions follow it). Build records hold no NaN (make_prims clamps their boxes), so boxes
+ * grow accumulator first, which SSE's two-operand form does in one instruction; the two places
+ * that do meet NaN (the bin clamp, the sweep's best sum) put the value to keep second. */
+#ifdef __SSE2__
+#include <immintrin.h>
+
+typedef __m128 Lanes;
+
+static ALWAYS_INLINE Lanes lanes_load(const float *aligned) { return _mm_load_ps(aligned); }
+static ALWAYS_INLINE void lanes_store(float *aligned, Lanes a) { _mm_store_ps(aligned, a); }
+static ALWAYS_INLINE Lanes lanes_splat(float x) { return _mm_set1_ps(x); }
+static ALWAYS_INLINE Lanes lanes_min(Lanes a, Lanes b) { return _mm_min_ps(a, b); }
+static ALWAYS_INLINE Lanes lanes_max(Lanes a, Lanes b) { return _mm_max_ps(a, b); }
+static ALWAYS_INLINE Lanes lanes_add(Lanes a, Lanes b) { return _mm_add_ps(a, b); }
+static ALWAYS_INLINE Lanes lanes_sub(Lanes a, Lanes b) { return _mm_sub_ps(a, b); }
+static ALWAYS_INLINE Lanes lanes_mul(Lanes a, Lanes b) { return _mm_mul_ps(a, b); }
+
+/* a < b ? if_less : otherwise, lane by lane. */
+static ALWAYS_INLINE Lanes lanes_select_less(Lanes a, Lanes b, Lanes if_less, Lanes otherwise)
+{
+    Lanes less = _mm_cmplt_ps(a, b);
+    return _mm_or_ps(_mm_and_ps(less, if_less), _mm_andnot_ps(less, otherwise));
+}
+
+/* Bit k set where lane k of a < lane k of b. */
+static ALWAYS_INLINE int lanes_less_bits(Lanes a, Lanes b) { return _mm_movemask_ps(_mm_cmplt_ps(a, b)); }
+
+/* a <= b ? 1 : 0, lane by lane. */
+static ALWAYS_INLINE Lanes lanes_one_if_less_equal(Lanes a, Lanes b)
+{
+    return _mm_and_ps(_mm_cmple_ps(a, b), _mm_set1_ps(1.0f));
+}
+
+/* Toward zero, as a C cast does; the caller keeps the lanes within int range. */
+static ALWAYS_INLINE void lanes_truncate(Lanes a, int32_t out[4])
+{
+    _mm_storeu_si128((__m128i *)out, _mm_cvttps_epi32(a));
+}
+
+static ALWAYS_INLINE Lanes lanes_from_ints(const uint32_t in[4])
+{
+    return _mm_cvtepi32_ps(_mm_loadu_si128((const __m128i *)in));
+}
+
+/* Lanes x, y, z of three rows as three columns: column k holds (row0[k], row1[k], row2[k], 0). */
+static ALWAYS_INLINE void lanes_transpose3(Lanes row0, Lanes row1, Lanes row2, Lanes column[3])
+{
+    Lanes zero = _mm_setzero_ps();
+    Lanes xy01 = _mm_unpacklo_ps(row0, row1), zw01 = _mm_unpackhi_ps(row0, row1);
+    Lanes xy2 = _mm_unpacklo_ps(row2, zero), zw2 = _mm_unpackhi_ps(row2, zero);
+    column[0] = _mm_movelh_ps(xy01, xy2);
+    column[1] = _mm_movehl_ps(xy2, xy01);
+    column[2] = _mm_movelh_ps(zw01, zw2);
+}
+#else
 typedef struct {
-    float lo[4], hi[4];
+    float v[4];
+} Lanes;
+
+static ALWAYS_INLINE Lanes lanes_load(const float *aligned)
+{
+    Lanes r;
+    memcpy(r.v, aligned, sizeof r.v);
+    return r;
+}
+static ALWAYS_INLINE void lanes_store(float *aligned, Lanes a) { memcpy(aligned, a.v, sizeof a.v); }
+static ALWAYS_INLINE Lanes lanes_splat(float x) { return (Lanes){{x, x, x, x}}; }
+
+#define LANES_BINARY(name, expr)                        \
+    static ALWAYS_INLINE Lanes name(Lanes a, Lanes b)          \
+    {                                                   \
+        Lanes r;                                        \
+        for (int k = 0; k < 4; k++)                     \
+            r.v[k] = (expr);                            \
+        return r;                                       \
+    }
+LANES_BINARY(lanes_min, a.v[k] < b.v[k] ? a.v[k] : b.v[k])
+LANES_BINARY(lanes_max, a.v[k] > b.v[k] ? a.v[k] : b.v[k])
+LANES_BINARY(lanes_add, a.v[k] + b.v[k])
+LANES_BINARY(lanes_sub, a.v[k] - b.v[k])
+LANES_BINARY(lanes_mul, a.v[k] * b.v[k])
+#undef LANES_BINARY
+
+static ALWAYS_INLINE Lanes lanes_select_less(Lanes a, Lanes b, Lanes if_less, Lanes otherwise)
+{
+    Lanes r;
+    for (int k = 0; k < 4; k++)
+        r.v[k] = a.v[k] < b.v[k] ? if_less.v[k] : otherwise.v[k];
+    return r;
+}
+
+static ALWAYS_INLINE int lanes_less_bits(Lanes a, Lanes b)
+{
+    int bits = 0;
+    for (int k = 0; k < 4; k++)
+        bits |= (a.v[k] < b.v[k]) << k;
+    return bits;
+}
+
+static ALWAYS_INLINE Lanes lanes_one_if_less_equal(Lanes a, Lanes b)
+{
+    Lanes r;
+    for (int k = 0; k < 4; k++)
+        r.v[k] = a.v[k] <= b.v[k] ? 1.0f : 0.0f;
+    return r;
+}
+
+static ALWAYS_INLINE void lanes_truncate(Lanes a, int32_t out[4])
+{
+    for (int k = 0; k < 4; k++)
+        out[k] = (int32_t)a.v[k];
+}
+
+static ALWAYS_INLINE Lanes lanes_from_ints(const uint32_t in[4])
+{
+    return (Lanes){{(float)(int32_t)in[0], (float)(int32_t)in[1], (float)(int32_t)in[2],
+                    (float)(int32_t)in[3]}};
+}
+
+static ALWAYS_INLINE void lanes_transpose3(Lanes row0, Lanes row1, Lanes row2, Lanes column[3])
+{
+    for (int k = 0; k < 3; k++)
+        column[k] = (Lanes){{row0.v[k], row1.v[k], row2.v[k], 0.0f}};
+}
+#endif
+
+/* ---- Boxes and build records -------------------------------------------------------------------- */
+
+/* An axis-aligned box in registers; lane 3 is spare. */
+typedef struct {
+    Lanes lo, hi;
 } Box;
 
-/* A triangle during the build: its box, with the triangle's index in the bits of lo[3] (offset by
- * PRIM_INDEX_BIAS so that the lane holds a normal float: four-lane arithmetic on denormals would
- * stall on x86). Centroids are lo + hi (twice the centre: the factor cancels wherever they are
- * used). */
-typedef Box BuildPrim;
+/* A triangle during the build, 32 bytes: its box, with the triangle's index in the bits of lo[3]
+ * (offset by PRIM_INDEX_BIAS so that the lane holds a normal float: four-lane arithmetic on
+ * denormals would stall on x86) and 0 in hi[3]. Centroids are lo + hi (twice the centre: the
+ * factor cancels wherever they are used). */
+typedef struct {
+    _Alignas(16) float lo[4];
+    float hi[4];
+} BuildPrim;
 #define PRIM_INDEX_BIAS 0x00800000u
 #define PRIM_INDEX_LIMIT (0x7f800000u - PRIM_INDEX_BIAS)
 
@@ -36,7 +180,7 @@ typedef struct {
     int axis;      /* -1: no split found */
     int bin;       /* binned: first bin of the right side */
     float scale;   /* binned: bins per unit of (doubled) centroid along axis */
-    uint32_t mid;  /* full sweep: index of the first right-side record */
+    uint32_t mid;  /* exact splits: index of the first right-side record */
 } Split;
 
 /* The two sides of an inner node: prims[begin, mid) and prims[mid, end). */
@@ -54,59 +198,95 @@ typedef struct {
     double cost_sum; /* SAH sum, not yet divided by the root's area */
 } Builder;
 
-static const Box empty_box = {{INFINITY, INFINITY, INFINITY, INFINITY},
-                              {-INFINITY, -INFINITY, -INFINITY, -INFINITY}};
-
-static inline void box_grow(Box *box, const Box *other)
+static ALWAYS_INLINE Box empty_box(void)
 {
-    for (int k = 0; k < 4; k++) {
-        box->lo[k] = other->lo[k] < box->lo[k] ? other->lo[k] : box->lo[k];
-        box->hi[k] = other->hi[k] > box->hi[k] ? other->hi[k] : box->hi[k];
-    }
+    return (Box){lanes_splat(INFINITY), lanes_splat(-INFINITY)};
 }
 
-static inline void box_grow_centroid(Box *box, const BuildPrim *prim)
+static ALWAYS_INLINE Box box_of(const BuildPrim *prim)
 {
-    for (int k = 0; k < 4; k++) {
-        float c = prim->lo[k] + prim->hi[k];
-        box->lo[k] = c < box->lo[k] ? c : box->lo[k];
-        box->hi[k] = c > box->hi[k] ? c : box->hi[k];
-    }
+    return (Box){lanes_load(prim->lo), lanes_load(prim->hi)};
+}
+
+/* The index lane travels along: a record's box is its whole content. */
+static ALWAYS_INLINE void prim_store(BuildPrim *prim, const Box *prim_box)
+{
+    lanes_store(prim->lo, prim_box->lo);
+    lanes_store(prim->hi, prim_box->hi);
+}
+
+static ALWAYS_INLINE Lanes centroid_of(const Box *prim_box)
+{
+    return lanes_add(prim_box->lo, prim_box->hi);
+}
+
+static ALWAYS_INLINE void box_grow(Box *box, const Box *other)
+{
+    box->lo = lanes_min(box->lo, other->lo);
+    box->hi = lanes_max(box->hi, other->hi);
+}
+
+/* acc[a] grows by other[a] for the three axes, written out: -O2 keeps acc in registers then. */
+static ALWAYS_INLINE void box_grow_three(Box acc[3], const Box other[3])
+{
+    box_grow(&acc[0], &other[0]);
+    box_grow(&acc[1], &other[1]);
+    box_grow(&acc[2], &other[2]);
+}
+
+static ALWAYS_INLINE void box_grow_point(Box *box, Lanes point)
+{
+    box->lo = lanes_min(box->lo, point);
+    box->hi = lanes_max(box->hi, point);
+}
+
+/* Lanes x, y, z of a box as floats: lo[0..2], hi[0..2]. */
+static ALWAYS_INLINE void box_corners(const Box *box, float lo[4], float hi[4])
+{
+    _Alignas(16) float l[4], h[4];
+    lanes_store(l, box->lo);
+    lanes_store(h, box->hi);
+    memcpy(lo, l, sizeof l);
+    memcpy(hi, h, sizeof h);
 }
 
 /* Half the surface area: only ratios of areas matter. Empty boxes have none. In double: the
  * product of two float extents overflows a float for scenes wider than 1e19. */
-static inline double box_half_area(const Box *box)
+static double box_half_area(const Box *box)
 {
-    double dx = (double)box->hi[0] - box->lo[0], dy = (double)box->hi[1] - box->lo[1];
-    double dz = (double)box->hi[2] - box->lo[2];
+    float lo[4], hi[4];
+    box_corners(box, lo, hi);
+    double dx = (double)hi[0] - lo[0], dy = (double)hi[1] - lo[1], dz = (double)hi[2] - lo[2];
     return dx >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
 }
 
-/* The same in float after scaling the extents by `unit` (1 / the node's largest extent): cheap
- * for the bin sweeps, and it cannot overflow since it only compares boxes within one node. */
-static inline float box_half_area_in(const Box *box, float unit)
+/* The same in float, times `unit` (1 / the largest extent of the node being split): cheap for
+ * the split searches, and no product overflows since one factor of each is at most 1. Measures
+ * what half_areas_of_three measures, so the two compare. */
+static float box_half_area_in(const Box *box, float unit)
 {
-    float dx = (box->hi[0] - box->lo[0]) * unit, dy = (box->hi[1] - box->lo[1]) * unit;
-    float dz = (box->hi[2] - box->lo[2]) * unit;
-    return dx >= 0.0f ? dx * dy + dy * dz + dz * dx : 0.0f;
+    float lo[4], hi[4];
+    box_corners(box, lo, hi);
+    float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return dx >= 0.0f ? dx * unit * (dy + dz) + dy * unit * dz : 0.0f;
 }
 
-static inline float box_unit(const Box *box)
+static ALWAYS_INLINE float box_unit(const Box *box)
 {
-    float extent = 0.0f;
+    float lo[4], hi[4], extent = 0.0f;
+    box_corners(box, lo, hi);
     for (int k = 0; k < 3; k++)
-        extent = box->hi[k] - box->lo[k] > extent ? box->hi[k] - box->lo[k] : extent;
+        extent = hi[k] - lo[k] > extent ? hi[k] - lo[k] : extent;
     return extent > 0.0f ? 1.0f / extent : 1.0f;
 }
 
-static inline void prim_set_index(BuildPrim *prim, uint32_t index)
+static ALWAYS_INLINE void prim_set_index(BuildPrim *prim, uint32_t index)
 {
     uint32_t bits = index + PRIM_INDEX_BIAS;
     memcpy(&prim->lo[3], &bits, sizeof bits);
 }
 
-static inline uint32_t prim_index(const BuildPrim *prim)
+static ALWAYS_INLINE uint32_t prim_index(const BuildPrim *prim)
 {
     uint32_t bits;
     memcpy(&bits, &prim->lo[3], sizeof bits);
@@ -121,68 +301,94 @@ static int ceil_log2(uint32_t n)
     return bits;
 }
 
-/* Sweeps one axis's bins: the cheapest cut between bins, written to best when it beats it. */
-static void sweep_bins(const Box *bin_box, const uint32_t *bin_count, int bins, int axis, float unit,
-                       Split *best, float *best_sum)
+/* ---- Split search -------------------------------------------------------------------------------- */
+
+/* Three boxes' half areas, box a in lane a, times unit (1 / the node's largest extent) to keep
+ * them in float range: only one factor of each product is scaled, so none overflows (the result
+ * is in units of extent, not extent squared: fine for comparing within one node). An empty box
+ * (lo +inf, hi -inf) has an infinite area; lane 3 is 0. */
+static ALWAYS_INLINE Lanes half_areas_of_three(const Box box[3], Lanes unit)
 {
-    float right_area[BVH_BINS];
-    uint32_t right_count[BVH_BINS];
-    Box acc = empty_box;
-    uint32_t count = 0;
-    for (int i = bins - 1; i > 0; i--) {
-        box_grow(&acc, &bin_box[i]);
-        count += bin_count[i];
-        right_area[i] = box_half_area_in(&acc, unit);
-        right_count[i] = count;
-    }
-    acc = empty_box;
-    count = 0;
-    for (int i = 1; i < bins; i++) {
-        box_grow(&acc, &bin_box[i - 1]);
-        count += bin_count[i - 1];
-        if (count == 0 || right_count[i] == 0)
-            continue;
-        float sum = box_half_area_in(&acc, unit) * (float)count + right_area[i] * (float)right_count[i];
-        if (sum < *best_sum) {
-            *best_sum = sum;
-            best->axis = axis;
-            best->bin = i;
-        }
-    }
+    Lanes d[3];
+    lanes_transpose3(lanes_sub(box[0].hi, box[0].lo), lanes_sub(box[1].hi, box[1].lo),
+                     lanes_sub(box[2].hi, box[2].lo), d);
+    Lanes dx_scaled = lanes_mul(d[0], unit), dy_scaled = lanes_mul(d[1], unit);
+    return lanes_add(lanes_mul(dx_scaled, lanes_add(d[1], d[2])), lanes_mul(dy_scaled, d[2]));
 }
 
-/* Bins of one axis each; binning fills two sets, even and odd records apart, so that runs of
- * records in one bin (meshes are coherent) make two dependency chains through memory, not one. */
+#define SWEEP_MAX (BVH_BINS > BVH_SMALL_NODE ? BVH_BINS : BVH_SMALL_NODE)
+
 typedef struct {
-    Box box[3][BVH_BINS];
-    uint32_t count[3][BVH_BINS];
+    float sum; /* A_l N_l + A_r N_r as half_areas_of_three measures it; INFINITY: no valid cut */
+    int axis, cut;
+} SweepResult;
+
+/* Sweeps m candidates along all three axes together: box[i][a] is candidate i's box on axis a
+ * and count[i] its triangle counts, axis a in lane a; cut i puts candidates [0, i) left and
+ * [i, m) right. A side without triangles has an empty box, and its term is inf * 0 = NaN: NaN
+ * sums never compare less, and lanes_min keeps its second operand, so such cuts drop out
+ * without a test. Ties go to the first cut, then the lowest axis. */
+static SweepResult sweep_three_axes(Box (*box)[3], const Lanes *count, int m, float unit)
+{
+    const Lanes unit_lanes = lanes_splat(unit), one = lanes_splat(1.0f);
+    Lanes right_term[SWEEP_MAX];
+    Box acc[3] = {empty_box(), empty_box(), empty_box()};
+    Lanes total = lanes_splat(0.0f);
+    for (int i = m - 1; i > 0; i--) {
+        box_grow_three(acc, box[i]);
+        total = lanes_add(total, count[i]);
+        right_term[i] = lanes_mul(half_areas_of_three(acc, unit_lanes), total);
+    }
+    acc[0] = acc[1] = acc[2] = empty_box();
+    total = lanes_splat(0.0f);
+    Lanes best = lanes_splat(INFINITY), best_cut = lanes_splat(0.0f), cut = one;
+    for (int i = 1; i < m; i++) {
+        box_grow_three(acc, box[i - 1]);
+        total = lanes_add(total, count[i - 1]);
+        Lanes sum = lanes_add(lanes_mul(half_areas_of_three(acc, unit_lanes), total), right_term[i]);
+        best_cut = lanes_select_less(sum, best, cut, best_cut);
+        best = lanes_min(sum, best);
+        cut = lanes_add(cut, one);
+    }
+    _Alignas(16) float sums[4], cuts[4];
+    lanes_store(sums, best);
+    lanes_store(cuts, best_cut);
+    SweepResult result = {INFINITY, -1, 0};
+    for (int axis = 0; axis < 3; axis++)
+        if (sums[axis] < result.sum)
+            result = (SweepResult){sums[axis], axis, (int)cuts[axis]};
+    return result;
+}
+
+/* Bins of all three axes, box[bin][axis] and count[bin][axis]; binning fills two sets, even and odd records apart, so
+ * that runs of records in one bin (meshes are coherent) make two dependency chains through
+ * memory, not one. */
+typedef struct {
+    Box box[BVH_BINS][3];
+    uint32_t count[BVH_BINS][4]; /* lane 3: 0 */
 } BinSet;
 
 static void bin_set_clear(BinSet *set, int bins)
 {
-    for (int axis = 0; axis < 3; axis++)
-        for (int i = 0; i < bins; i++) {
-            set->box[axis][i] = empty_box;
-            set->count[axis][i] = 0;
-        }
+    Box empty = empty_box();
+    for (int i = 0; i < bins; i++)
+        set->box[i][0] = set->box[i][1] = set->box[i][2] = empty;
+    memset(set->count, 0, (size_t)bins * sizeof set->count[0]);
 }
 
-/* The bins of one record on all three axes, four lanes at a time. */
-static inline void bin_prim(BinSet *set, const BuildPrim *prim, const float origin[4],
-                            const float scale[4], float last)
+/* The bins of one record on all three axes. The clamp also sends NaN to the last bin. */
+static ALWAYS_INLINE void bin_prim(BinSet *set, const BuildPrim *prim, Lanes origin, Lanes scale,
+                            Lanes last)
 {
-    float f[4];
-    for (int k = 0; k < 4; k++) {
-        f[k] = (prim->lo[k] + prim->hi[k] - origin[k]) * scale[k];
-        f[k] = f[k] < last ? f[k] : last;
-    }
-    int x = (int)f[0], y = (int)f[1], z = (int)f[2];
-    set->count[0][x]++;
-    set->count[1][y]++;
-    set->count[2][z]++;
-    box_grow(&set->box[0][x], prim);
-    box_grow(&set->box[1][y], prim);
-    box_grow(&set->box[2][z], prim);
+    Box box = box_of(prim);
+    int32_t bin[4];
+    lanes_truncate(lanes_min(lanes_mul(lanes_sub(centroid_of(&box), origin), scale), last), bin);
+    set->count[bin[0]][0]++;
+    set->count[bin[1]][1]++;
+    set->count[bin[2]][2]++;
+    box_grow(&set->box[bin[0]][0], &box);
+    box_grow(&set->box[bin[1]][1], &box);
+    box_grow(&set->box[bin[2]][2], &box);
 }
 
 /* Binning looks at every k-th record of a large node only: the split position it finds from a
@@ -196,118 +402,157 @@ static uint32_t bin_stride(uint32_t n)
     return stride;
 }
 
-/* Best binned split of prims[begin, end); axis -1 when no axis has a centroid extent. Small
- * nodes get one bin per triangle: the sweep, not the binning, dominates their cost. */
+/* Best binned split of prims[begin, end); axis -1 when no axis has a centroid extent. */
 static Split find_binned_split(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
                                const Box *centroids)
 {
     int bins = end - begin < BVH_BINS ? (int)(end - begin) : BVH_BINS;
     uint32_t stride = bin_stride(end - begin);
-    float origin[4] = {centroids->lo[0], centroids->lo[1], centroids->lo[2], 0.0f};
-    float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    _Alignas(16) float lo[4], hi[4], scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    box_corners(centroids, lo, hi);
     for (int axis = 0; axis < 3; axis++) {
-        float extent = centroids->hi[axis] - centroids->lo[axis];
+        float extent = hi[axis] - lo[axis];
         /* Slightly under bins / extent so that the largest centroid stays in the last bin. */
         scale[axis] = extent > 0.0f ? (float)bins * 0.99999f / extent : 0.0f;
     }
+    lo[3] = 0.0f; /* the index lane bins to 0 */
+    Lanes origin = lanes_load(lo), scale_lanes = lanes_load(scale);
+    Lanes last = lanes_splat((float)(bins - 1));
     /* Two sets pay off only where runs are long enough to stall on memory. */
     BinSet set[2];
     bool two_sets = end - begin >= 64;
     bin_set_clear(&set[0], bins);
     if (two_sets)
         bin_set_clear(&set[1], bins);
-    const float last = (float)(bins - 1);
     uint32_t i = begin;
     for (; two_sets && i + stride < end; i += 2 * stride) {
-        bin_prim(&set[0], &b->prims[i], origin, scale, last);
-        bin_prim(&set[1], &b->prims[i + stride], origin, scale, last);
+        bin_prim(&set[0], &b->prims[i], origin, scale_lanes, last);
+        bin_prim(&set[1], &b->prims[i + stride], origin, scale_lanes, last);
     }
     for (; i < end; i += stride)
-        bin_prim(&set[0], &b->prims[i], origin, scale, last);
-    for (int axis = 0; two_sets && axis < 3; axis++)
-        for (int k = 0; k < bins; k++) {
-            box_grow(&set[0].box[axis][k], &set[1].box[axis][k]);
-            set[0].count[axis][k] += set[1].count[axis][k];
+        bin_prim(&set[0], &b->prims[i], origin, scale_lanes, last);
+    Lanes count[BVH_BINS];
+    for (int k = 0; k < bins; k++) {
+        count[k] = lanes_from_ints(set[0].count[k]);
+        if (two_sets) {
+            box_grow_three(set[0].box[k], set[1].box[k]);
+            count[k] = lanes_add(count[k], lanes_from_ints(set[1].count[k]));
         }
-    Split best = {.cost = INFINITY, .axis = -1};
-    float best_sum = INFINITY, unit = box_unit(box);
-    for (int axis = 0; axis < 3; axis++)
-        if (scale[axis] > 0.0f)
-            sweep_bins(set[0].box[axis], set[0].count[axis], bins, axis, unit, &best, &best_sum);
+    }
+    float unit = box_unit(box);
+    SweepResult sweep = sweep_three_axes(set[0].box, count, bins, unit);
+    Split best = {.cost = INFINITY, .axis = sweep.axis, .bin = sweep.cut};
     if (best.axis >= 0) {
         best.scale = scale[best.axis];
         best.cost = BVH_COST_TRAVERSAL +
-                    BVH_COST_INTERSECT * (float)stride * best_sum / box_half_area_in(box, unit);
+                    BVH_COST_INTERSECT * (float)stride * sweep.sum / box_half_area_in(box, unit);
     }
     return best;
 }
 
-/* Exact split of a small node (n <= BVH_SMALL_NODE, where most nodes are): insertion-sort the
- * records by centroid along each axis and sweep every position. Cheaper than binning there, and
- * exact. Leaves the range ordered along the best axis. */
-static Split find_small_split(Builder *b, uint32_t begin, uint32_t end, const Box *box)
+/* A small node's sides, written back in order: prims[k] = local[order[k]], the first `mid` of
+ * them left. Fills part with both sides' bounds and centroid bounds. */
+static void write_small_sides(BuildPrim *prims, const Box *local, const uint8_t *order,
+                              uint32_t n, uint32_t mid, Partition *part)
+{
+    Box left = empty_box(), left_centroids = empty_box();
+    Box right = empty_box(), right_centroids = empty_box();
+    for (uint32_t k = 0; k < mid; k++) {
+        const Box *prim_box = &local[order[k]];
+        prim_store(&prims[k], prim_box);
+        box_grow(&left, prim_box);
+        box_grow_point(&left_centroids, centroid_of(prim_box));
+    }
+    for (uint32_t k = mid; k < n; k++) {
+        const Box *prim_box = &local[order[k]];
+        prim_store(&prims[k], prim_box);
+        box_grow(&right, prim_box);
+        box_grow_point(&right_centroids, centroid_of(prim_box));
+    }
+    part->left_box = left;
+    part->left_centroids = left_centroids;
+    part->right_box = right;
+    part->right_centroids = right_centroids;
+}
+
+/* Exact split of a small node (n <= BVH_SMALL_NODE, where most nodes are): rank the records by
+ * centroid along each axis and sweep every position; cheaper than binning there, and exact.
+ * Returns false when a leaf is cheaper, else reorders the range and fills part. */
+static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
+                             Partition *part)
 {
     uint32_t n = end - begin;
     BuildPrim *prims = b->prims + begin;
+    float unit = box_unit(box);
+    Box local[BVH_SMALL_NODE];
     uint8_t order[3][BVH_SMALL_NODE];
-    Split best = {.cost = INFINITY, .axis = -1};
-    float best_sum = INFINITY, unit = box_unit(box);
     if (n == 2) {
         /* A pair has one split, whatever the axis (the most common node: about half of them). */
-        best.axis = 0;
-        best.mid = begin + 1;
-        best_sum = box_half_area_in(&prims[0], unit) + box_half_area_in(&prims[1], unit);
-        best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area_in(box, unit);
-        return best;
+        local[0] = box_of(&prims[0]);
+        local[1] = box_of(&prims[1]);
+        float sum = box_half_area_in(&local[0], unit) + box_half_area_in(&local[1], unit);
+        if (BVH_COST_INTERSECT * 2.0 <= BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * sum /
+                                                                 box_half_area_in(box, unit))
+            return false;
+        part->mid = begin + 1;
+        write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
+        return true;
     }
-    for (int axis = 0; axis < 3; axis++) {
-        float key[BVH_SMALL_NODE];
-        uint8_t *o = order[axis];
-        for (uint32_t i = 0; i < n; i++) {
-            float c = prims[i].lo[axis] + prims[i].hi[axis];
-            uint32_t j = i;
-            for (; j > 0 && key[j - 1] > c; j--) {
-                key[j] = key[j - 1];
-                o[j] = o[j - 1];
-            }
-            key[j] = c;
-            o[j] = (uint8_t)i;
-        }
-        float right_area[BVH_SMALL_NODE];
-        Box acc = empty_box;
-        for (uint32_t i = n - 1; i > 0; i--) {
-            box_grow(&acc, &prims[o[i]]);
-            right_area[i] = box_half_area_in(&acc, unit);
-        }
-        acc = empty_box;
-        for (uint32_t i = 1; i < n; i++) {
-            box_grow(&acc, &prims[o[i - 1]]);
-            float sum = box_half_area_in(&acc, unit) * (float)i + right_area[i] * (float)(n - i);
-            if (sum < best_sum) {
-                best_sum = sum;
-                best.axis = axis;
-                best.mid = begin + i;
-            }
+    /* Rank i on axis a, in lane a: how many records come before record i in centroid order, ties
+     * going to the lower index. Start from "before every later one"; each pair then moves one.
+     * Centroids are never NaN (make_prims), so each axis's ranks are a permutation. */
+    Lanes centroid[BVH_SMALL_NODE], rank[BVH_SMALL_NODE], count[BVH_SMALL_NODE];
+    for (uint32_t i = 0; i < n; i++) {
+        local[i] = box_of(&prims[i]);
+        centroid[i] = centroid_of(&local[i]);
+        rank[i] = lanes_splat((float)(n - 1 - i));
+        count[i] = lanes_splat(1.0f);
+        for (uint32_t j = 0; j < i; j++) {
+            Lanes j_first = lanes_one_if_less_equal(centroid[j], centroid[i]);
+            rank[i] = lanes_add(rank[i], j_first);
+            rank[j] = lanes_sub(rank[j], j_first);
         }
     }
-    BuildPrim sorted[BVH_SMALL_NODE];
-    for (uint32_t i = 0; i < n; i++)
-        sorted[i] = prims[order[best.axis][i]];
-    memcpy(prims, sorted, n * sizeof *prims);
-    best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area_in(box, unit);
-    return best;
+    Box sorted[BVH_SMALL_NODE][3];
+    for (uint32_t i = 0; i < n; i++) {
+        int32_t r[4];
+        lanes_truncate(rank[i], r);
+        for (int axis = 0; axis < 3; axis++) {
+            order[axis][r[axis]] = (uint8_t)i;
+            sorted[r[axis]][axis] = local[i];
+        }
+    }
+    SweepResult sweep = sweep_three_axes(sorted, count, (int)n, unit);
+    double cost = BVH_COST_TRAVERSAL +
+                  BVH_COST_INTERSECT * sweep.sum / box_half_area_in(box, unit);
+    if (sweep.axis < 0 || (n <= BVH_MAX_LEAF_SIZE && BVH_COST_INTERSECT * (double)n <= cost)) {
+        if (n <= BVH_MAX_LEAF_SIZE)
+            return false;
+        sweep = (SweepResult){0.0f, 0, (int)n / 2}; /* no split compares: halve it */
+    }
+    part->mid = begin + (uint32_t)sweep.cut;
+    write_small_sides(prims, local, order[sweep.axis], n, (uint32_t)sweep.cut, part);
+    return true;
 }
+
+/* ---- Partition ------------------------------------------------------------------------------------ */
 
 /* Both sides' bounds, by scanning them, for the splits that do not bin. */
 static Partition partition_at(const Builder *b, uint32_t begin, uint32_t mid, uint32_t end)
 {
-    Partition part = {mid, empty_box, empty_box, empty_box, empty_box};
-    for (uint32_t i = begin; i < end; i++) {
-        Box *bounds = i < mid ? &part.left_box : &part.right_box;
-        box_grow(bounds, &b->prims[i]);
-        box_grow_centroid(i < mid ? &part.left_centroids : &part.right_centroids, &b->prims[i]);
+    Box left = empty_box(), left_centroids = empty_box();
+    Box right = empty_box(), right_centroids = empty_box();
+    for (uint32_t i = begin; i < mid; i++) {
+        Box prim_box = box_of(&b->prims[i]);
+        box_grow(&left, &prim_box);
+        box_grow_point(&left_centroids, centroid_of(&prim_box));
     }
-    return part;
+    for (uint32_t i = mid; i < end; i++) {
+        Box prim_box = box_of(&b->prims[i]);
+        box_grow(&right, &prim_box);
+        box_grow_point(&right_centroids, centroid_of(&prim_box));
+    }
+    return (Partition){mid, left, left_centroids, right, right_centroids};
 }
 
 /* Partitions at the split's bin boundary, Hoare style: only misplaced pairs move. Collects both
@@ -315,36 +560,47 @@ static Partition partition_at(const Builder *b, uint32_t begin, uint32_t mid, ui
  * record right at the boundary may round to either side: the partition decides). */
 static Partition partition_at_plane(Builder *b, uint32_t begin, uint32_t end, int axis, float plane)
 {
-    Partition part = {0, empty_box, empty_box, empty_box, empty_box};
+    Box left = empty_box(), left_centroids = empty_box();
+    Box right = empty_box(), right_centroids = empty_box();
+    const Lanes plane_lanes = lanes_splat(plane);
+    const int left_bit = 1 << axis;
     BuildPrim *prims = b->prims;
     uint32_t i = begin, j = end;
+    Box to_right = left, to_left = right;
+    Lanes right_centroid = plane_lanes, left_centroid = plane_lanes;
     for (;;) {
-        while (i < j && prims[i].lo[axis] + prims[i].hi[axis] < plane) {
-            box_grow(&part.left_box, &prims[i]);
-            box_grow_centroid(&part.left_centroids, &prims[i]);
-            i++;
+        for (; i < j; i++) {
+            to_right = box_of(&prims[i]);
+            right_centroid = centroid_of(&to_right);
+            if (!(lanes_less_bits(right_centroid, plane_lanes) & left_bit))
+                break;
+            box_grow(&left, &to_right);
+            box_grow_point(&left_centroids, right_centroid);
         }
-        while (i < j && !(prims[j - 1].lo[axis] + prims[j - 1].hi[axis] < plane)) {
-            j--;
-            box_grow(&part.right_box, &prims[j]);
-            box_grow_centroid(&part.right_centroids, &prims[j]);
+        for (; i < j; j--) {
+            to_left = box_of(&prims[j - 1]);
+            left_centroid = centroid_of(&to_left);
+            if (lanes_less_bits(left_centroid, plane_lanes) & left_bit)
+                break;
+            box_grow(&right, &to_left);
+            box_grow_point(&right_centroids, left_centroid);
         }
         if (i == j)
             break;
-        /* prims[i] belongs right and prims[j - 1] left. */
+        /* prims[i] belongs right and prims[j - 1] left: swap them (both are in registers). */
         j--;
-        BuildPrim tmp = prims[i];
-        prims[i] = prims[j];
-        prims[j] = tmp;
-        box_grow(&part.left_box, &prims[i]);
-        box_grow_centroid(&part.left_centroids, &prims[i]);
-        box_grow(&part.right_box, &prims[j]);
-        box_grow_centroid(&part.right_centroids, &prims[j]);
+        prim_store(&prims[i], &to_left);
+        prim_store(&prims[j], &to_right);
+        box_grow(&left, &to_left);
+        box_grow_point(&left_centroids, left_centroid);
+        box_grow(&right, &to_right);
+        box_grow_point(&right_centroids, right_centroid);
         i++;
     }
-    part.mid = i;
-    return part;
+    return (Partition){i, left, left_centroids, right, right_centroids};
 }
+
+/* ---- Full-sweep reference ------------------------------------------------------------------------- */
 
 #define DEFINE_COMPARE_AXIS(axis)                                                   \
     static int compare_axis##axis(const void *pa, const void *pb)                  \
@@ -374,14 +630,16 @@ static Split find_full_sweep_split(Builder *b, uint32_t begin, uint32_t end, con
     double best_sum = INFINITY;
     for (int axis = 0; axis < 3; axis++) {
         sort_by_centroid(b, begin, end, axis);
-        Box acc = empty_box;
+        Box acc = empty_box();
         for (uint32_t i = end - 1; i > begin; i--) {
-            box_grow(&acc, &b->prims[i]);
+            Box prim_box = box_of(&b->prims[i]);
+            box_grow(&acc, &prim_box);
             b->scratch[i] = box_half_area(&acc);
         }
-        acc = empty_box;
+        acc = empty_box();
         for (uint32_t i = begin + 1; i < end; i++) {
-            box_grow(&acc, &b->prims[i - 1]);
+            Box prim_box = box_of(&b->prims[i - 1]);
+            box_grow(&acc, &prim_box);
             double sum = box_half_area(&acc) * (i - begin) + b->scratch[i] * (end - i);
             if (sum < best_sum) {
                 best_sum = sum;
@@ -396,52 +654,59 @@ static Split find_full_sweep_split(Builder *b, uint32_t begin, uint32_t end, con
     return best;
 }
 
-/* Splits prims[begin, end) for an inner node (reordering it), or returns mid == end when the
- * range should be a leaf. */
-static Partition choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *box,
-                              const Box *centroids, int depth)
+/* ---- Tree ----------------------------------------------------------------------------------------- */
+
+/* Splits prims[begin, end) for an inner node (reordering it, filling part), or returns false
+ * when the range should be a leaf. */
+static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *box,
+                         const Box *centroids, int depth, Partition *part)
 {
-    Partition leaf = {.mid = end};
+    const bool leaf = false;
     uint32_t n = end - begin;
     /* Past this depth only balanced splits keep the traversal stack from overflowing: along any
      * path depth + ceil(log2(n)) never exceeds BVH_STACK_SIZE (see the tests). */
-    bool must_balance = depth + ceil_log2(n) >= BVH_STACK_SIZE;
+    bool must_balance = depth + 32 >= BVH_STACK_SIZE && depth + ceil_log2(n) >= BVH_STACK_SIZE;
     if (n == 1 || (n <= BVH_MAX_LEAF_SIZE && must_balance))
         return leaf;
     if (!must_balance) {
-        bool small = n <= BVH_SMALL_NODE;
+        if (!b->full_sweep && n <= BVH_SMALL_NODE)
+            return split_small_node(b, begin, end, box, part);
         Split split = b->full_sweep ? find_full_sweep_split(b, begin, end, box)
-                      : small       ? find_small_split(b, begin, end, box)
                                     : find_binned_split(b, begin, end, box, centroids);
         if (split.axis >= 0) {
             if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_INTERSECT * (double)n <= split.cost)
                 return leaf;
-            if (b->full_sweep || small)
-                return partition_at(b, begin, split.mid, end);
-            float plane = centroids->lo[split.axis] + (float)split.bin / split.scale;
-            Partition part = partition_at_plane(b, begin, end, split.axis, plane);
-            if (part.mid != begin && part.mid != end)
-                return part;
+            if (b->full_sweep) {
+                *part = partition_at(b, begin, split.mid, end);
+                return true;
+            }
+            float lo[4], hi[4];
+            box_corners(centroids, lo, hi);
+            float plane = lo[split.axis] + (float)split.bin / split.scale;
+            *part = partition_at_plane(b, begin, end, split.axis, plane);
+            if (part->mid != begin && part->mid != end)
+                return true;
         }
     }
     if (n <= BVH_MAX_LEAF_SIZE)
         return leaf;
     /* Object median on the widest centroid axis (all centroids equal: any order will do). */
+    float lo[4], hi[4];
+    box_corners(centroids, lo, hi);
     int axis = 0;
     for (int k = 1; k < 3; k++)
-        if (centroids->hi[k] - centroids->lo[k] > centroids->hi[axis] - centroids->lo[axis])
+        if (hi[k] - lo[k] > hi[axis] - lo[axis])
             axis = k;
-    if (centroids->hi[axis] > centroids->lo[axis])
+    if (hi[axis] > lo[axis])
         sort_by_centroid(b, begin, end, axis);
-    return partition_at(b, begin, begin + n / 2, end);
+    *part = partition_at(b, begin, begin + n / 2, end);
+    return true;
 }
 
 static void set_child(float4 *lo, float4 *hi, const Box *box, ChildRef ref)
 {
-    for (int k = 0; k < 3; k++) {
-        lo->s[k] = box->lo[k];
-        hi->s[k] = box->hi[k];
-    }
+    lanes_store(lo->s, box->lo);
+    lanes_store(hi->s, box->hi);
     memcpy(&lo->s[3], &ref.ref, sizeof ref.ref);
     memcpy(&hi->s[3], &ref.count, sizeof ref.count);
 }
@@ -450,8 +715,8 @@ static void set_child(float4 *lo, float4 *hi, const Box *box, ChildRef ref)
 static ChildRef build_subtree(Builder *b, uint32_t begin, uint32_t end, const Box *box,
                               const Box *centroids, int depth)
 {
-    Partition part = choose_split(b, begin, end, box, centroids, depth);
-    if (part.mid == end) {
+    Partition part;
+    if (!choose_split(b, begin, end, box, centroids, depth, &part)) {
         b->cost_sum += BVH_COST_INTERSECT * (end - begin) * box_half_area(box);
         return (ChildRef){~begin, end - begin};
     }
@@ -463,6 +728,30 @@ static ChildRef build_subtree(Builder *b, uint32_t begin, uint32_t end, const Bo
     set_child(&node->lmin, &node->lmax, &part.left_box, left);
     set_child(&node->rmin, &node->rmax, &part.right_box, right);
     return (ChildRef){index, 0};
+}
+
+/* One record per triangle, and the bounds of their boxes and centroids. */
+static void make_prims(BuildPrim *prims, const float4 *positions, const Triangle *triangles,
+                       uint32_t n, Box *box, Box *centroids)
+{
+    *box = *centroids = empty_box();
+    for (uint32_t i = 0; i < n; i++) {
+        const uint4 v = triangles[i].v;
+        Lanes p0 = lanes_load(positions[v.s[0]].s), p1 = lanes_load(positions[v.s[1]].s);
+        Lanes p2 = lanes_load(positions[v.s[2]].s);
+        Box prim_box = {lanes_min(p2, lanes_min(p1, p0)), lanes_max(p2, lanes_max(p1, p0))};
+        /* Within +-FLT_MAX, a NaN corner widening the box to all of it: centroids are then never
+         * NaN (inf - inf), so they always have an order. */
+        prim_box.lo = lanes_max(prim_box.lo, lanes_splat(-FLT_MAX));
+        prim_box.hi = lanes_min(prim_box.hi, lanes_splat(FLT_MAX));
+        /* Lane 3 of the bounds is never read: grow them before it takes the index. */
+        box_grow(box, &prim_box);
+        box_grow_point(centroids, centroid_of(&prim_box));
+        lanes_store(prims[i].lo, prim_box.lo);
+        lanes_store(prims[i].hi, prim_box.hi);
+        prim_set_index(&prims[i], i);
+        prims[i].hi[3] = 0.0f;
+    }
 }
 
 static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
@@ -482,30 +771,16 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
     if (!b.prims || !b.nodes || !bvh->tris || (full_sweep && !b.scratch))
         die("out of memory building the BVH (%u triangles)", n);
 
-    Box box = empty_box, centroids = empty_box;
-    for (uint32_t i = 0; i < n; i++) {
-        BuildPrim *prim = &b.prims[i];
-        *prim = empty_box;
-        for (int corner = 0; corner < 3; corner++) {
-            const float4 *p = &positions[triangles[i].v.s[corner]];
-            for (int k = 0; k < 3; k++) {
-                prim->lo[k] = p->s[k] < prim->lo[k] ? p->s[k] : prim->lo[k];
-                prim->hi[k] = p->s[k] > prim->hi[k] ? p->s[k] : prim->hi[k];
-            }
-        }
-        prim_set_index(prim, i);
-        prim->hi[3] = 0.0f;
-        box_grow(&box, prim);
-        box_grow_centroid(&centroids, prim);
-    }
-
+    Box box, centroids;
+    make_prims(b.prims, positions, triangles, n, &box, &centroids);
     ChildRef root = n ? build_subtree(&b, 0, n, &box, &centroids, 0) : (ChildRef){~0u, 0};
     if (b.num_nodes == 0) {
         /* The whole tree is one leaf: give it a root node with an empty right child, whose
          * inverted infinite box every ray misses. */
+        Box nothing = empty_box();
         b.cost_sum += BVH_COST_TRAVERSAL * box_half_area(&box);
         set_child(&b.nodes[0].lmin, &b.nodes[0].lmax, &box, root);
-        set_child(&b.nodes[0].rmin, &b.nodes[0].rmax, &empty_box, (ChildRef){~0u, 0});
+        set_child(&b.nodes[0].rmin, &b.nodes[0].rmax, &nothing, (ChildRef){~0u, 0});
         b.num_nodes = 1;
     }
     double root_area = box_half_area(&box);
