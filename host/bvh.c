@@ -5,6 +5,9 @@
  * reorders one array of per-triangle records in place; every leaf is a contiguous range of it,
  * and bvh->tris is that array's order. Box arithmetic runs on x, y, z (and a spare lane) at once:
  * SSE2 where the compiler offers it (every x86-64), plain C with the same results elsewhere. */
+#ifdef __linux__
+#define _DEFAULT_SOURCE /* madvise */
+#endif
 #include "bvh.h"
 
 #include <float.h>
@@ -12,6 +15,9 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 #include "error.h"
 
@@ -754,6 +760,23 @@ static void make_prims(BuildPrim *prims, const float4 *positions, const Triangle
     }
 }
 
+/* count elements of size bytes (at least one), free()-able. Large arrays go on transparent huge
+ * pages where Linux offers them on request: the build writes ~150 bytes per triangle to fresh
+ * memory, and its 4 KiB page faults took about a tenth of the build time. */
+static void *alloc_array(uint32_t count, size_t size)
+{
+    size_t bytes = (count ? count : 1) * size;
+#ifdef MADV_HUGEPAGE
+    const size_t huge_page = (size_t)2 << 20;
+    void *pages = NULL;
+    if (bytes >= 4 * huge_page && posix_memalign(&pages, huge_page, bytes) == 0) {
+        madvise(pages, bytes, MADV_HUGEPAGE); /* only advice: failure leaves 4 KiB pages */
+        return pages;
+    }
+#endif
+    return malloc(bytes);
+}
+
 static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
                   bool full_sweep)
 {
@@ -763,11 +786,11 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
         die("BVH: %u triangles is more than the %u a BVH can index", n, PRIM_INDEX_LIMIT);
     Builder b = {0};
     b.full_sweep = full_sweep;
-    b.prims = malloc((n ? n : 1) * sizeof *b.prims);
+    b.prims = alloc_array(n, sizeof *b.prims);
     b.scratch = full_sweep ? malloc((n ? n : 1) * sizeof *b.scratch) : NULL;
     /* A binary tree over n >= 1 leaves has n - 1 inner nodes; one more when the root is a leaf. */
-    b.nodes = malloc((n ? n : 1) * sizeof *b.nodes);
-    bvh->tris = malloc((n ? n : 1) * sizeof *bvh->tris);
+    b.nodes = alloc_array(n, sizeof *b.nodes);
+    bvh->tris = alloc_array(n, sizeof *bvh->tris);
     if (!b.prims || !b.nodes || !bvh->tris || (full_sweep && !b.scratch))
         die("out of memory building the BVH (%u triangles)", n);
 
