@@ -496,9 +496,11 @@ static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, con
         /* A pair has one split, whatever the axis (the most common node: about half of them). */
         local[0] = box_of(&prims[0]);
         local[1] = box_of(&prims[1]);
-        float sum = box_half_area_in(&local[0], unit) + box_half_area_in(&local[1], unit);
-        if (BVH_COST_INTERSECT * 2.0 <= BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * sum /
-                                                                 box_half_area_in(box, unit))
+        _Alignas(16) float area[4]; /* both triangles' and the node's, in one go */
+        lanes_store(area, half_areas_of_three((const Box[3]){local[0], local[1], *box},
+                                              lanes_splat(unit)));
+        double cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * (area[0] + area[1]) / area[2];
+        if (BVH_COST_INTERSECT * 2.0 <= cost)
             return false;
         part->mid = begin + 1;
         write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
