@@ -21,7 +21,7 @@
 
 #include "error.h"
 
-/* ---- Four lanes at a time ---------------------------------------------------------------------- */
+/* ---- Four lanes at a time -------------------------------------------------------------------- */
 
 /* GCC's -O2 inliner judges the plain versions of the helpers below too big and calls them, which
  * halves the speed of a plain build; they are all meant to melt into their loops. */
@@ -57,7 +57,10 @@ static ALWAYS_INLINE Lanes lanes_select_less(Lanes a, Lanes b, Lanes if_less, La
 }
 
 /* Bit k set where lane k of a < lane k of b. */
-static ALWAYS_INLINE int lanes_less_bits(Lanes a, Lanes b) { return _mm_movemask_ps(_mm_cmplt_ps(a, b)); }
+static ALWAYS_INLINE int lanes_less_bits(Lanes a, Lanes b)
+{
+    return _mm_movemask_ps(_mm_cmplt_ps(a, b));
+}
 
 /* a <= b ? 1 : 0, lane by lane. */
 static ALWAYS_INLINE Lanes lanes_one_if_less_equal(Lanes a, Lanes b)
@@ -158,7 +161,7 @@ static ALWAYS_INLINE void lanes_transpose3(Lanes row0, Lanes row1, Lanes row2, L
 }
 #endif
 
-/* ---- Boxes and build records -------------------------------------------------------------------- */
+/* ---- Boxes and build records ----------------------------------------------------------------- */
 
 /* An axis-aligned box in registers; lane 3 is spare. */
 typedef struct {
@@ -307,7 +310,7 @@ static int ceil_log2(uint32_t n)
     return bits;
 }
 
-/* ---- Split search -------------------------------------------------------------------------------- */
+/* ---- Split search ---------------------------------------------------------------------------- */
 
 /* Three boxes' half areas, box a in lane a, times unit (1 / the node's largest extent) to keep
  * them in float range: only one factor of each product is scaled, so none overflows (the result
@@ -351,7 +354,8 @@ static SweepResult sweep_three_axes(Box (*box)[3], const Lanes *count, int m, fl
     for (int i = 1; i < m; i++) {
         box_grow_three(acc, box[i - 1]);
         total = lanes_add(total, count[i - 1]);
-        Lanes sum = lanes_add(lanes_mul(half_areas_of_three(acc, unit_lanes), total), right_term[i]);
+        Lanes left_term = lanes_mul(half_areas_of_three(acc, unit_lanes), total);
+        Lanes sum = lanes_add(left_term, right_term[i]);
         best_cut = lanes_select_less(sum, best, cut, best_cut);
         best = lanes_min(sum, best);
         cut = lanes_add(cut, one);
@@ -366,9 +370,9 @@ static SweepResult sweep_three_axes(Box (*box)[3], const Lanes *count, int m, fl
     return result;
 }
 
-/* Bins of all three axes, box[bin][axis] and count[bin][axis]; binning fills two sets, even and odd records apart, so
- * that runs of records in one bin (meshes are coherent) make two dependency chains through
- * memory, not one. */
+/* Bins of all three axes, box[bin][axis] and count[bin][axis]; binning fills two sets, even and
+ * odd records apart, so that runs of records in one bin (meshes are coherent) make two dependency
+ * chains through memory, not one. */
 typedef struct {
     Box box[BVH_BINS][3];
     uint32_t count[BVH_BINS][4]; /* lane 3: 0 */
@@ -383,8 +387,8 @@ static void bin_set_clear(BinSet *set, int bins)
 }
 
 /* The bins of one record on all three axes. The clamp also sends NaN to the last bin. */
-static ALWAYS_INLINE void bin_prim(BinSet *set, const BuildPrim *prim, Lanes origin, Lanes scale,
-                            Lanes last)
+static ALWAYS_INLINE void bin_prim(BinSet *set, const BuildPrim *prim, Lanes origin,
+                                   Lanes scale, Lanes last)
 {
     Box box = box_of(prim);
     int32_t bin[4];
@@ -543,7 +547,7 @@ static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, con
     return true;
 }
 
-/* ---- Partition ------------------------------------------------------------------------------------ */
+/* ---- Partition ------------------------------------------------------------------------------- */
 
 /* Both sides' bounds, by scanning them, for the splits that do not bin. */
 static Partition partition_at(const Builder *b, uint32_t begin, uint32_t mid, uint32_t end)
@@ -608,7 +612,7 @@ static Partition partition_at_plane(Builder *b, uint32_t begin, uint32_t end, in
     return (Partition){i, left, left_centroids, right, right_centroids};
 }
 
-/* ---- Full-sweep reference ------------------------------------------------------------------------- */
+/* ---- Full-sweep reference -------------------------------------------------------------------- */
 
 #define DEFINE_COMPARE_AXIS(axis)                                                   \
     static int compare_axis##axis(const void *pa, const void *pb)                  \
@@ -662,7 +666,7 @@ static Split find_full_sweep_split(Builder *b, uint32_t begin, uint32_t end, con
     return best;
 }
 
-/* ---- Tree ----------------------------------------------------------------------------------------- */
+/* ---- Tree ------------------------------------------------------------------------------------ */
 
 /* Splits prims[begin, end) for an inner node (reordering it, filling part), or returns false
  * when the range should be a leaf. */
@@ -672,7 +676,8 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *bo
     const bool leaf = false;
     uint32_t n = end - begin;
     /* Past this depth only balanced splits keep the traversal stack from overflowing: along any
-     * path depth + ceil(log2(n)) never exceeds BVH_STACK_SIZE (see the tests). */
+     * path depth + ceil(log2(n)) never exceeds BVH_STACK_SIZE (see the tests). The log is at
+     * most 32: shallower nodes need not take it. */
     bool must_balance = depth + 32 >= BVH_STACK_SIZE && depth + ceil_log2(n) >= BVH_STACK_SIZE;
     if (n == 1 || (n <= BVH_MAX_LEAF_SIZE && must_balance))
         return leaf;
