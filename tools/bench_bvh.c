@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "bench_common.h"
 #include "bvh.h"
 #include "device.h"
 #include "obj_loader.h"
@@ -83,45 +84,14 @@ static double seconds(clockid_t clock)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3": safe as a folder name. */
-static void sanitize(const char *name, char *out, size_t size)
-{
-    size_t k = 0;
-    for (const char *p = name; *p && k + 1 < size; p++) {
-        bool keep = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-                    *p == '.' || *p == '_';
-        if (keep)
-            out[k++] = *p;
-        else if (k > 0 && out[k - 1] != '-')
-            out[k++] = '-';
-    }
-    while (k > 0 && out[k - 1] == '-')
-        k--;
-    out[k] = '\0';
-}
-
+/* bench_common.h's CSV opener (it creates the folders) plus the header line. */
 static FILE *open_csv(const char *folder, const char *name, const char *header)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", folder, name);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        die("cannot write %s: %s", path, strerror(errno));
+    FILE *f = bench_open_csv(path);
     fprintf(f, "%s\n", header);
     return f;
-}
-
-static void make_folders(const char *path)
-{
-    char buf[1100];
-    snprintf(buf, sizeof buf, "%s/", path);
-    for (char *p = buf + 1; *p; p++)
-        if (*p == '/') {
-            *p = '\0';
-            if (mkdir(buf, 0755) != 0 && errno != EEXIST)
-                die("cannot create %s: %s", buf, strerror(errno));
-            *p = '/';
-        }
 }
 
 /* ---- Build ------------------------------------------------------------------------------------ */
@@ -363,9 +333,8 @@ int main(int argc, char **argv)
         die("%s", err.message);
     free(source);
     char device_folder[256], folder[1024];
-    sanitize(dev.name, device_folder, sizeof device_folder);
+    bench_folder_name(dev.name, device_folder, sizeof device_folder);
     snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
-    make_folders(folder);
     printf("bench_bvh: %s (%s, %s), %d spp, best of %d\n", dev.name, dev.platform_name,
            dev.driver_version, o.spp, o.reps);
 

@@ -2,8 +2,7 @@
 /* bench_common.h: what the benchmark tools share: the device name made safe as a folder name
  * (results go to bench/results/<device>/NAME.csv), opening that CSV, and device timing from
  * profiling events. Header-only (static functions) so that each tools/NAME.c stays one
- * translation unit; bench_scan.c and bench_bvh.c still hold their own copies of the first and
- * the last two and can include this instead. */
+ * translation unit. */
 #ifndef PT_BENCH_COMMON_H
 #define PT_BENCH_COMMON_H
 

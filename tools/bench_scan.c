@@ -10,13 +10,12 @@
  * compaction must move at least: 4n flags read, 4 count indices written, and the per-tile sums
  * written and read once; copy bytes count the read and the write. Every configuration is checked
  * against a serial reference once. The CSV goes to bench/results/<device>/scan.csv by default. */
-#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
+#include "bench_common.h"
 #include "compact.h"
 #include "device.h"
 
@@ -60,62 +59,6 @@ static Options parse_options(int argc, char **argv)
     if (o.min_log2 < 0 || o.max_log2 > 31 || o.min_log2 > o.max_log2 || o.reps < 0)
         usage();
     return o;
-}
-
-/* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3": safe as a folder name. */
-static void sanitize(const char *name, char *out, size_t size)
-{
-    size_t k = 0;
-    for (const char *p = name; *p && k + 1 < size; p++) {
-        bool keep = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-                    *p == '.' || *p == '_';
-        if (keep)
-            out[k++] = *p;
-        else if (k > 0 && out[k - 1] != '-')
-            out[k++] = '-';
-    }
-    while (k > 0 && out[k - 1] == '-')
-        k--;
-    out[k] = '\0';
-}
-
-/* mkdir -p for the folders of path. */
-static void make_parents(const char *path)
-{
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%s", path);
-    for (char *p = buf + 1; *p; p++) {
-        if (*p != '/')
-            continue;
-        *p = '\0';
-        if (mkdir(buf, 0755) != 0 && errno != EEXIST)
-            die("cannot create %s: %s", buf, strerror(errno));
-        *p = '/';
-    }
-}
-
-static double event_ms(cl_event event)
-{
-    cl_ulong start, end;
-    CL_CHECK(clWaitForEvents(1, &event));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
-    CL_CHECK(clReleaseEvent(event));
-    return (double)(end - start) * 1e-6;
-}
-
-/* Mean device time of one copy of bytes from src to dst. */
-static double copy_ms(Device *dev, cl_mem src, cl_mem dst, size_t bytes, int reps)
-{
-    double total = 0.0;
-    for (int r = -2; r < reps; r++) {
-        cl_event event;
-        CL_CHECK(clEnqueueCopyBuffer(dev->queue, src, dst, 0, 0, bytes, 0, NULL, &event));
-        double ms = event_ms(event);
-        if (r >= 0)
-            total += ms;
-    }
-    return total / reps;
 }
 
 static void random_flags(uint32_t *flags, uint32_t n, double density, uint64_t seed)
@@ -165,15 +108,12 @@ int main(int argc, char **argv)
     size_t group = compactor_group_size(c);
 
     char folder[300], path[1024];
-    sanitize(dev.name, folder, sizeof folder);
+    bench_folder_name(dev.name, folder, sizeof folder);
     if (o.out)
         snprintf(path, sizeof path, "%s", o.out);
     else
         snprintf(path, sizeof path, "bench/results/%s/scan.csv", folder);
-    make_parents(path);
-    FILE *csv = fopen(path, "w");
-    if (!csv)
-        die("cannot write %s: %s", path, strerror(errno));
+    FILE *csv = bench_open_csv(path);
     fprintf(csv, "device,n,density,count,group_size,launches,reps,scan_ms,scan_gbps,copy_ms,"
                  "copy_gbps,ratio\n");
     printf("device %s (%s), work-group size %zu\n", dev.name, dev.platform_name, group);
@@ -187,7 +127,7 @@ int main(int argc, char **argv)
         int reps = o.reps ? o.reps : (int)(((size_t)1 << 26) / n);
         if (reps < 5)
             reps = 5;
-        double copy = copy_ms(&dev, flags, indices, (size_t)n * 4, reps);
+        double copy = bench_copy_ms(&dev, flags, indices, (size_t)n * 4, reps);
         double copy_gbps = 2.0 * 4.0 * n / (copy * 1e6);
         for (int d = 0; d < 2; d++) {
             random_flags(host_flags, n, densities[d], 12345 + (uint64_t)log2n);
