@@ -63,3 +63,41 @@ kernel void bvh_test_bounce_rays(const global float4 *corners, const global floa
     bounce[2 * i] = (float4)(offset_ray_origin(p, n, dir), 0.0f);
     bounce[2 * i + 1] = (float4)(dir, INFINITY);
 }
+
+/* Persistent threads (Aila & Laine 2009): a fixed number of work items each take the next ray from
+ * a global counter until none is left, so the slow incoherent rays of a launch's last wave run
+ * beside fresh ones instead of leaving most of the GPU idle. On NVIDIA the active lanes of a warp
+ * take consecutive indices with one atomic (inline PTX: activemask and a shuffle from the lowest
+ * active lane); elsewhere each work item does its own atomic. */
+#if defined(PT_VENDOR_NVIDIA) && !defined(PT_NO_WARP_ASM)
+inline uint next_ray_index(volatile global uint *counter)
+{
+    uint mask, lane;
+    asm volatile("activemask.b32 %0;" : "=r"(mask));
+    asm volatile("mov.u32 %0, %%laneid;" : "=r"(lane));
+    uint leader = 31u - clz(mask & (0u - mask));
+    uint rank = popcount(mask & ((1u << lane) - 1u));
+    uint base = 0u;
+    if (lane == leader)
+        base = atomic_add(counter, popcount(mask));
+    asm volatile("shfl.sync.idx.b32 %0, %1, %2, 0x1f, %3;"
+                 : "=r"(base)
+                 : "r"(base), "r"(leader), "r"(mask));
+    return base + rank;
+}
+#else
+inline uint next_ray_index(volatile global uint *counter) { return atomic_inc(counter); }
+#endif
+
+kernel void bvh_test_trace_closest_persistent(const global BvhNode *restrict nodes,
+                                              const global BvhTriangle *restrict tris,
+                                              uint num_tris, const global float4 *restrict rays,
+                                              uint num_rays, global float4 *restrict hits,
+                                              volatile global uint *next)
+{
+    for (uint i = next_ray_index(next); i < num_rays; i = next_ray_index(next)) {
+        float4 origin = rays[2 * i], dir = rays[2 * i + 1];
+        Hit hit = trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w);
+        hits[i] = bvh_test_hit_record(hit);
+    }
+}
