@@ -375,11 +375,13 @@ static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, con
      * going to the lower index. Start from "before every later one"; each pair then moves one.
      * Centroids are never NaN (make_prims), so each axis's ranks are a permutation. */
     Lanes centroid[BVH_SMALL_NODE], rank[BVH_SMALL_NODE], count[BVH_SMALL_NODE];
+    /* Every entry set (the sweep reads n of them) so that -O1 builds see no uninitialised use. */
+    for (uint32_t i = 0; i < BVH_SMALL_NODE; i++)
+        count[i] = lanes_splat(1.0f);
     for (uint32_t i = 0; i < n; i++) {
         local[i] = box_of(&prims[i]);
         centroid[i] = centroid_of(&local[i]);
         rank[i] = lanes_splat((float)(n - 1 - i));
-        count[i] = lanes_splat(1.0f);
         for (uint32_t j = 0; j < i; j++) {
             Lanes j_first = lanes_one_if_less_equal(centroid[j], centroid[i]);
             rank[i] = lanes_add(rank[i], j_first);
