@@ -157,16 +157,8 @@ static void collect_profile(Compactor *c)
 {
     if (c->num_events == 0)
         return;
-    CL_CHECK(clWaitForEvents((cl_uint)c->num_events, c->events));
-    for (int i = 0; i < c->num_events; i++) {
-        cl_ulong start, end;
-        CL_CHECK(clGetEventProfilingInfo(c->events[i], CL_PROFILING_COMMAND_START, sizeof start,
-                                         &start, NULL));
-        CL_CHECK(clGetEventProfilingInfo(c->events[i], CL_PROFILING_COMMAND_END, sizeof end, &end,
-                                         NULL));
-        CL_CHECK(clReleaseEvent(c->events[i]));
-        *c->profile_ms += (double)(end - start) * 1e-6;
-    }
+    for (int i = 0; i < c->num_events; i++)
+        *c->profile_ms += device_event_ms(c->events[i]);
     c->num_events = 0;
 }
 

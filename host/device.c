@@ -381,15 +381,18 @@ void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *p
     cl_event event;
     CL_CHECK(clEnqueueNDRangeKernel(dev->queue, kernel, 1, NULL, &global, &local, 0, NULL,
                                     profile_ms ? &event : NULL));
-    if (profile_ms) {
-        cl_ulong start, end;
-        CL_CHECK(clWaitForEvents(1, &event));
-        CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start,
-                                         NULL));
-        CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
-        CL_CHECK(clReleaseEvent(event));
-        *profile_ms = (double)(end - start) * 1e-6;
-    }
+    if (profile_ms)
+        *profile_ms = device_event_ms(event);
+}
+
+double device_event_ms(cl_event event)
+{
+    cl_ulong start, end;
+    CL_CHECK(clWaitForEvents(1, &event));
+    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL));
+    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
+    CL_CHECK(clReleaseEvent(event));
+    return (double)(end - start) * 1e-6;
 }
 
 void device_close(Device *dev)

@@ -63,6 +63,10 @@ void device_write(Device *dev, cl_mem buf, size_t offset, size_t size, const voi
 #define KERNEL_ARG(kernel, index, value) \
     CL_CHECK(clSetKernelArg((kernel), (index), sizeof(value), &(value)))
 
+/* Device time of an enqueued command in ms (from profiling events: the queue has them on); waits
+ * for it and releases the event. */
+double device_event_ms(cl_event event);
+
 /* Launches a 1-D kernel over n items (global size rounded up to the work-group size `local`, or
  * to 64 when local is 0; kernels check their id against n). Returns the kernel's time in ms
  * when profile_ms is not NULL (waits for it). */

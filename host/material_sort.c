@@ -121,17 +121,6 @@ MaterialSorter *material_sorter_create(Device *dev, uint32_t capacity, uint32_t 
     return material_sorter_create_sized(dev, capacity, num_materials, 0, err);
 }
 
-/* Device time of a finished command, in ms; releases the event. */
-static double event_ms(cl_event event)
-{
-    cl_ulong start, end;
-    CL_CHECK(clWaitForEvents(1, &event));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
-    CL_CHECK(clReleaseEvent(event));
-    return (double)(end - start) * 1e-6;
-}
-
 /* Launches one work-group per tile; adds the device time when profiling. */
 static void launch_tiles(MaterialSorter *s, cl_kernel kernel, size_t tiles)
 {
@@ -153,7 +142,7 @@ static void count_keys(MaterialSorter *s, cl_mem hit, cl_mem material_ids, cl_me
         CL_CHECK(clEnqueueFillBuffer(s->dev->queue, s->counts, &zero, sizeof zero, 0, bytes, 0,
                                      NULL, s->profile_ms ? &event : NULL));
         if (s->profile_ms)
-            *s->profile_ms += event_ms(event);
+            *s->profile_ms += device_event_ms(event);
     }
     cl_uint n_arg = n, num_materials = s->num_materials;
     cl_kernel kernel = s->local_histogram ? s->count_local : s->count_global;

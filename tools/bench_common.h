@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bench_common.h: what the benchmark tools share: the device name made safe as a folder name
- * (results go to bench/results/<device>/NAME.csv), opening that CSV, and device timing from
- * profiling events. Header-only (static functions) so that each tools/NAME.c stays one
+ * (results go to bench/results/<device>/NAME.csv), opening that CSV, and the copy bandwidth that
+ * memory-bound stages are compared with. Header-only (static functions) so that each tools/NAME.c stays one
  * translation unit. */
 #ifndef PT_BENCH_COMMON_H
 #define PT_BENCH_COMMON_H
@@ -51,15 +51,18 @@ static inline FILE *bench_open_csv(const char *path)
     return csv;
 }
 
-/* Device time of a finished command in ms; releases the event. */
-static inline double bench_event_ms(cl_event event)
+/* The tool's CSV: `out` when given, else bench/results/<device>/<name> (its path into path[size]);
+ * folders are created. */
+static inline FILE *bench_open_results_csv(const char *device_name, const char *out, const char *name,
+                                           char *path, size_t size)
 {
-    cl_ulong start, end;
-    CL_CHECK(clWaitForEvents(1, &event));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL));
-    CL_CHECK(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL));
-    CL_CHECK(clReleaseEvent(event));
-    return (double)(end - start) * 1e-6;
+    char folder[300];
+    bench_folder_name(device_name, folder, sizeof folder);
+    if (out)
+        snprintf(path, size, "%s", out);
+    else
+        snprintf(path, size, "bench/results/%s/%s", folder, name);
+    return bench_open_csv(path);
 }
 
 /* Mean device time of one copy of bytes from src to dst over reps copies, after one warm-up: the
@@ -70,7 +73,7 @@ static inline double bench_copy_ms(Device *dev, cl_mem src, cl_mem dst, size_t b
     for (int r = -1; r < reps; r++) {
         cl_event event;
         CL_CHECK(clEnqueueCopyBuffer(dev->queue, src, dst, 0, 0, bytes, 0, NULL, &event));
-        double ms = bench_event_ms(event);
+        double ms = device_event_ms(event);
         if (r >= 0)
             total += ms;
     }

@@ -107,13 +107,8 @@ int main(int argc, char **argv)
         die("%s", err.message[0] ? err.message : "out of memory");
     size_t group = compactor_group_size(c);
 
-    char folder[300], path[1024];
-    bench_folder_name(dev.name, folder, sizeof folder);
-    if (o.out)
-        snprintf(path, sizeof path, "%s", o.out);
-    else
-        snprintf(path, sizeof path, "bench/results/%s/scan.csv", folder);
-    FILE *csv = bench_open_csv(path);
+    char path[1024];
+    FILE *csv = bench_open_results_csv(dev.name, o.out, "scan.csv", path, sizeof path);
     fprintf(csv, "device,n,density,count,group_size,launches,reps,scan_ms,scan_gbps,copy_ms,"
                  "copy_gbps,ratio\n");
     printf("device %s (%s), work-group size %zu\n", dev.name, dev.platform_name, group);

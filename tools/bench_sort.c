@@ -188,13 +188,8 @@ int main(int argc, char **argv)
     if (!b.hit || !b.material_ids || !b.active || !b.sorted)
         die("%s", err.message);
 
-    char folder[300], path[1024];
-    bench_folder_name(dev.name, folder, sizeof folder);
-    if (o.out)
-        snprintf(path, sizeof path, "%s", o.out);
-    else
-        snprintf(path, sizeof path, "bench/results/%s/material_sort.csv", folder);
-    FILE *csv = bench_open_csv(path);
+    char path[1024];
+    FILE *csv = bench_open_results_csv(dev.name, o.out, "material_sort.csv", path, sizeof path);
     fprintf(csv, "device,n,materials,layout,group_size,local_histogram,launches,reps,kernel_ms,"
                  "wall_ms,mpaths_per_s,copy_ms\n");
     double copy = bench_copy_ms(&dev, b.active, b.sorted, (size_t)n * 4, o.reps);
