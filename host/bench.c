@@ -78,10 +78,10 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
         die("cannot append to %s", path);
     if (ftell(f) == 0)
         fprintf(f, "device,scene,width,height,spp,step,live_paths\n");
-    for (int b = 0; b < 64 && st->live_per_bounce[b]; b++)
+    for (int b = 0; b < 64 && st->live_per_step[b]; b++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, b,
-                (unsigned long long)st->live_per_bounce[b]);
+                (unsigned long long)st->live_per_step[b]);
     fclose(f);
 }
 
@@ -169,8 +169,8 @@ int command_bench(const Options *o)
     if (o->csv)
         append_profile_csv(o->csv, &s, &prof);
     printf("live paths per step (all windows):");
-    for (int b = 0; b < 64 && prof.live_per_bounce[b]; b++)
-        printf(" %llu", (unsigned long long)prof.live_per_bounce[b]);
+    for (int b = 0; b < 64 && prof.live_per_step[b]; b++)
+        printf(" %llu", (unsigned long long)prof.live_per_step[b]);
     printf("\n");
     free(rgb);
     session_close(&s);

@@ -153,8 +153,8 @@ static void report_render(const Options *o, const RenderStats *stats, int spp)
             fprintf(stderr, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
                     stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
         fprintf(stderr, "live paths per step (all windows):");
-        for (int b = 0; b < 64 && stats->live_per_bounce[b]; b++)
-            fprintf(stderr, " %llu", (unsigned long long)stats->live_per_bounce[b]);
+        for (int b = 0; b < 64 && stats->live_per_step[b]; b++)
+            fprintf(stderr, " %llu", (unsigned long long)stats->live_per_step[b]);
         fputc('\n', stderr);
     }
 }

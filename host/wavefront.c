@@ -285,7 +285,7 @@ static void generate(Wavefront *w, uint32_t n_live, uint32_t first, uint32_t n_n
 static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
 {
     if (step < 64)
-        w->stats->live_per_bounce[step] += n_active;
+        w->stats->live_per_step[step] += n_active;
     run_over_active(w, STAGE_EXTEND, n_active);
     if (w->sorter) {
         double ms = 0.0;

@@ -51,7 +51,7 @@ typedef struct {
     uint64_t device_bytes;     /* path state, window and film on the device */
     double stage_ms[STAGE_COUNT];   /* with settings.profile */
     uint32_t stage_launches[STAGE_COUNT];
-    uint64_t live_per_bounce[64];   /* live paths entering each step (= bounce without refills),
+    uint64_t live_per_step[64];     /* live paths entering each step (= bounce without refills),
                                      * summed over windows */
 } RenderStats;
 

@@ -193,14 +193,14 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     float *b = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
     cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
     /* Compaction really removed paths: fewer extension rays than without. */
-    cr_expect(with.live_per_bounce[4] < with.live_per_bounce[0]);
+    cr_expect(with.live_per_step[4] < with.live_per_step[0]);
     /* 256 slots tracing the same one window of 8192 samples: slots are refilled as paths end (so
      * there are more steps than bounces), and the image keeps every bit. */
     float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192}, &refilled);
     cr_expect_eq(refilled.batches, 1);
     cr_expect_eq(refilled.pool_size, 256);
-    cr_expect(refilled.live_per_bounce[40] == 256, "the pool is not kept full: %llu paths at step 40",
-              (unsigned long long)refilled.live_per_bounce[40]);
+    cr_expect(refilled.live_per_step[40] == 256, "the pool is not kept full: %llu paths at step 40",
+              (unsigned long long)refilled.live_per_step[40]);
     cr_expect_eq(refilled.extension_rays, with.extension_rays);
     cr_expect(memcmp(a, c, 32 * 32 * 3 * sizeof(float)) == 0, "refilling slots changed the image");
     /* Shadow rays by a flag per active path instead of the queue: the same rays, the same bits. */
