@@ -19,11 +19,10 @@
 #include "viewer_camera.h"
 #include "viewer_display.h"
 #include "viewer_input.h"
+#include "viewer_pacing.h"
 #include "viewer_stats.h"
 #include "wavefront.h"
 
-#define FRAME_BUDGET_S 0.040   /* a frame: sampling, then showing the film */
-#define WINDOWS_PER_FRAME 3    /* a window cannot be interrupted: keep it a fraction of a frame */
 #define TITLE_INTERVAL_S 0.25
 #define UNLIMITED_SPP (1 << 30)
 /* Below this many slots, launch overheads dominate on PoCL: 1024-slot pools traced about a third
@@ -46,17 +45,6 @@ static void on_glfw_error(int code, const char *description)
 }
 
 /* ---- The film: a Wavefront sized to the framebuffer ---------------------------------------- */
-
-/* Samples per window for a rate: a power of two near a fraction of the frame budget. The window,
- * not the pool, is what wavefront_advance cannot split (wavefront.h). */
-static uint32_t window_for_rate(double paths_per_second)
-{
-    double wanted = paths_per_second * FRAME_BUDGET_S / WINDOWS_PER_FRAME;
-    uint32_t window = 1024;
-    while (window < (1u << 24) && 2.0 * window <= wanted)
-        window *= 2;
-    return window;
-}
 
 /* A film whose steps are windows of window_size samples, traced by a pool of the usual fraction
  * of a window (slots are refilled from the window as paths end), or the whole window if small. */
@@ -84,7 +72,7 @@ static void adapt_window(Viewer *v)
     if (v->recent_seconds < 0.1) /* too young a measurement */
         return;
     uint32_t current = wavefront_stats(v->wavefront)->window_size;
-    uint32_t wanted = window_for_rate(v->paths_per_second);
+    uint32_t wanted = viewer_window_for_rate(v->paths_per_second);
     uint64_t film = (uint64_t)v->session.scene.desc.width * (uint64_t)v->session.scene.desc.height;
     bool capped = current >= film * (uint64_t)v->target_spp; /* the whole render fits already */
     if ((wanted >= 4ull * current && !capped) || current >= 4ull * wanted)

@@ -318,18 +318,18 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     cr_expect(strstr(bad.err, "'eye'") && one_line(bad.err), "one line naming the key: %s", bad.err);
 }
 
-/* Sampling is paced by time, whatever the device: on PoCL at 256x256 a frame stays near the
- * 40 ms budget; an unpaced batch (a device-sized pool) would take a second or more here. Bounds
- * are loose: the machine running the tests may be busy. */
-Test(view, frames_stay_near_the_budget_on_pocl)
+/* --frames N runs exactly N frames on PoCL and the exit summary reports the frame times it
+ * measured (the pacing itself is tested without a clock in test_viewer_pacing.c; frame times are
+ * measurements for the notes, not thresholds for a test). */
+Test(view, frames_run_and_frame_times_are_reported_on_pocl)
 {
     require_display();
     Run r = run_pt("view scenes/cornell-box --device cpu --width 256 --height 256 --frames 40");
     cr_assert_eq(r.exit_code, 0, "%s", r.err);
     Summary s = parse_summary(r.err);
     cr_expect(s.frames == 40 && s.spp >= 1, "%d frames, %d spp", s.frames, s.spp);
-    cr_expect(s.median_ms > 10.0 && s.median_ms < 150.0, "median frame %g ms", s.median_ms);
-    cr_expect(s.p95_ms < 500.0, "95th percentile frame %g ms", s.p95_ms);
+    cr_expect(s.median_ms > 0.0 && s.p95_ms >= s.median_ms, "median %g ms, p95 %g ms", s.median_ms,
+              s.p95_ms);
 }
 
 /* A user session scripted with xdotool: shrink the window, print the camera, orbit by a drag,
