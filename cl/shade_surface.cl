@@ -56,7 +56,8 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
     bool queued = false;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
-        uint pixel = window_pixel(p, k), sample = window_sample(p, k), bounce = depth - 1u;
+        uint key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        uint bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
             albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
@@ -65,9 +66,9 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
             LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
                                           materials, surf.position,
-                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_PICK, p->seed),
-                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_U, p->seed),
-                                          rng_bounce(pixel, sample, bounce, DIM_LIGHT_V, p->seed));
+                                          rng_bounce(key, bounce, DIM_LIGHT_PICK),
+                                          rng_bounce(key, bounce, DIM_LIGHT_U),
+                                          rng_bounce(key, bounce, DIM_LIGHT_V));
             float3 wi = normalize(ls.position - surf.position);
             float bsdf_pdf;
             float3 f_cos = diffuse_eval_cos(albedo, ns, wi, &bsdf_pdf);
@@ -85,9 +86,9 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         }
 
         BsdfSample bs = bsdf_sample(m, albedo, wo, ns, front,
-                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_U, p->seed),
-                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_V, p->seed),
-                                    rng_bounce(pixel, sample, bounce, DIM_BSDF_LOBE, p->seed));
+                                    rng_bounce(key, bounce, DIM_BSDF_U),
+                                    rng_bounce(key, bounce, DIM_BSDF_V),
+                                    rng_bounce(key, bounce, DIM_BSDF_LOBE));
         beta *= bs.weight;
         /* A diffuse sample below the true surface (possible with interpolated normals) is lost. */
         if (m.type == MATERIAL_DIFFUSE && dot(bs.wi, ng) <= 0.0f)
@@ -95,7 +96,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         /* Russian roulette from the third vertex on, driven by the throughput. */
         if (path_continues && depth >= 3u) {
             float q = fmin(max3(beta), 0.95f);
-            if (rng_bounce(pixel, sample, bounce, DIM_ROULETTE, p->seed) >= q)
+            if (rng_bounce(key, bounce, DIM_ROULETTE) >= q)
                 path_continues = false;
             else
                 beta /= q;

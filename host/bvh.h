@@ -13,9 +13,16 @@
 #define BVH_BINS 16
 #define BVH_BIN_SAMPLE_FROM 1000 /* nodes this large bin every 2nd record, 10x larger every 3rd... */
 #define BVH_SMALL_NODE 8          /* nodes up to this size sweep every split exactly instead */
+/* The next three may be overridden with -D for experiments (tools/bench_bvh). */
+#ifndef BVH_MAX_LEAF_SIZE
 #define BVH_MAX_LEAF_SIZE 8
+#endif
+#ifndef BVH_COST_TRAVERSAL
 #define BVH_COST_TRAVERSAL 1.0f
+#endif
+#ifndef BVH_COST_INTERSECT
 #define BVH_COST_INTERSECT 1.0f
+#endif
 
 typedef struct {
     BvhNode *nodes;     /* nodes[0] is the root */
