@@ -9,14 +9,7 @@
 set -eu
 
 cd "$(dirname "$0")/.."
-VENV=.venv-mitsuba
-MITSUBA_VERSION=3.9.1 # the version the committed references were made with (tests/references/README.md)
-
-if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c "import mitsuba, numpy" 2>/dev/null; then
-    echo "make-references: creating $VENV with mitsuba==$MITSUBA_VERSION"
-    python3 -m venv "$VENV"
-    "$VENV/bin/pip" install -q "mitsuba==$MITSUBA_VERSION" numpy
-fi
+. tools/mitsuba-venv.sh
 
 # scene:spp. 16 batches each (so spp must be a multiple of 16); see tests/references/README.md.
 ALL="furnace:16384 textured:16384 cornell:16384 cornell-sphere:32768"
