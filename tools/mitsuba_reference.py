@@ -86,50 +86,56 @@ def _floats(tokens, path, line_no, n=3):
     return values
 
 
-def load_mtl(path):
-    materials = {}
-    m = None
+def _statements(path):
+    """(line number, keyword, arguments, text after the keyword) for each non-blank line of an OBJ
+    or MTL file, comments removed."""
     with open(path, "r", encoding="utf-8", errors="replace") as f:
         for line_no, line in enumerate(f, 1):
             line = line.split("#", 1)[0].strip()
-            if not line:
-                continue
-            key, *rest = line.split()
-            if key == "newmtl":
-                m = Material(line.split(None, 1)[1].strip() if rest else "")
-                materials[m.name] = m
-                continue
-            if m is None:
-                continue
-            if key == "Kd":
-                m.kd = _floats(rest, path, line_no)
-                m.has_kd = True
-            elif key == "Ks":
-                m.ks = _floats(rest, path, line_no)
-            elif key == "Ke":
-                m.ke = _floats(rest, path, line_no)
-            elif key == "Tf":
-                m.tf = _floats(rest, path, line_no)
-            elif key == "Ni":
-                m.ni = _floats(rest, path, line_no, 1)[0]
-            elif key == "d":
-                m.d = _floats(rest, path, line_no, 1)[0]
-                m.has_d = True
-            elif key == "Tr":
-                if not m.has_d:  # 'd' wins over 'Tr' (tinyobjloader)
-                    m.d = 1.0 - _floats(rest, path, line_no, 1)[0]
-            elif key == "illum":
-                try:
-                    m.illum = int(rest[0])
-                except (ValueError, IndexError):
-                    raise SceneError(f"{path}:{line_no}: bad illum")
-            elif key == "map_Kd":
-                if not rest:
-                    raise SceneError(f"{path}:{line_no}: map_Kd without a file")
-                # Options (-mm a b, -o u v w, ...) come first; the file name is the last token.
-                m.map_kd = os.path.join(os.path.dirname(path), rest[-1])
-                if not m.has_kd:  # tinyobjloader: map_Kd without Kd gets Kd 0.6
-                    m.kd = [0.6, 0.6, 0.6]
+            if line:
+                key, *rest = line.split()
+                yield line_no, key, rest, line[len(key):].strip()
+
+
+def load_mtl(path):
+    materials = {}
+    m = None
+    for line_no, key, rest, tail in _statements(path):
+        if key == "newmtl":
+            m = Material(tail)
+            materials[m.name] = m
+            continue
+        if m is None:
+            continue
+        if key == "Kd":
+            m.kd = _floats(rest, path, line_no)
+            m.has_kd = True
+        elif key == "Ks":
+            m.ks = _floats(rest, path, line_no)
+        elif key == "Ke":
+            m.ke = _floats(rest, path, line_no)
+        elif key == "Tf":
+            m.tf = _floats(rest, path, line_no)
+        elif key == "Ni":
+            m.ni = _floats(rest, path, line_no, 1)[0]
+        elif key == "d":
+            m.d = _floats(rest, path, line_no, 1)[0]
+            m.has_d = True
+        elif key == "Tr":
+            if not m.has_d:  # 'd' wins over 'Tr' (tinyobjloader)
+                m.d = 1.0 - _floats(rest, path, line_no, 1)[0]
+        elif key == "illum":
+            try:
+                m.illum = int(rest[0])
+            except (ValueError, IndexError):
+                raise SceneError(f"{path}:{line_no}: bad illum")
+        elif key == "map_Kd":
+            if not rest:
+                raise SceneError(f"{path}:{line_no}: map_Kd without a file")
+            # Options (-mm a b, -o u v w, ...) come first; the file name is the last token.
+            m.map_kd = os.path.join(os.path.dirname(path), rest[-1])
+            if not m.has_kd:  # tinyobjloader: map_Kd without Kd gets Kd 0.6
+                m.kd = [0.6, 0.6, 0.6]
     return materials
 
 
@@ -179,50 +185,45 @@ def load_obj(path):
     materials = {}
     current = None
     groups = {}
-    with open(path, "r", encoding="utf-8", errors="replace") as f:
-        for line_no, line in enumerate(f, 1):
-            line = line.split("#", 1)[0].strip()
-            if not line:
-                continue
-            key, *rest = line.split()
-            if key == "v":
-                v.append(_floats(rest, path, line_no))
-            elif key == "vt":
-                vt.append(_floats(rest, path, line_no, 2))
-            elif key == "vn":
-                vn.append(_floats(rest, path, line_no))
-            elif key == "mtllib":
-                for name in rest:
-                    mtl = os.path.join(os.path.dirname(path), name)
-                    if not os.path.exists(mtl):
-                        raise SceneError(f"{path}:{line_no}: mtllib {name} not found")
-                    materials.update(load_mtl(mtl))
-            elif key == "usemtl":
-                name = line.split(None, 1)[1].strip() if rest else ""
-                if name not in materials:
-                    raise SceneError(f"{path}:{line_no}: material '{name}' not defined")
-                current = materials[name]
-            elif key == "f":
-                if len(rest) < 3:
-                    raise SceneError(f"{path}:{line_no}: face with fewer than 3 corners")
-                corners = []
-                for tok in rest:
-                    parts = tok.split("/")
-                    c = [_resolve(parts[0], len(v), path, line_no, "v"), None, None]
-                    if len(parts) > 1 and parts[1]:
-                        c[1] = _resolve(parts[1], len(vt), path, line_no, "vt")
-                    if len(parts) > 2 and parts[2]:
-                        c[2] = _resolve(parts[2], len(vn), path, line_no, "vn")
-                    corners.append(c)
-                has_uv = all(c[1] is not None for c in corners)
-                has_n = all(c[2] is not None for c in corners)
-                if current is None:
-                    current = materials.setdefault("", Material(""))  # tinyobjloader's default
-                group = groups.setdefault((current.name, has_uv, has_n),
-                                          MeshGroup(current, has_uv, has_n))
-                for k in range(1, len(corners) - 1):  # fan: the faces here are convex
-                    group.add((corners[0], corners[k], corners[k + 1]), v, vt, vn)
-            # g, o, s, l, p and anything else: no effect on the image
+    for line_no, key, rest, tail in _statements(path):
+        if key == "v":
+            v.append(_floats(rest, path, line_no))
+        elif key == "vt":
+            vt.append(_floats(rest, path, line_no, 2))
+        elif key == "vn":
+            vn.append(_floats(rest, path, line_no))
+        elif key == "mtllib":
+            for name in rest:
+                mtl = os.path.join(os.path.dirname(path), name)
+                if not os.path.exists(mtl):
+                    raise SceneError(f"{path}:{line_no}: mtllib {name} not found")
+                materials.update(load_mtl(mtl))
+        elif key == "usemtl":
+            name = tail
+            if name not in materials:
+                raise SceneError(f"{path}:{line_no}: material '{name}' not defined")
+            current = materials[name]
+        elif key == "f":
+            if len(rest) < 3:
+                raise SceneError(f"{path}:{line_no}: face with fewer than 3 corners")
+            corners = []
+            for tok in rest:
+                parts = tok.split("/")
+                c = [_resolve(parts[0], len(v), path, line_no, "v"), None, None]
+                if len(parts) > 1 and parts[1]:
+                    c[1] = _resolve(parts[1], len(vt), path, line_no, "vt")
+                if len(parts) > 2 and parts[2]:
+                    c[2] = _resolve(parts[2], len(vn), path, line_no, "vn")
+                corners.append(c)
+            has_uv = all(c[1] is not None for c in corners)
+            has_n = all(c[2] is not None for c in corners)
+            if current is None:
+                current = materials.setdefault("", Material(""))  # tinyobjloader's default
+            group = groups.setdefault((current.name, has_uv, has_n),
+                                      MeshGroup(current, has_uv, has_n))
+            for k in range(1, len(corners) - 1):  # fan: the faces here are convex
+                group.add((corners[0], corners[k], corners[k + 1]), v, vt, vn)
+        # g, o, s, l, p and anything else: no effect on the image
     return list(groups.values())
 
 
