@@ -28,7 +28,7 @@ Q := @
 endif
 
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
-CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/ray_offset.cl \
+CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/bvh_traverse_wide.cl cl/ray_offset.cl \
               cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/light_sample.cl \
               cl/path_state.cl cl/scan.cl cl/sort_materials.cl cl/render_aov.cl \
               cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
@@ -56,7 +56,8 @@ run: deps
 
 test: deps
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
-	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS)
+	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
+	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh
 
 asan:
 	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh_traverse.cl: closest-hit and any-hit queries used by every kernel that traces rays. Walks
+/* bvh_traverse.cl: closest-hit and any-hit queries used by every kernel that traces rays, and the
+ * box-test rules that every layout shares. With BVH_WIDTH == 2 (GPUs) it walks
  * the 2-wide node array of host/bvh.c (both child boxes in the parent, Aila & Laine 2009) with a
  * private stack: both child boxes are tested at once, leaf children are intersected right away
  * (nearer first), the nearer inner child is visited next and the farther one is pushed.
@@ -63,12 +64,18 @@ inline bool box_entry(BoxRay ray, float4 lo, float4 hi, float tmin, float tmax, 
  * inside [tmin, tmax); widening by a bound on that error, from the scene's box, keeps the culling
  * conservative at a cost of a few ulps of the scene's size. */
 #define BOX_SLACK_ULPS 16.0f
+inline float box_slack_of(float3 lo, float3 hi, float3 origin, WatertightRay tray)
+{
+    float3 reach = fmax(fabs(lo - origin), fabs(hi - origin));
+    return BOX_SLACK_ULPS * FLT_EPSILON * fmax(reach.x, fmax(reach.y, reach.z)) * fabs(tray.shear.z);
+}
+
+#if BVH_WIDTH == 2 /* else cl/bvh_traverse_wide.cl */
 inline float box_slack(const global BvhNode *root, float3 origin, WatertightRay tray)
 {
     float3 lo = fmin(xyz(root->lmin), xyz(root->rmin));
     float3 hi = fmax(xyz(root->lmax), xyz(root->rmax));
-    float3 reach = fmax(fabs(lo - origin), fabs(hi - origin));
-    return BOX_SLACK_ULPS * FLT_EPSILON * fmax(reach.x, fmax(reach.y, reach.z)) * fabs(tray.shear.z);
+    return box_slack_of(lo, hi, origin, tray);
 }
 
 /* Leaf children carry ~first_triangle (a negative int) in the box-min w lane and their triangle
@@ -195,3 +202,4 @@ bool trace_any(const global BvhNode *nodes, const global BvhTriangle *tris, uint
     (void)num_tris;
     return trace_bvh(nodes, tris, origin, dir, tmin, tmax, true).prim != HIT_NONE;
 }
+#endif /* BVH_WIDTH == 2 */

@@ -17,8 +17,8 @@ kernel void intersect_closest(constant RenderParams *p, SCENE_PARAMS PATH_STATE_
         atomic_inc(&group_rays);
         float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
         Hit h = (p->flags & RENDER_BRUTE_FORCE)
-                    ? trace_brute_force(bvh_tris, p->num_triangles, o, d, 0.0f, INFINITY, false)
-                    : trace_closest(bvh_nodes, bvh_tris, p->num_triangles, o, d, 0.0f, INFINITY);
+                    ? trace_brute_force(bvh_tris, p->num_bvh_prims, o, d, 0.0f, INFINITY, false)
+                    : trace_closest(bvh_nodes, bvh_tris, p->num_bvh_prims, o, d, 0.0f, INFINITY);
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
     }
     /* Every work item reaches this barrier: no early return above. */

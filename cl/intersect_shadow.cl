@@ -27,9 +27,9 @@ kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_P
             float3 d = xyz(shadow_direction[slot]);
             bool occluded =
                 (p->flags & RENDER_BRUTE_FORCE)
-                    ? trace_brute_force(bvh_tris, p->num_triangles, xyz(origin), d, 0.0f, origin.w,
+                    ? trace_brute_force(bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f, origin.w,
                                         true).prim != HIT_NONE
-                    : trace_any(bvh_nodes, bvh_tris, p->num_triangles, xyz(origin), d, 0.0f, origin.w);
+                    : trace_any(bvh_nodes, bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f, origin.w);
             if (!occluded)
                 radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
             shadow_contribution[slot] = (float4)(0.0f);

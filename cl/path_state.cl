@@ -17,7 +17,7 @@
 
 /* The scene's read-only buffers, in the order host/wavefront.c sets them; ends with a comma. */
 #define SCENE_PARAMS                                                                               \
-    const global BvhNode *restrict bvh_nodes, const global BvhTriangle *restrict bvh_tris,         \
+    const global TraversalNode *restrict bvh_nodes, const global TraversalPrim *restrict bvh_tris, \
         const global float4 *restrict positions, const global float4 *restrict normals,            \
         const global float2 *restrict uvs, const global Triangle *restrict triangles,              \
         const global uint *restrict material_ids, const global Material *restrict materials,       \

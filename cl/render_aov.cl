@@ -4,8 +4,8 @@
  * (rgb, w = 1). Misses give 0. Not part of the wavefront: a single pass for denoisers and
  * compositors. */
 
-kernel void render_aov(constant RenderParams *p, const global BvhNode *nodes,
-                       const global BvhTriangle *bvh_tris, const global float4 *positions,
+kernel void render_aov(constant RenderParams *p, const global TraversalNode *nodes,
+                       const global TraversalPrim *bvh_tris, const global float4 *positions,
                        const global float4 *normals, const global float2 *uvs,
                        const global Triangle *triangles, const global uint *material_ids,
                        const global Material *materials, const global uint *texels,
@@ -24,7 +24,7 @@ kernel void render_aov(constant RenderParams *p, const global BvhNode *nodes,
                                rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
         float3 origin, dir;
         camera_ray(p, x, y, jitter, lens, &origin, &dir);
-        Hit hit = trace_closest(nodes, bvh_tris, p->num_triangles, origin, dir, 0.0f, INFINITY);
+        Hit hit = trace_closest(nodes, bvh_tris, p->num_bvh_prims, origin, dir, 0.0f, INFINITY);
         if (hit.prim == HIT_NONE)
             continue;
         SurfaceHit surf = surface_at(hit, positions, normals, uvs, triangles, material_ids);

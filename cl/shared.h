@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* shared.h: every struct and constant that crosses the host/device boundary. Compiled by the host C
  * compiler (through host/shared_types.h) and by the OpenCL C compiler (first file of the program).
- * Rules: only 4-byte scalars, float2/float4/uint4; no float3, bool, size_t, enum or pointers; sizes
+ * Rules: only 4-byte scalars, float2/float4/uint4 (float8/uint8 in the 8-wide BVH); no float3, bool,
+ * size_t, enum or pointers; sizes
  * are checked on the host with _Static_assert and on the device by the report_sizes test kernel. */
 #ifndef PT_SHARED_H
 #define PT_SHARED_H
@@ -12,6 +13,8 @@
 typedef cl_float4 float4;
 typedef cl_float2 float2;
 typedef cl_uint4 uint4;
+typedef cl_float8 float8;
+typedef cl_uint8 uint8;
 typedef cl_uint uint;
 #endif
 
@@ -46,6 +49,56 @@ typedef struct {
 /* Entries of the traversal's private stack; host/bvh.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
+
+/* Wide BVH for CPUs (host/bvh_wide.c, cl/bvh_traverse_wide.cl): the 2-wide tree collapsed to 4 or 8
+ * children per node, stored lane by lane so that one SIMD instruction tests every child box, and
+ * leaves of triangle packs tested 4 or 8 at a time. A CPU runs a work item on one core lane by
+ * lane; these float4/float8 operations are what keep its SIMD units busy. GPUs keep the 2-wide
+ * layout (a work item already is a SIMD lane there). Child lane i: box lo[axis].si .. hi[axis].si
+ * (an unused lane holds the empty box +inf .. -inf and child 0); child.si >= 0: inner node index,
+ * else a leaf ~(first_pack << 2 | (pack_count - 1)). Pack lane i: corners v[3 * corner + axis].si,
+ * original triangle index prim.si; a leaf's last pack repeats its last triangle in unused lanes. */
+#define BVH_WIDE_LEAF_PACK_BITS 2u
+typedef struct {
+    float4 lo[3];
+    float4 hi[3];
+    uint4 child;
+} BvhNode4;
+typedef struct {
+    float4 v[9];
+    uint4 prim;
+} TrianglePack4;
+typedef struct {
+    float8 lo[3];
+    float8 hi[3];
+    uint8 child;
+} BvhNode8;
+typedef struct {
+    float8 v[9];
+    uint8 prim;
+} TrianglePack8;
+/* The wide traversal's stack: each level of the wide tree pushes at most width - 1 children; the
+ * collapse (bvh_widen) checks that no path needs more. */
+#define BVH_WIDE_STACK_SIZE 192
+
+/* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device.c). */
+#ifdef __OPENCL_C_VERSION__
+#ifndef BVH_WIDTH
+#define BVH_WIDTH 2
+#endif
+#if BVH_WIDTH == 8
+typedef BvhNode8 TraversalNode;
+typedef TrianglePack8 TraversalPrim;
+#elif BVH_WIDTH == 4
+typedef BvhNode4 TraversalNode;
+typedef TrianglePack4 TraversalPrim;
+#elif BVH_WIDTH == 2
+typedef BvhNode TraversalNode;
+typedef BvhTriangle TraversalPrim;
+#else
+#error "BVH_WIDTH must be 2, 4 or 8"
+#endif
+#endif
 
 /* ---- Materials and textures ---------------------------------------------------------------- */
 
@@ -97,7 +150,7 @@ typedef struct {
     uint seed;
     uint max_depth;
     uint sample_index;   /* sample index of the batch's first path */
-    uint num_triangles;
+    uint num_bvh_prims;  /* entries of bvh_tris: triangles (2-wide) or triangle packs (wide) */
     uint num_emissive;   /* emissive triangles in the light table */
     uint aov;            /* AOV_* for render_aov */
     float emissive_power; /* total emitted power of the light table (for pdfs) */
@@ -160,6 +213,10 @@ typedef struct {
 #define SIZEOF_CAMERA 5
 #define SIZEOF_RENDER_PARAMS 6
 #define SIZEOF_LIGHT_ENTRY 7
-#define SIZEOF_COUNT 8
+#define SIZEOF_BVH_NODE4 8
+#define SIZEOF_TRIANGLE_PACK4 9
+#define SIZEOF_BVH_NODE8 10
+#define SIZEOF_TRIANGLE_PACK8 11
+#define SIZEOF_COUNT 12
 
 #endif

@@ -15,7 +15,7 @@ void aov_render(Device *dev, const Scene *scene, const SceneBuffers *buffers, un
         .width = (uint)desc->width,
         .height = (uint)desc->height,
         .seed = seed,
-        .num_triangles = buffers->num_triangles,
+        .num_bvh_prims = buffers->num_bvh_prims,
         .aov = aov,
     };
     Error err = {0};

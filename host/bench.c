@@ -125,7 +125,7 @@ int command_bench(const Options *o)
 
     RenderStats stats[NUM_MODES];
     size_t num_modes = NUM_MODES;
-    if (s.buffers.num_triangles > BRUTE_FORCE_MAX_TRIANGLES)
+    if (s.scene.data.num_triangles > BRUTE_FORCE_MAX_TRIANGLES)
         num_modes--; /* the brute-force row comes last */
     RenderSettings settings[NUM_MODES];
     for (size_t m = 0; m < num_modes; m++) {

@@ -170,8 +170,27 @@ static void choose_build_options(Device *dev)
         maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
                     ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
                     : "-cl-mad-enable -cl-no-signed-zeros";
-    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s%s", maths,
-             dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s",
+             maths, dev->bvh_width, dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+}
+
+/* The BVH layout (bvh_wide.h). A GPU runs each work item as one SIMD lane, so the 2-wide tree
+ * with one box per lane is its natural layout; a CPU runs a work item on a whole core, whose
+ * SIMD units only work when one item tests many boxes at once (8 lanes of AVX). */
+static bool choose_bvh_width(Device *dev, Error *err)
+{
+    const char *env = getenv("PT_BVH_WIDTH");
+    if (env && *env) {
+        if (strcmp(env, "2") && strcmp(env, "4") && strcmp(env, "8")) {
+            error_set(err, ERR_USAGE, NULL, 0, "PT_BVH_WIDTH=%s: the BVH layouts are 2, 4 and 8 wide",
+                      env);
+            return false;
+        }
+        dev->bvh_width = atoi(env);
+    } else {
+        dev->bvh_width = (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2;
+    }
+    return true;
 }
 
 bool device_open(Device *dev, const char *spec, Error *err)
@@ -205,6 +224,8 @@ bool device_open(Device *dev, const char *spec, Error *err)
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof dev->compute_units,
                              &dev->compute_units, NULL));
     dev->is_nvidia = strstr(dev->platform_name, "NVIDIA") != NULL;
+    if (!choose_bvh_width(dev, err))
+        return false;
     choose_build_options(dev);
     const char *no_cache = getenv("PT_NO_CACHE");
     dev->use_cache = !(no_cache && *no_cache && strcmp(no_cache, "0") != 0);
@@ -278,6 +299,7 @@ static void store_in_cache(Device *dev, uint64_t key)
 
 bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
 {
+    choose_build_options(dev); /* bvh_width may have changed since device_open */
     char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
     if (!source)
         die("out of memory");

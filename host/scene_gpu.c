@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "bvh_wide.h"
+
 static cl_mem upload(Device *dev, SceneBuffers *out, const char *name, size_t size, const void *data,
                      Error *err)
 {
@@ -28,10 +30,14 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
                          data->textures.texels, err);
     out->textures = upload(dev, out, "textures", data->textures.count * sizeof(TextureInfo),
                            data->textures.infos, err);
-    out->bvh_nodes = upload(dev, out, "bvh_nodes", bvh->num_nodes * sizeof(BvhNode), bvh->nodes, err);
-    out->bvh_tris = upload(dev, out, "bvh_triangles", bvh->num_tris * sizeof(BvhTriangle), bvh->tris,
-                           err);
-    out->num_triangles = (uint32_t)nt;
+    BvhLayout layout;
+    bvh_layout(&layout, bvh, dev->bvh_width);
+    out->bvh_nodes = upload(dev, out, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes,
+                            err);
+    out->bvh_tris = upload(dev, out, "bvh_triangles", layout.num_prims * layout.prim_size,
+                           layout.prims, err);
+    out->num_bvh_prims = layout.num_prims;
+    bvh_layout_free(&layout);
     if (error_is_set(err)) {
         scene_buffers_release(out);
         return false;

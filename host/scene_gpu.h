@@ -10,7 +10,7 @@
 typedef struct {
     cl_mem positions, normals, uvs, triangles, material_ids, materials, texels, textures;
     cl_mem bvh_nodes, bvh_tris;
-    uint32_t num_triangles;
+    uint32_t num_bvh_prims; /* entries of bvh_tris (RenderParams.num_bvh_prims) */
     size_t bytes; /* device memory used */
 } SceneBuffers;
 

@@ -113,7 +113,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .height = (uint)desc->height,
         .seed = s->seed,
         .max_depth = (uint)s->max_depth,
-        .num_triangles = buffers->num_triangles,
+        .num_bvh_prims = buffers->num_bvh_prims,
         .num_emissive = lights.count,
         .emissive_power = lights.total_power,
         .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "bvh.h"
+#include "bvh_wide.h"
 #include "obj_loader.h"
 #include "procedural_mesh.h"
 #include "support.h"
@@ -263,20 +264,25 @@ typedef struct {
     Mesh mesh;
     Bvh bvh;
     cl_mem nodes, tris;
+    uint32_t num_prims; /* entries of tris (triangles, or packs of the wide layout) */
     float4 *spheres; /* per triangle, for the brute-force reference's culling */
     float lo[3], hi[3];
 } TraceScene;
 
 static TraceScene scene_create(Device *dev, Mesh mesh)
 {
-    TraceScene scene = {dev, mesh, {0}, NULL, NULL, NULL, {0}, {0}};
+    TraceScene scene = {dev, mesh, {0}, NULL, NULL, 0, NULL, {0}, {0}};
     Error err = {0};
     bvh_build(&scene.bvh, mesh.positions, mesh.triangles, mesh.num_triangles);
     mesh_bounds(&mesh, scene.lo, scene.hi);
+    BvhLayout layout;
+    bvh_layout(&layout, &scene.bvh, dev->bvh_width);
     scene.nodes = device_buffer(dev, "bvh_nodes", CL_MEM_READ_ONLY,
-                                scene.bvh.num_nodes * sizeof(BvhNode), scene.bvh.nodes, &err);
+                                layout.num_nodes * layout.node_size, layout.nodes, &err);
     scene.tris = device_buffer(dev, "bvh_triangles", CL_MEM_READ_ONLY,
-                               scene.bvh.num_tris * sizeof(BvhTriangle), scene.bvh.tris, &err);
+                               layout.num_prims * layout.prim_size, layout.prims, &err);
+    scene.num_prims = layout.num_prims;
+    bvh_layout_free(&layout);
     cr_assert(!error_is_set(&err), "%s", err.message);
     scene.spheres = malloc((mesh.num_triangles + 1) * sizeof *scene.spheres);
     for (uint32_t i = 0; i < mesh.num_triangles; i++) {
@@ -321,7 +327,7 @@ static void trace(TraceScene *scene, const char *kernel_name, const Ray *rays, u
     cl_mem out_buf = device_buffer(dev, "results", CL_MEM_WRITE_ONLY, out_size, NULL, &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     cl_kernel kernel = device_kernel(dev, kernel_name);
-    cl_uint arg = 0, num_tris = scene->mesh.num_triangles, num_rays = n;
+    cl_uint arg = 0, num_tris = scene->num_prims, num_rays = n;
     KERNEL_ARG(kernel, arg++, scene->nodes);
     KERNEL_ARG(kernel, arg++, scene->tris);
     KERNEL_ARG(kernel, arg++, num_tris);

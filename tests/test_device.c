@@ -27,6 +27,10 @@ Test(device, shared_struct_sizes_match_host)
     cr_expect_eq(sizes[SIZEOF_CAMERA], sizeof(Camera));
     cr_expect_eq(sizes[SIZEOF_RENDER_PARAMS], sizeof(RenderParams));
     cr_expect_eq(sizes[SIZEOF_LIGHT_ENTRY], sizeof(LightEntry));
+    cr_expect_eq(sizes[SIZEOF_BVH_NODE4], sizeof(BvhNode4));
+    cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK4], sizeof(TrianglePack4));
+    cr_expect_eq(sizes[SIZEOF_BVH_NODE8], sizeof(BvhNode8));
+    cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK8], sizeof(TrianglePack8));
     clReleaseKernel(kernel);
     clReleaseMemObject(out);
     test_device_release(dev);
@@ -42,6 +46,25 @@ Test(device, unknown_device_is_an_error)
         cr_expect_eq(err.code, ERR_DEVICE_UNKNOWN, "spec %s", specs[i]);
         cr_expect(strstr(err.message, specs[i]) != NULL, "message names the spec: %s", err.message);
     }
+}
+
+Test(device, bvh_width_comes_from_the_device_type_or_pt_bvh_width)
+{
+    Device dev;
+    Error err = {0};
+    unsetenv("PT_BVH_WIDTH");
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    cr_expect_eq(dev.bvh_width, 8, "a CPU walks the 8-wide BVH");
+    cr_expect(strstr(device_build_options(&dev), "-DBVH_WIDTH=8") != NULL, "%s", device_build_options(&dev));
+    device_close(&dev);
+    setenv("PT_BVH_WIDTH", "4", 1);
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    cr_expect_eq(dev.bvh_width, 4);
+    device_close(&dev);
+    setenv("PT_BVH_WIDTH", "3", 1);
+    cr_expect_not(device_open(&dev, "cpu", &err));
+    cr_expect_eq(err.code, ERR_USAGE);
+    cr_expect(strstr(err.message, "PT_BVH_WIDTH=3") != NULL, "%s", err.message);
 }
 
 Test(device, allocation_above_the_limit_names_the_buffer)

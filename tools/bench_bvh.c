@@ -28,6 +28,7 @@
 
 #include "bench_common.h"
 #include "bvh.h"
+#include "bvh_wide.h"
 #include "device.h"
 #include "obj_loader.h"
 #include "procedural_mesh.h"
@@ -144,6 +145,7 @@ typedef struct {
     cl_kernel persistent;
     cl_mem counter;
     size_t persistent_items;
+    uint32_t num_prims; /* entries of tris: triangles, or packs of the wide layout */
 } GpuMesh;
 
 static cl_mem upload(Device *dev, const char *name, size_t size, const void *data)
@@ -213,7 +215,7 @@ static double time_query(GpuMesh *g, cl_kernel kernel, cl_mem rays, uint32_t n, 
     cl_uint num_rays = n;
     KERNEL_ARG(kernel, 0, g->nodes);
     KERNEL_ARG(kernel, 1, g->tris);
-    KERNEL_ARG(kernel, 2, g->num_tris);
+    KERNEL_ARG(kernel, 2, g->num_prims);
     KERNEL_ARG(kernel, 3, rays);
     KERNEL_ARG(kernel, 4, num_rays);
     KERNEL_ARG(kernel, 5, out);
@@ -265,7 +267,7 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
 {
     GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
                  device_kernel(dev, "bvh_test_trace_any"), device_kernel(dev, "bvh_test_bounce_rays"),
-                 NULL, NULL, NULL, mesh->num_triangles, NULL, NULL, 0};
+                 NULL, NULL, NULL, mesh->num_triangles, NULL, NULL, 0, 0};
     const char *persistent = getenv("BVH_PERSISTENT");
     if (persistent && atoi(persistent) > 0) {
         Error err = {0};
@@ -277,8 +279,12 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
     }
     Bvh bvh;
     bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
-    g.nodes = upload(dev, "bvh_nodes", bvh.num_nodes * sizeof(BvhNode), bvh.nodes);
-    g.tris = upload(dev, "bvh_triangles", bvh.num_tris * sizeof(BvhTriangle), bvh.tris);
+    BvhLayout layout;
+    bvh_layout(&layout, &bvh, dev->bvh_width);
+    g.nodes = upload(dev, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes);
+    g.tris = upload(dev, "bvh_triangles", layout.num_prims * layout.prim_size, layout.prims);
+    g.num_prims = layout.num_prims;
+    bvh_layout_free(&layout);
     bvh_free(&bvh);
     float4 *corners = malloc(3 * (size_t)mesh->num_triangles * sizeof *corners);
     for (uint32_t i = 0; i < mesh->num_triangles; i++)
@@ -368,8 +374,8 @@ int main(int argc, char **argv)
     char device_folder[256], folder[1024];
     bench_folder_name(dev.name, device_folder, sizeof device_folder);
     snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
-    printf("bench_bvh: %s (%s, %s), %d spp, best of %d\n", dev.name, dev.platform_name,
-           dev.driver_version, o.spp, o.reps);
+    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, best of %d\n", dev.name,
+           dev.platform_name, dev.driver_version, dev.bvh_width, o.spp, o.reps);
 
     const uint32_t sizes[] = {1000, 10000, 100000, 1000000, 2000000};
     const struct {

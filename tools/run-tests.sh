@@ -1,10 +1,15 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# run-tests.sh BINARY...: runs every Criterion test binary from the repository root, then prints
-# one total line "tests: N passed, N failed". Exit status is non-zero if any test failed or crashed.
+# run-tests.sh [NAME=VALUE | BINARY]...: runs every Criterion test binary from the repository root,
+# then prints one total line "tests: N passed, N failed". A NAME=VALUE argument is exported to the
+# binaries after it (e.g. PT_BVH_WIDTH=2 to run the BVH tests on another layout). Exit status is
+# non-zero if any test failed or crashed.
 set -u
 passed=0; failed=0; status=0
 for t in "$@"; do
+    case $t in
+        *=*) export "$t"; echo "== with $t"; continue ;;
+    esac
     echo "== $t"
     log=$(mktemp)
     "$t" --jobs 2 2>&1 | tee "$log"

@@ -6,8 +6,8 @@
 
 inline float4 bvh_test_hit_record(Hit hit) { return (float4)(hit.t, hit.u, hit.v, as_float(hit.prim)); }
 
-kernel void bvh_test_trace_closest(const global BvhNode *restrict nodes,
-                                   const global BvhTriangle *restrict tris, uint num_tris,
+kernel void bvh_test_trace_closest(const global TraversalNode *restrict nodes,
+                                   const global TraversalPrim *restrict tris, uint num_tris,
                                    const global float4 *restrict rays, uint num_rays,
                                    global float4 *restrict hits)
 {
@@ -19,8 +19,8 @@ kernel void bvh_test_trace_closest(const global BvhNode *restrict nodes,
     hits[i] = bvh_test_hit_record(hit);
 }
 
-kernel void bvh_test_trace_any(const global BvhNode *restrict nodes,
-                               const global BvhTriangle *restrict tris, uint num_tris,
+kernel void bvh_test_trace_any(const global TraversalNode *restrict nodes,
+                               const global TraversalPrim *restrict tris, uint num_tris,
                                const global float4 *restrict rays, uint num_rays,
                                global uint *restrict occluded)
 {
@@ -89,8 +89,8 @@ inline uint next_ray_index(volatile global uint *counter)
 inline uint next_ray_index(volatile global uint *counter) { return atomic_inc(counter); }
 #endif
 
-kernel void bvh_test_trace_closest_persistent(const global BvhNode *restrict nodes,
-                                              const global BvhTriangle *restrict tris,
+kernel void bvh_test_trace_closest_persistent(const global TraversalNode *restrict nodes,
+                                              const global TraversalPrim *restrict tris,
                                               uint num_tris, const global float4 *restrict rays,
                                               uint num_rays, global float4 *restrict hits,
                                               volatile global uint *next)

@@ -11,4 +11,8 @@ kernel void report_sizes(global uint *out)
     out[SIZEOF_CAMERA] = sizeof(Camera);
     out[SIZEOF_RENDER_PARAMS] = sizeof(RenderParams);
     out[SIZEOF_LIGHT_ENTRY] = sizeof(LightEntry);
+    out[SIZEOF_BVH_NODE4] = sizeof(BvhNode4);
+    out[SIZEOF_TRIANGLE_PACK4] = sizeof(TrianglePack4);
+    out[SIZEOF_BVH_NODE8] = sizeof(BvhNode8);
+    out[SIZEOF_TRIANGLE_PACK8] = sizeof(TrianglePack8);
 }
