@@ -40,7 +40,7 @@ inline float3 diffuse_eval_cos(float3 albedo, float3 n, float3 wi, float *pdf_w)
 
 /* Samples the material. front: wo is on the side the geometric normal points to (the outside of a
  * dielectric). n: shading normal on wo's side. */
-BsdfSample bsdf_sample(Material m, float3 albedo, float3 wo, float3 n, bool front, float u1,
+PT_INLINE BsdfSample bsdf_sample(Material m, float3 albedo, float3 wo, float3 n, bool front, float u1,
                        float u2, float u_lobe)
 {
     BsdfSample s;

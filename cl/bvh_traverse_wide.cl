@@ -23,14 +23,6 @@ typedef int4 intW;
 #endif
 #define LANE_BIT(m, i, lane) ((as_uint((m).lane) >> 31) << (i))
 
-/* PoCL's inliner leaves the pack test out of line; the call then passes the ray through memory,
- * and reloading it stalls on store forwarding (perf: a sixth of the traversal's time). */
-#ifdef PT_VENDOR_NVIDIA
-#define WIDE_INLINE inline
-#else
-#define WIDE_INLINE inline __attribute__((always_inline))
-#endif
-
 /* A comparison's lanes (all bits set where true) as a bit mask, lane i in bit i. */
 inline uint lane_bits(intW m) { return LANE_BITS(m); }
 
@@ -113,7 +105,7 @@ inline floatW difference_of_products_w(floatW a, floatW b, floatW c, floatW d)
 
 /* intersect_triangle_watertight on every lane of a pack; the nearest lane that hits within
  * [tmin, hit->t) replaces *hit (with any_hit, the first one). True when one did. */
-WIDE_INLINE bool intersect_pack(const global TraversalPrim *pack, WatertightRay ray, float tmin,
+PT_INLINE bool intersect_pack(const global TraversalPrim *pack, WatertightRay ray, float tmin,
                            bool any_hit, Hit *hit)
 {
     const global floatW *v = pack->v;
@@ -157,7 +149,7 @@ WIDE_INLINE bool intersect_pack(const global TraversalPrim *pack, WatertightRay 
 }
 
 /* A leaf reference ~(first_pack << BVH_WIDE_LEAF_PACK_BITS | (pack_count - 1)). */
-WIDE_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, WatertightRay ray,
+PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, WatertightRay ray,
                                 float tmin, bool any_hit, Hit *hit)
 {
     uint code = ~ref;

@@ -10,7 +10,7 @@ typedef struct {
 
 inline float triangle_area(float3 p0, float3 p1, float3 p2) { return 0.5f * length(cross(p1 - p0, p2 - p0)); }
 
-LightSample light_sample(const global LightEntry *lights, uint num_lights,
+PT_INLINE LightSample light_sample(const global LightEntry *lights, uint num_lights,
                          const global float4 *positions, const global Triangle *triangles,
                          const global uint *material_ids, const global Material *materials,
                          float3 from, float u_pick, float u1, float u2)

@@ -22,6 +22,15 @@ inline float3 emission_seen(constant RenderParams *p, Material m, float t, float
     return xyz(m.ke) * mis_power(prev_pdf_w, light_pdf);
 }
 
+/* radiance[k] += c, skipped when c is zero: most vertices gather nothing (no emitter hit), and the
+ * window's radiance array is too large for the cache, so the read costs a miss (perf on PoCL: a
+ * tenth of the shade kernel's time). A NaN still goes through to the film guard. */
+inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
+{
+    if (c.x != 0.0f || c.y != 0.0f || c.z != 0.0f)
+        radiance[k] += (float4)(c, 0.0f);
+}
+
 /* Shades the path in slot; true when it queued a shadow ray. */
 inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint slot)
 {
@@ -34,7 +43,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
     float3 beta = xyz(throughput[slot]);
     uint prim = as_uint(h.w);
     if (prim == HIT_NONE) {
-        radiance[k] += (float4)(beta * xyz(p->background), 0.0f);
+        add_radiance(radiance, k, beta * xyz(p->background));
         alive[slot] = 0u;
         return false;
     }
@@ -109,7 +118,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
             throughput[slot] = (float4)(beta, 0.0f);
         }
     }
-    radiance[k] += (float4)(gathered, 0.0f);
+    add_radiance(radiance, k, gathered);
     alive[slot] = path_continues ? depth + 1u : 0u;
     return queued;
 }

@@ -9,7 +9,7 @@ typedef struct {
     uint material;
 } SurfaceHit;
 
-SurfaceHit surface_at(Hit hit, const global float4 *positions, const global float4 *normals,
+PT_INLINE SurfaceHit surface_at(Hit hit, const global float4 *positions, const global float4 *normals,
                       const global float2 *uvs, const global Triangle *triangles,
                       const global uint *material_ids)
 {
