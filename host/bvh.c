@@ -65,6 +65,7 @@ typedef struct {
     BvhNode *nodes;
     uint32_t num_nodes;
     bool full_sweep;
+    BvhCosts costs;
     double cost_sum; /* SAH sum, not yet divided by the root's area */
 } Builder;
 
@@ -315,8 +316,8 @@ static Split find_binned_split(const Builder *b, uint32_t begin, uint32_t end, c
     Split best = {.cost = INFINITY, .axis = sweep.axis, .bin = sweep.cut};
     if (best.axis >= 0) {
         best.scale = scale[best.axis];
-        best.cost = BVH_COST_TRAVERSAL +
-                    BVH_COST_INTERSECT * (float)stride * sweep.sum / box_half_area_in(box, unit);
+        best.cost = b->costs.traversal +
+                    b->costs.intersect * (float)stride * sweep.sum / box_half_area_in(box, unit);
     }
     return best;
 }
@@ -364,8 +365,8 @@ static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, con
         _Alignas(16) float area[4]; /* both triangles' and the node's, in one go */
         lanes_store(area, half_areas_of_three((const Box[3]){local[0], local[1], *box},
                                               lanes_splat(unit)));
-        double cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * (area[0] + area[1]) / area[2];
-        if (BVH_COST_INTERSECT * 2.0 <= cost)
+        double cost = b->costs.traversal + b->costs.intersect * (area[0] + area[1]) / area[2];
+        if (b->costs.intersect * 2.0 <= cost)
             return false;
         part->mid = begin + 1;
         write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
@@ -398,9 +399,9 @@ static bool split_small_node(const Builder *b, uint32_t begin, uint32_t end, con
         }
     }
     SweepResult sweep = sweep_three_axes(sorted, count, (int)n, unit);
-    double cost = BVH_COST_TRAVERSAL +
-                  BVH_COST_INTERSECT * sweep.sum / box_half_area_in(box, unit);
-    if (sweep.axis < 0 || (n <= BVH_MAX_LEAF_SIZE && BVH_COST_INTERSECT * (double)n <= cost)) {
+    double cost = b->costs.traversal +
+                  b->costs.intersect * sweep.sum / box_half_area_in(box, unit);
+    if (sweep.axis < 0 || (n <= BVH_MAX_LEAF_SIZE && b->costs.intersect * (double)n <= cost)) {
         if (n <= BVH_MAX_LEAF_SIZE)
             return false;
         sweep = (SweepResult){0.0f, 0, (int)n / 2}; /* no split compares: halve it */
@@ -525,7 +526,7 @@ static Split find_full_sweep_split(Builder *b, uint32_t begin, uint32_t end, con
     }
     if (best.axis >= 0 && best.axis != 2)
         sort_by_centroid(b, begin, end, best.axis);
-    best.cost = BVH_COST_TRAVERSAL + BVH_COST_INTERSECT * best_sum / box_half_area(box);
+    best.cost = b->costs.traversal + b->costs.intersect * best_sum / box_half_area(box);
     return best;
 }
 
@@ -550,7 +551,7 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *bo
         Split split = b->full_sweep ? find_full_sweep_split(b, begin, end, box)
                                     : find_binned_split(b, begin, end, box, centroids);
         if (split.axis >= 0) {
-            if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_INTERSECT * (double)n <= split.cost)
+            if (n <= BVH_MAX_LEAF_SIZE && b->costs.intersect * (double)n <= split.cost)
                 return leaf;
             if (b->full_sweep) {
                 *part = partition_at(b, begin, split.mid, end);
@@ -593,10 +594,10 @@ static ChildRef build_subtree(Builder *b, uint32_t begin, uint32_t end, const Bo
 {
     Partition part;
     if (!choose_split(b, begin, end, box, centroids, depth, &part)) {
-        b->cost_sum += BVH_COST_INTERSECT * (end - begin) * box_half_area(box);
+        b->cost_sum += b->costs.intersect * (end - begin) * box_half_area(box);
         return (ChildRef){~begin, end - begin};
     }
-    b->cost_sum += BVH_COST_TRAVERSAL * box_half_area(box);
+    b->cost_sum += b->costs.traversal * box_half_area(box);
     uint32_t index = b->num_nodes++; /* pre-order: the left subtree follows */
     ChildRef left = build_subtree(b, begin, part.mid, &part.left_box, &part.left_centroids, depth + 1);
     ChildRef right = build_subtree(b, part.mid, end, &part.right_box, &part.right_centroids, depth + 1);
@@ -648,7 +649,7 @@ static void *alloc_array(uint32_t count, size_t size)
 }
 
 static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
-                  bool full_sweep)
+                  bool full_sweep, BvhCosts costs)
 {
     memset(bvh, 0, sizeof *bvh);
     /* Leaves hold ~first in an int lane, and build records a biased index: both fit. */
@@ -656,6 +657,7 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
         die("BVH: %u triangles is more than the %u a BVH can index", n, PRIM_INDEX_LIMIT);
     Builder b = {0};
     b.full_sweep = full_sweep;
+    b.costs = costs;
     b.prims = alloc_array(n, sizeof *b.prims);
     b.scratch = full_sweep ? malloc((n ? n : 1) * sizeof *b.scratch) : NULL;
     /* A binary tree over n >= 1 leaves has n - 1 inner nodes; one more when the root is a leaf. */
@@ -671,7 +673,7 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
         /* The whole tree is one leaf: give it a root node with an empty right child, whose
          * inverted infinite box every ray misses. */
         Box nothing = empty_box();
-        b.cost_sum += BVH_COST_TRAVERSAL * box_half_area(&box);
+        b.cost_sum += b.costs.traversal * box_half_area(&box);
         set_child(&b.nodes[0].lmin, &b.nodes[0].lmax, &box, root);
         set_child(&b.nodes[0].rmin, &b.nodes[0].rmax, &nothing, (ChildRef){~0u, 0});
         b.num_nodes = 1;
@@ -699,12 +701,18 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
 
 void bvh_build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n)
 {
-    build(bvh, positions, triangles, n, false);
+    build(bvh, positions, triangles, n, false, BVH_COSTS_DEFAULT);
+}
+
+void bvh_build_with_costs(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
+                          BvhCosts costs)
+{
+    build(bvh, positions, triangles, n, false, costs);
 }
 
 void bvh_build_full_sweep(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n)
 {
-    build(bvh, positions, triangles, n, true);
+    build(bvh, positions, triangles, n, true, BVH_COSTS_DEFAULT);
 }
 
 void bvh_free(Bvh *bvh)

@@ -24,6 +24,12 @@
 #define BVH_COST_INTERSECT 1.0f
 #endif
 
+/* SAH costs; bvh_build uses BVH_COSTS_DEFAULT, the 2-wide layout's (bvh_wide.h has the others). */
+typedef struct {
+    float traversal, intersect;
+} BvhCosts;
+#define BVH_COSTS_DEFAULT ((BvhCosts){BVH_COST_TRAVERSAL, BVH_COST_INTERSECT})
+
 typedef struct {
     BvhNode *nodes;     /* nodes[0] is the root */
     uint32_t num_nodes;
@@ -34,6 +40,9 @@ typedef struct {
 
 /* Builds over triangles[0..n) with corners in positions. Never fails on valid input (n >= 1). */
 void bvh_build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n);
+/* The same with other SAH costs (sah_cost is then in those units). */
+void bvh_build_with_costs(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
+                          BvhCosts costs);
 /* Reference for tests and benchmarks: the same tree rules, but every split position between
  * sorted centroids is evaluated (O(n log^2 n), slow). Compare sah_cost with bvh_build's. */
 void bvh_build_full_sweep(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n);

@@ -198,3 +198,14 @@ void bvh_layout_free(BvhLayout *layout)
     free(layout->owned);
     memset(layout, 0, sizeof *layout);
 }
+
+BvhCosts bvh_costs_for_width(int width)
+{
+    return width == 2 ? BVH_COSTS_DEFAULT : (BvhCosts){BVH_COST_TRAVERSAL, BVH_WIDE_COST_INTERSECT};
+}
+
+void bvh_build_for_width(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
+                         int width)
+{
+    bvh_build_with_costs(bvh, positions, triangles, n, bvh_costs_for_width(width));
+}

@@ -5,6 +5,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "bvh_wide.h"
+
 static double seconds_now(void)
 {
     struct timespec ts;
@@ -48,7 +50,8 @@ bool session_open(Session *s, const Options *o, Error *err)
         return false;
     }
     double t1 = seconds_now();
-    bvh_build(&s->bvh, s->scene.data.positions, s->scene.data.triangles, s->scene.data.num_triangles);
+    bvh_build_for_width(&s->bvh, s->scene.data.positions, s->scene.data.triangles,
+                        s->scene.data.num_triangles, s->dev.bvh_width);
     s->bvh_seconds = seconds_now() - t1;
     if (!scene_buffers_upload(&s->dev, &s->scene.data, &s->bvh, &s->buffers, err)) {
         session_close(s);

@@ -9,6 +9,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bvh_wide.h"
+
 bool assets_available(void)
 {
     struct stat st;
@@ -114,7 +116,8 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
         f->scene.desc.width = width;
     if (height)
         f->scene.desc.height = height;
-    bvh_build(&f->bvh, f->scene.data.positions, f->scene.data.triangles, f->scene.data.num_triangles);
+    bvh_build_for_width(&f->bvh, f->scene.data.positions, f->scene.data.triangles,
+                        f->scene.data.num_triangles, f->dev->bvh_width);
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
 }
 

@@ -29,6 +29,7 @@ typedef struct {
     int max_depth;        /* deepest inner node, root = 0 */
     double cost_sum;
     uint32_t errors;
+    BvhCosts costs;       /* the SAH costs the tree was built with */
 } TreeCheck;
 
 static bool box_contains(const float lo[3], const float hi[3], const float4 *p)
@@ -80,7 +81,7 @@ static void check_child(TreeCheck *check, uint32_t parent, const float4 *lo4, co
             check_error(check, "leaf range", parent);
             return;
         }
-        check->cost_sum += BVH_COST_INTERSECT * (double)count * half_area(lo, hi);
+        check->cost_sum += check->costs.intersect * (double)count * half_area(lo, hi);
         for (uint32_t i = first; i < first + count; i++) {
             check->leaf_hits[i]++;
             const BvhTriangle *t = &bvh->tris[i];
@@ -102,7 +103,7 @@ static void check_child(TreeCheck *check, uint32_t parent, const float4 *lo4, co
 static void check_node(TreeCheck *check, uint32_t index, const float lo[3], const float hi[3],
                        int depth)
 {
-    check->cost_sum += BVH_COST_TRAVERSAL * half_area(lo, hi);
+    check->cost_sum += check->costs.traversal * half_area(lo, hi);
     check->max_depth = depth > check->max_depth ? depth : check->max_depth;
     const BvhNode *node = &check->bvh->nodes[index];
     if (!child_box_inside(lo, hi, &node->lmin, &node->lmax) ||
@@ -118,9 +119,9 @@ static void check_node(TreeCheck *check, uint32_t index, const float lo[3], cons
 }
 
 /* Every invariant of a built tree; returns the deepest inner node's depth. */
-static int check_tree(const Bvh *bvh, const Mesh *mesh, const char *name)
+static int check_tree_with_costs(const Bvh *bvh, const Mesh *mesh, const char *name, BvhCosts costs)
 {
-    TreeCheck check = {bvh, mesh, calloc(bvh->num_tris + 1, 4), calloc(bvh->num_nodes, 1), 0, 0, 0};
+    TreeCheck check = {bvh, mesh, calloc(bvh->num_tris + 1, 4), calloc(bvh->num_nodes, 1), 0, 0, 0, costs};
     cr_assert_eq(bvh->num_tris, mesh->num_triangles, "%s: triangle count", name);
     cr_assert_geq(bvh->num_nodes, 1u);
     /* The root is checked as the child of a virtual parent whose box is the mesh bounds. */
@@ -158,6 +159,11 @@ static int check_tree(const Bvh *bvh, const Mesh *mesh, const char *name)
     free(check.node_seen);
     free(original_seen);
     return check.max_depth;
+}
+
+static int check_tree(const Bvh *bvh, const Mesh *mesh, const char *name)
+{
+    return check_tree_with_costs(bvh, mesh, name, BVH_COSTS_DEFAULT);
 }
 
 static int build_and_check(const Mesh *mesh, const char *name)
@@ -273,7 +279,7 @@ static TraceScene scene_create(Device *dev, Mesh mesh)
 {
     TraceScene scene = {dev, mesh, {0}, NULL, NULL, 0, NULL, {0}, {0}};
     Error err = {0};
-    bvh_build(&scene.bvh, mesh.positions, mesh.triangles, mesh.num_triangles);
+    bvh_build_for_width(&scene.bvh, mesh.positions, mesh.triangles, mesh.num_triangles, dev->bvh_width);
     mesh_bounds(&mesh, scene.lo, scene.hi);
     BvhLayout layout;
     bvh_layout(&layout, &scene.bvh, dev->bvh_width);
@@ -613,7 +619,7 @@ static void check_mesh_against_brute_force(Mesh mesh, const char *name, uint64_t
 {
     Device *dev = test_device();
     TraceScene scene = scene_create(dev, mesh);
-    check_tree(&scene.bvh, &scene.mesh, name);
+    check_tree_with_costs(&scene.bvh, &scene.mesh, name, bvh_costs_for_width(dev->bvh_width));
     Ray *rays = random_rays(&scene, RAYS_PER_MESH, seed);
     uint32_t num_hits = check_against_brute_force(&scene, rays, RAYS_PER_MESH, name);
     /* Most rays are aimed into the bounds: a test where nothing hits would prove little. */

@@ -278,7 +278,7 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
         g.persistent_items = (size_t)dev->compute_units * (size_t)atoi(persistent);
     }
     Bvh bvh;
-    bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
+    bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, dev->bvh_width);
     BvhLayout layout;
     bvh_layout(&layout, &bvh, dev->bvh_width);
     g.nodes = upload(dev, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes);
