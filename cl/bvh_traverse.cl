@@ -70,7 +70,7 @@ inline float box_slack_of(float3 lo, float3 hi, float3 origin, WatertightRay tra
     return BOX_SLACK_ULPS * FLT_EPSILON * fmax(reach.x, fmax(reach.y, reach.z)) * fabs(tray.shear.z);
 }
 
-#if BVH_WIDTH == 2 /* else cl/bvh_traverse_wide.cl */
+#if BVH_WIDTH == 2 /* else cl/bvh_traverse_wide.cl; trace_closest and trace_any follow it */
 inline float box_slack(const global BvhNode *root, float3 origin, WatertightRay tray)
 {
     float3 lo = fmin(xyz(root->lmin), xyz(root->rmin));
@@ -189,17 +189,4 @@ inline Hit trace_brute_force(const global BvhTriangle *tris, uint num_tris, floa
     return hit;
 }
 
-Hit trace_closest(const global BvhNode *nodes, const global BvhTriangle *tris, uint num_tris,
-                  float3 origin, float3 dir, float tmin, float tmax)
-{
-    (void)num_tris;
-    return trace_bvh(nodes, tris, origin, dir, tmin, tmax, false);
-}
-
-bool trace_any(const global BvhNode *nodes, const global BvhTriangle *tris, uint num_tris,
-               float3 origin, float3 dir, float tmin, float tmax)
-{
-    (void)num_tris;
-    return trace_bvh(nodes, tris, origin, dir, tmin, tmax, true).prim != HIT_NONE;
-}
 #endif /* BVH_WIDTH == 2 */

@@ -170,7 +170,7 @@ inline bool is_leaf_ref(uint ref) { return (int)ref < 0; }
 /* The walk: the nearest child that the ray meets is visited next and the others are pushed with
  * their entry distances, farther ones deeper, so pops come nearest first; a popped entry that now
  * lies behind the closest hit is skipped. With any_hit it returns at the first hit, unsorted. */
-inline Hit trace_wide(const global TraversalNode *nodes, const global TraversalPrim *packs,
+inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPrim *packs,
                       float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
 {
     WideRay bray = wide_ray(origin, dir);
@@ -243,18 +243,20 @@ inline Hit trace_brute_force(const global TraversalPrim *packs, uint num_packs, 
     return hit;
 }
 
-Hit trace_closest(const global TraversalNode *nodes, const global TraversalPrim *packs,
-                  uint num_packs, float3 origin, float3 dir, float tmin, float tmax)
+#endif /* BVH_WIDTH != 2 */
+
+/* The queries every stage calls, over whichever layout BVH_WIDTH selected (trace_bvh is the 2-wide
+ * walk of bvh_traverse.cl or the wide one above). num_prims is for the brute-force ablation only. */
+Hit trace_closest(const global TraversalNode *nodes, const global TraversalPrim *prims,
+                  uint num_prims, float3 origin, float3 dir, float tmin, float tmax)
 {
-    (void)num_packs;
-    return trace_wide(nodes, packs, origin, dir, tmin, tmax, false);
+    (void)num_prims;
+    return trace_bvh(nodes, prims, origin, dir, tmin, tmax, false);
 }
 
-bool trace_any(const global TraversalNode *nodes, const global TraversalPrim *packs, uint num_packs,
+bool trace_any(const global TraversalNode *nodes, const global TraversalPrim *prims, uint num_prims,
                float3 origin, float3 dir, float tmin, float tmax)
 {
-    (void)num_packs;
-    return trace_wide(nodes, packs, origin, dir, tmin, tmax, true).prim != HIT_NONE;
+    (void)num_prims;
+    return trace_bvh(nodes, prims, origin, dir, tmin, tmax, true).prim != HIT_NONE;
 }
-
-#endif /* BVH_WIDTH != 2 */
