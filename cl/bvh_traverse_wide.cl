@@ -204,7 +204,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
                     }
                     /* Insertion among this node's pushes: nearest on top. */
                     uint j = stack_size;
-                    if (j == BVH_WIDE_STACK_SIZE) /* never: bvh_widen bounds the stack */
+                    if (j == BVH_WIDE_STACK_SIZE) /* never: bvh_layout bounds the stack */
                         break;
                     stack_size++;
                     if (!any_hit)

@@ -78,7 +78,7 @@ typedef struct {
     uint8 prim;
 } TrianglePack8;
 /* The wide traversal's stack: each level of the wide tree pushes at most width - 1 children; the
- * collapse (bvh_widen) checks that no path needs more. */
+ * collapse (bvh_layout) checks that no path needs more. */
 #define BVH_WIDE_STACK_SIZE 192
 
 /* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device.c). */

@@ -299,7 +299,6 @@ static void store_in_cache(Device *dev, uint64_t key)
 
 bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
 {
-    choose_build_options(dev); /* bvh_width may have changed since device_open */
     char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
     if (!source)
         die("out of memory");

@@ -23,7 +23,7 @@ typedef struct {
     cl_uint compute_units;
     bool is_nvidia;
     int bvh_width;       /* BVH layout the kernels walk (bvh_wide.h): 2 on GPUs, 8 on CPUs, or
-                          * PT_BVH_WIDTH; may be changed between device_open and device_build */
+                          * PT_BVH_WIDTH */
     char build_options[256]; /* see device_build_options */
     int platform_index, device_index;
     char name[256];
@@ -43,7 +43,7 @@ bool device_list(FILE *out, Error *err);
 bool device_open(Device *dev, const char *spec, Error *err);
 
 /* Builds the program from the embedded cl/ sources followed by extra_source (may be NULL; tests add
- * their kernels this way), for dev->bvh_width. On failure prints the full build log and returns
+ * their kernels this way). On failure prints the full build log and returns
  * ERR_KERNEL_BUILD. */
 bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err);
 

@@ -695,6 +695,151 @@ Test(bvh, matches_brute_force_on_skull) { check_asset_against_brute_force("skull
 Test(bvh, matches_brute_force_on_cornell_original) { check_asset_against_brute_force("cornell-box/CornellBox-Original.obj", 14); }
 Test(bvh, matches_brute_force_on_cornell_sphere) { check_asset_against_brute_force("cornell-box/CornellBox-Sphere.obj", 15); }
 
+/* ---- Wide layouts (bvh_wide.c) ---------------------------------------------------------------- */
+
+typedef struct {
+    const BvhLayout *layout;
+    const Mesh *mesh;
+    uint32_t *tri_seen;   /* per original triangle: in how many leaves (padding lanes not counted) */
+    uint8_t *node_seen;
+    uint32_t max_stack;   /* the deepest stack a walk can fill, recomputed */
+    uint32_t errors;
+} WideCheck;
+
+static void wide_error(WideCheck *c, const char *what, uint32_t index)
+{
+    if (c->errors++ < 5)
+        cr_log_error("%d-wide: %s at %u", c->layout->width, what, index);
+}
+
+static const float *wide_rows(const BvhLayout *l, uint32_t node)
+{
+    return (const float *)((const uint8_t *)l->nodes + (size_t)node * l->node_size);
+}
+
+static const float *pack_rows(const BvhLayout *l, uint32_t pack)
+{
+    return (const float *)((const uint8_t *)l->prims + (size_t)pack * l->prim_size);
+}
+
+/* A leaf's packs: original indices valid, corners inside the lane's box, padding lanes repeat the
+ * lane before them. */
+static void check_wide_leaf(WideCheck *c, uint32_t ref, const float lo[3], const float hi[3])
+{
+    int w = c->layout->width;
+    uint32_t code = ~ref, first = code >> BVH_WIDE_LEAF_PACK_BITS;
+    uint32_t count = (code & ((1u << BVH_WIDE_LEAF_PACK_BITS) - 1u)) + 1u;
+    for (uint32_t p = first; p < first + count; p++) {
+        if (p >= c->layout->num_prims) {
+            wide_error(c, "pack index out of range", p);
+            return;
+        }
+        const float *rows = pack_rows(c->layout, p);
+        const uint32_t *prim = (const uint32_t *)(rows + 9 * w);
+        for (int lane = 0; lane < w; lane++) {
+            if (prim[lane] >= c->mesh->num_triangles) {
+                wide_error(c, "pack lane holds no triangle", p);
+                continue;
+            }
+            bool padding = lane > 0 && prim[lane] == prim[lane - 1];
+            if (!padding)
+                c->tri_seen[prim[lane]]++;
+            for (int corner = 0; corner < 3; corner++)
+                for (int k = 0; k < 3; k++) {
+                    float x = rows[(3 * corner + k) * w + lane];
+                    if (!(x >= lo[k] && x <= hi[k]))
+                        wide_error(c, "triangle outside its leaf's box", p);
+                }
+        }
+    }
+}
+
+/* A node's used lanes come first and lie in the parent's box; pushes along the path are counted as
+ * the traversal makes them (all hit children but the nearest). */
+static void check_wide_node(WideCheck *c, uint32_t node, const float lo[3], const float hi[3],
+                            uint32_t stacked)
+{
+    if (node >= c->layout->num_nodes || c->node_seen[node]++) {
+        wide_error(c, "node out of range or shared", node);
+        return;
+    }
+    int w = c->layout->width;
+    const float *rows = wide_rows(c->layout, node);
+    const uint32_t *child = (const uint32_t *)(rows + 6 * w);
+    int used = 0;
+    for (int lane = 0; lane < w; lane++) {
+        bool empty = rows[lane] > rows[3 * w + lane];
+        if (empty && (child[lane] != 0 || rows[lane] != INFINITY))
+            wide_error(c, "unused lane not marked empty", node);
+        if (!empty && used++ != lane)
+            wide_error(c, "used lane after an unused one", node);
+    }
+    uint32_t pushes = used > 0 ? (uint32_t)used - 1 : 0;
+    if (stacked + pushes > c->max_stack)
+        c->max_stack = stacked + pushes;
+    for (int lane = 0; lane < used; lane++) {
+        float child_lo[3], child_hi[3];
+        for (int k = 0; k < 3; k++) {
+            child_lo[k] = rows[k * w + lane];
+            child_hi[k] = rows[(3 + k) * w + lane];
+            if (!(child_lo[k] >= lo[k] && child_hi[k] <= hi[k]))
+                wide_error(c, "child box outside its parent's", node);
+        }
+        if ((int32_t)child[lane] < 0)
+            check_wide_leaf(c, child[lane], child_lo, child_hi);
+        else
+            check_wide_node(c, child[lane], child_lo, child_hi, stacked + pushes);
+    }
+}
+
+/* Every invariant of the wide layout of mesh's tree; returns its stack need. */
+static uint32_t check_wide_layout(const Mesh *mesh, int width, const char *name)
+{
+    Bvh bvh;
+    bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, width);
+    BvhLayout layout;
+    bvh_layout(&layout, &bvh, width);
+    cr_assert_eq(layout.width, width);
+    cr_assert_eq(layout.node_size, width == 4 ? sizeof(BvhNode4) : sizeof(BvhNode8));
+    WideCheck c = {&layout, mesh, calloc(mesh->num_triangles + 1, 4), calloc(layout.num_nodes, 1), 0, 0};
+    float lo[3], hi[3];
+    mesh_bounds(mesh, lo, hi);
+    check_wide_node(&c, 0, lo, hi, 0);
+    for (uint32_t i = 0; i < layout.num_nodes; i++)
+        if (c.node_seen[i] != 1)
+            wide_error(&c, "node unreachable or shared", i);
+    for (uint32_t i = 0; i < mesh->num_triangles; i++)
+        if (c.tri_seen[i] != 1)
+            wide_error(&c, "triangle not in exactly one leaf", i);
+    cr_expect_eq(c.errors, 0, "%s: %u invariant violations in the %d-wide layout", name, c.errors, width);
+    cr_expect_eq(c.max_stack, layout.max_stack, "%s: stack need %u, layout reports %u", name,
+                 c.max_stack, layout.max_stack);
+    cr_expect_leq(c.max_stack, BVH_WIDE_STACK_SIZE, "%s: %d-wide stack need %u", name, width, c.max_stack);
+    free(c.tri_seen);
+    free(c.node_seen);
+    bvh_layout_free(&layout);
+    bvh_free(&bvh);
+    return c.max_stack;
+}
+
+Test(bvh, wide_layout_invariants_hold)
+{
+    struct {
+        const char *name;
+        Mesh mesh;
+    } cases[] = {{"icosphere", mesh_icosphere(4)}, {"torus", mesh_torus(30000)},
+                 {"soup", mesh_soup(5000, 7)},     {"one", mesh_soup(1, 1)},
+                 {"nine", mesh_soup(9, 3)},        {"copies", mesh_copies(5000)},
+                 {"empty", mesh_soup(0, 1)},       {"axis chains", mesh_axis_chains(1280)}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        for (int width = 4; width <= 8; width += 4) {
+            uint32_t stack = check_wide_layout(&cases[i].mesh, width, cases[i].name);
+            cr_log_info("%s, %d-wide: stack need %u", cases[i].name, width, stack);
+        }
+        mesh_free(&cases[i].mesh);
+    }
+}
+
 /* ---- Watertightness, axis-parallel rays and ray offsets ------------------------------------ */
 
 /* Rays aimed exactly at every vertex and edge midpoint of a closed mesh around the origin: from
