@@ -90,6 +90,7 @@ inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint coun
 {
     bool found = false;
     for (uint i = first; i < first + count; i++) {
+        COUNT_STEPS(*hit, 0u, 1u);
         float t, u, v;
         if (intersect_triangle_watertight(ray, xyz(tris[i].v0), xyz(tris[i].v1), xyz(tris[i].v2),
                                           tmin, hit->t, &t, &u, &v)) {
@@ -133,51 +134,82 @@ inline bool visit_child(const global BvhTriangle *tris, float4 lo, float4 hi, fl
     return false;
 }
 
+/* A walk in progress, split into steps so that a kernel can start a new ray in a SIMD lane whose
+ * ray is done while the other lanes go on (bvh_test.cl's dynamic kernel); trace_bvh runs one walk
+ * to the end. The stack stays with the caller: OpenCL C 1.2 has no pointers inside private
+ * structs that the compiler keeps in registers. */
+typedef struct {
+    BoxRay box;
+    WatertightRay tri;
+    Walk walk;
+    float tmin, box_tmin;
+    uint node;
+} Traversal;
+
+inline void traversal_start(Traversal *tr, const global BvhNode *nodes, float3 origin, float3 dir,
+                            float tmin, float tmax)
+{
+    tr->box = box_ray(origin, dir);
+    tr->tri = watertight_ray(origin, dir);
+    Walk walk = {{tmax, 0.0f, 0.0f, HIT_NONE}, 0, 0, box_slack(nodes, origin, tr->tri)};
+    tr->walk = walk;
+    tr->tmin = tmin;
+    tr->box_tmin = tmin - walk.slack;
+    tr->node = 0;
+}
+
+/* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
+ * at the first hit found, otherwise when no node is left. */
+inline bool traversal_step(Traversal *tr, const global BvhNode *nodes, const global BvhTriangle *tris,
+                           bool any_hit, uint *stack)
+{
+    COUNT_STEPS(tr->walk.hit, 1u, 0u);
+    float4 near_lo = nodes[tr->node].lmin, near_hi = nodes[tr->node].lmax;
+    float4 far_lo = nodes[tr->node].rmin, far_hi = nodes[tr->node].rmax;
+    float t_near, t_far;
+    float box_tmax = tr->walk.hit.t + tr->walk.slack;
+    bool hit_near = box_entry(tr->box, near_lo, near_hi, tr->box_tmin, box_tmax, &t_near);
+    bool hit_far = box_entry(tr->box, far_lo, far_hi, tr->box_tmin, box_tmax, &t_far);
+    /* Nearer child first: it is the more likely to shorten hit.t for the other. */
+    if (hit_far && (!hit_near || t_far < t_near)) {
+        float4 lo = near_lo;
+        float4 hi = near_hi;
+        float t = t_near;
+        near_lo = far_lo;
+        near_hi = far_hi;
+        t_near = t_far;
+        far_lo = lo;
+        far_hi = hi;
+        t_far = t;
+        hit_far = hit_near;
+        hit_near = true;
+    }
+    tr->walk.next = 0;
+    if (hit_near &&
+        visit_child(tris, near_lo, near_hi, t_near, tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+        return true;
+    if (hit_far &&
+        visit_child(tris, far_lo, far_hi, t_far, tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+        return true;
+    if (tr->walk.next == 0) {
+        if (tr->walk.stack_size == 0)
+            return true;
+        tr->walk.next = stack[--tr->walk.stack_size];
+    }
+    tr->node = tr->walk.next;
+    return false;
+}
+
 /* The shared walk: with any_hit it returns at the first hit found, otherwise the closest. */
 inline Hit trace_bvh(const global BvhNode *nodes, const global BvhTriangle *tris, float3 origin,
                      float3 dir, float tmin, float tmax, bool any_hit)
 {
-    BoxRay bray = box_ray(origin, dir);
-    WatertightRay tray = watertight_ray(origin, dir);
-    Walk walk = {{tmax, 0.0f, 0.0f, HIT_NONE}, 0, 0, box_slack(nodes, origin, tray)};
-    float box_tmin = tmin - walk.slack;
+    Traversal tr;
     uint stack[BVH_STACK_SIZE];
-    uint node_index = 0;
-    for (;;) {
-        float4 near_lo = nodes[node_index].lmin, near_hi = nodes[node_index].lmax;
-        float4 far_lo = nodes[node_index].rmin, far_hi = nodes[node_index].rmax;
-        float t_near, t_far;
-        float box_tmax = walk.hit.t + walk.slack;
-        bool hit_near = box_entry(bray, near_lo, near_hi, box_tmin, box_tmax, &t_near);
-        bool hit_far = box_entry(bray, far_lo, far_hi, box_tmin, box_tmax, &t_far);
-        /* Nearer child first: it is the more likely to shorten hit.t for the other. */
-        if (hit_far && (!hit_near || t_far < t_near)) {
-            float4 lo = near_lo;
-            float4 hi = near_hi;
-            float t = t_near;
-            near_lo = far_lo;
-            near_hi = far_hi;
-            t_near = t_far;
-            far_lo = lo;
-            far_hi = hi;
-            t_far = t;
-            hit_far = hit_near;
-            hit_near = true;
-        }
-        walk.next = 0;
-        if (hit_near &&
-            visit_child(tris, near_lo, near_hi, t_near, tray, tmin, any_hit, &walk, stack))
-            return walk.hit;
-        if (hit_far && visit_child(tris, far_lo, far_hi, t_far, tray, tmin, any_hit, &walk, stack))
-            return walk.hit;
-        if (walk.next == 0) {
-            if (walk.stack_size == 0)
-                break;
-            walk.next = stack[--walk.stack_size];
-        }
-        node_index = walk.next;
-    }
-    return walk.hit;
+    traversal_start(&tr, nodes, origin, dir, tmin, tmax);
+    while (!traversal_step(&tr, nodes, tris, any_hit, stack))
+        ;
+    return tr.walk.hit;
 }
 
 /* Every triangle, no BVH: the baseline of the brute-force ablation (RENDER_BRUTE_FORCE). */

@@ -103,9 +103,23 @@ inline floatW difference_of_products_w(floatW a, floatW b, floatW c, floatW d)
     return fma(a, b, -cd) + cd_error;
 }
 
+/* The pack test's per-ray constants: watertight_ray's with the origin permuted once per ray, where
+ * the scalar test permutes (vertex - origin) per vertex; the same values either way. */
+typedef struct {
+    float3 origin; /* permuted */
+    float3 shear;
+    int axis_z;
+} PackRay;
+
+inline PackRay pack_ray(WatertightRay ray)
+{
+    PackRay pray = {permute_axes(ray.origin, ray.axis_z), ray.shear, ray.axis_z};
+    return pray;
+}
+
 /* intersect_triangle_watertight on every lane of a pack; the nearest lane that hits within
  * [tmin, hit->t) replaces *hit (with any_hit, the first one). True when one did. */
-PT_INLINE bool intersect_pack(const global TraversalPrim *pack, WatertightRay ray, float tmin,
+PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, float tmin,
                            bool any_hit, Hit *hit)
 {
     const global floatW *v = pack->v;
@@ -149,19 +163,21 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, WatertightRay ra
 }
 
 /* A leaf reference ~(first_pack << BVH_WIDE_LEAF_PACK_BITS | (pack_count - 1)). */
-PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, WatertightRay ray,
+PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, PackRay ray,
                                 float tmin, bool any_hit, Hit *hit)
 {
     uint code = ~ref;
     uint first = code >> BVH_WIDE_LEAF_PACK_BITS;
     uint last = first + (code & ((1u << BVH_WIDE_LEAF_PACK_BITS) - 1u));
     bool found = false;
-    for (uint p = first; p <= last; p++)
+    for (uint p = first; p <= last; p++) {
+        COUNT_STEPS(*hit, 0u, 1u);
         if (intersect_pack(&packs[p], ray, tmin, any_hit, hit)) {
             found = true;
             if (any_hit)
                 break;
         }
+    }
     return found;
 }
 
@@ -175,6 +191,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
 {
     WideRay bray = wide_ray(origin, dir);
     WatertightRay tray = watertight_ray(origin, dir);
+    PackRay pray = pack_ray(tray);
     Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
     float slack = wide_box_slack(nodes, origin, tray);
     float box_tmin = tmin - slack;
@@ -184,6 +201,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
     uint ref = 0; /* the root, an inner node */
     for (;;) {
         if (!is_leaf_ref(ref)) {
+            COUNT_STEPS(hit, 1u, 0u);
             float t_entry[BVH_WIDTH];
             uint bits = wide_box_hits(&nodes[ref], bray, box_tmin, hit.t + slack, t_entry);
             if (bits != 0u) {
@@ -218,7 +236,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
                 ref = near_ref;
                 continue;
             }
-        } else if (intersect_wide_leaf(packs, ref, tray, tmin, any_hit, &hit) && any_hit) {
+        } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit) && any_hit) {
             return hit;
         }
         /* Pop the nearest entry that may still hold a hit in front of the closest one. */
@@ -236,7 +254,7 @@ inline Hit trace_brute_force(const global TraversalPrim *packs, uint num_packs, 
                              float3 dir, float tmin, float tmax, bool any_hit)
 {
     Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
-    WatertightRay ray = watertight_ray(origin, dir);
+    PackRay ray = pack_ray(watertight_ray(origin, dir));
     for (uint p = 0; p < num_packs; p++)
         if (intersect_pack(&packs[p], ray, tmin, any_hit, &hit) && any_hit)
             break;

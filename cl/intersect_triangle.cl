@@ -8,14 +8,24 @@ typedef struct {
     float t;
     float u, v;
     uint prim; /* original triangle index, HIT_NONE on a miss */
+#ifdef BVH_COUNT_STEPS
+    uint steps; /* node visits + (triangle or pack tests << 16): bench_bvh --count-steps */
+#endif
 } Hit;
 
 #define HIT_NONE 0xffffffffu
 
+/* Work counters for bench_bvh --count-steps, compiled out otherwise. */
+#ifdef BVH_COUNT_STEPS
+#define COUNT_STEPS(hit, nodes, tests) ((hit).steps += (nodes) + ((tests) << 16))
+#else
+#define COUNT_STEPS(hit, nodes, tests) ((void)0)
+#endif
+
 /* Per-ray constants: the axes are permuted so that z is the dominant direction axis, then the
  * shear (x - sx z, y - sy z, sz z) maps the ray onto the +z axis through the origin. */
 typedef struct {
-    float3 origin; /* permuted */
+    float3 origin; /* as given, not permuted: the same registers as the box test's origin */
     float3 shear;  /* sx, sy, sz */
     int axis_z;    /* the dominant axis of the direction */
 } WatertightRay;
@@ -32,7 +42,7 @@ inline WatertightRay watertight_ray(float3 origin, float3 dir)
     WatertightRay ray;
     ray.axis_z = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
     float3 d = permute_axes(dir, ray.axis_z);
-    ray.origin = permute_axes(origin, ray.axis_z);
+    ray.origin = origin;
     ray.shear = (float3)(d.x / d.z, d.y / d.z, 1.0f / d.z);
     return ray;
 }
@@ -52,7 +62,7 @@ inline float difference_of_products(float a, float b, float c, float d)
  * shares the vertex computes the same values, which is what makes the test watertight. */
 inline float3 shear_vertex(WatertightRay ray, float3 vertex)
 {
-    float3 p = permute_axes(vertex, ray.axis_z) - ray.origin;
+    float3 p = permute_axes(vertex - ray.origin, ray.axis_z); /* exact either way round */
     return (float3)(fma(-ray.shear.x, p.z, p.x), fma(-ray.shear.y, p.z, p.y), ray.shear.z * p.z);
 }
 

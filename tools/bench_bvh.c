@@ -2,22 +2,28 @@
 /* bench_bvh: BVH build and traversal throughput.
  *
  *   build/tools/bench_bvh [--device gpu|cpu|P:D] [--spp N] [--reps R] [--assets DIR]
- *                         [--max-triangles N] [--out DIR]
+ *                         [--max-triangles N] [--out DIR] [--order tiles|rows] [--count-steps]
  *
  * Build: bumpy tori of 10^3 .. 2*10^6 triangles and the dragon and skull assets; time on one core
  * (best of several runs, wall clock and thread CPU time), Mtris/s, node count, SAH cost, and for
  * meshes up to 200k triangles the SAH cost of the full-sweep reference build.
- * Trace: primary rays (480x320 pixels x spp jittered samples, camera 1.4 bounding radii from the
- * centre, 50 degrees field of view) and one diffuse bounce from their hits (cosine
- * about the geometric normal, origin from offset_ray_origin), each as closest-hit and any-hit
- * queries, on the dragon, the skull and tori of 10^3 .. 10^6 triangles (the scaling of time per
- * ray). Kernel times come from profiling events: the best of R runs after a warm-up run.
+ * Trace: primary rays (480x320 pixels x spp samples in 4x4-pixel tiles, as tinybvh's speed test
+ * orders them, or scanlines with --order rows; camera 1.4 bounding radii from the centre, 50
+ * degrees field of view) and one diffuse bounce from their hits (cosine about the geometric
+ * normal, origin from offset_ray_origin), each as closest-hit and any-hit queries, on the dragon,
+ * the skull and tori of 10^3 .. 10^6 triangles (the scaling of time per ray). Kernel times come
+ * from profiling events: the best of R runs after a warm-up run.
  * CSVs go to DIR/<device>/bvh_build.csv and bvh_trace.csv (DIR: bench/results); a table is
  * printed. Run from the repository root: the batch kernels are tests/cl/bvh_test.cl.
- * BVH_PERSISTENT=K: closest hits by persistent threads instead (K work items per compute unit
- * taking rays from a global counter; on NVIDIA one atomic per warp via inline PTX). Measured on
- * the H100 at 16 spp: no gain (dragon diffuse 1.93-2.02 G rays/s against 2.02 static, primary
- * within 3%), so the static launch stays the default; kept to reproduce that measurement. */
+ * --count-steps: instead of timing, builds the traversal with its work counters
+ * (-DBVH_COUNT_STEPS) and writes bvh_steps.csv: node visits and triangle (or pack) tests per
+ * closest-hit query, and how full 32-lane warps are while the longest ray of each walks.
+ * Experiments, kept to reproduce their measurements (bench/README.md), closest hits by:
+ * BVH_PERSISTENT=K: persistent threads (K work items per compute unit taking rays from a global
+ * counter; on NVIDIA one atomic per warp via inline PTX); no gain on the H100.
+ * BVH_DYNAMIC=K: dynamic fetch (the same, but a work item starts a new ray as soon as its own is
+ * done, on NVIDIA when DYNAMIC_FETCH_THRESHOLD lanes of the warp are idle); no gain on the H100.
+ * Both are checked bit for bit against the plain kernel's hits. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -41,6 +47,8 @@ typedef struct {
     const char *device, *assets, *out;
     int spp, reps;
     uint32_t max_triangles;
+    bool rows;        /* --order rows: pixels in scanline order instead of 4x4 tiles */
+    bool count_steps; /* --count-steps: node visits and triangle tests per ray instead of timings */
 } Options;
 
 /* Ray as the batch kernels read it: origin with tmin in w, direction with tmax in w. */
@@ -51,14 +59,19 @@ typedef struct {
 static void usage(void)
 {
     fprintf(stderr, "usage: bench_bvh [--device gpu|cpu|P:D] [--spp N] [--reps R] [--assets DIR] "
-                    "[--max-triangles N] [--out DIR]\n");
+                    "[--max-triangles N] [--out DIR] [--order tiles|rows]\n"
+                    "                 [--count-steps]\n");
     exit(2);
 }
 
 static Options parse_options(int argc, char **argv)
 {
-    Options o = {NULL, "../shared/assets", "bench/results", 16, 3, 2000000};
+    Options o = {NULL, "../shared/assets", "bench/results", 16, 3, 2000000, false, false};
     for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--count-steps")) {
+            o.count_steps = true;
+            continue;
+        }
         if (i + 1 >= argc)
             usage();
         const char *key = argv[i], *value = argv[++i];
@@ -74,6 +87,8 @@ static Options parse_options(int argc, char **argv)
             o.reps = atoi(value);
         else if (!strcmp(key, "--max-triangles"))
             o.max_triangles = (uint32_t)strtoul(value, NULL, 10);
+        else if (!strcmp(key, "--order") && (!strcmp(value, "tiles") || !strcmp(value, "rows")))
+            o.rows = !strcmp(value, "rows");
         else
             usage();
     }
@@ -146,6 +161,7 @@ typedef struct {
     cl_mem counter;
     size_t persistent_items;
     uint32_t num_prims; /* entries of tris: triangles, or packs of the wide layout */
+    cl_kernel count;    /* --count-steps: bvh_test_count_steps, else NULL */
 } GpuMesh;
 
 static cl_mem upload(Device *dev, const char *name, size_t size, const void *data)
@@ -160,8 +176,13 @@ static cl_mem upload(Device *dev, const char *name, size_t size, const void *dat
 /* Pinhole camera 1.4 bounding radii (half the bounds' diagonal) from the centre, looking at it
  * from a fixed oblique direction, 50 degrees vertical field of view: the meshes fill most of the
  * frame (a view that fits the whole bounding sphere, 91 degrees, leaves 90% of the rays to
- * miss). Jitter from splitmix64. */
-static Ray *primary_rays(const Mesh *mesh, int spp, uint32_t *count)
+ * miss). Rays are stored as tinybvh's speed test stores them: pixels in 4x4 tiles, each pixel's
+ * samples together, stratified on a k x k grid when spp = k^2 (jittered within each cell, from
+ * splitmix64). A warp so holds two neighbouring pixels and a GPU core's resident rays a compact
+ * patch of the image; rows (--order rows) spread that patch along a scanline. */
+#define RAY_TILE 4
+_Static_assert(IMAGE_WIDTH % RAY_TILE == 0 && IMAGE_HEIGHT % RAY_TILE == 0, "whole tiles");
+static Ray *primary_rays(const Mesh *mesh, int spp, bool rows, uint32_t *count)
 {
     float lo[3], hi[3], center[3], radius = 0.0f;
     mesh_bounds(mesh, lo, hi);
@@ -189,22 +210,33 @@ static Ray *primary_rays(const Mesh *mesh, int spp, uint32_t *count)
     Ray *rays = malloc(n * sizeof *rays);
     if (!rays)
         die("out of memory for %u rays", n);
+    int strata = (int)sqrt((double)spp);
+    if (strata * strata != spp)
+        strata = 1;
     uint64_t rng = 1;
     uint32_t i = 0;
-    for (int y = 0; y < IMAGE_HEIGHT; y++)
-        for (int x = 0; x < IMAGE_WIDTH; x++)
-            for (int s = 0; s < spp; s++, i++) {
-                float sx = (2.0f * (x + mesh_rng_float(&rng)) / IMAGE_WIDTH - 1.0f) * tan_half * aspect;
-                float sy = (1.0f - 2.0f * (y + mesh_rng_float(&rng)) / IMAGE_HEIGHT) * tan_half;
-                float d[3];
-                for (int k = 0; k < 3; k++)
-                    d[k] = forward[k] + sx * right[k] + sy * up[k];
-                float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                float4 origin = {{eye[0], eye[1], eye[2], 0.0f}};
-                float4 dir = {{d[0] / len, d[1] / len, d[2] / len, INFINITY}};
-                rays[i].origin = origin;
-                rays[i].dir = dir;
-            }
+    for (uint32_t pixel = 0; pixel < (uint32_t)IMAGE_WIDTH * IMAGE_HEIGHT; pixel++) {
+        int x = (int)(pixel % IMAGE_WIDTH), y = (int)(pixel / IMAGE_WIDTH);
+        if (!rows) { /* IMAGE_WIDTH and IMAGE_HEIGHT are multiples of RAY_TILE */
+            uint32_t tile = pixel / (RAY_TILE * RAY_TILE), within = pixel % (RAY_TILE * RAY_TILE);
+            x = (int)(tile % (IMAGE_WIDTH / RAY_TILE) * RAY_TILE + within % RAY_TILE);
+            y = (int)(tile / (IMAGE_WIDTH / RAY_TILE) * RAY_TILE + within / RAY_TILE);
+        }
+        for (int s = 0; s < spp; s++, i++) {
+            float jx = ((float)(s % strata) + mesh_rng_float(&rng)) / (float)strata;
+            float jy = ((float)(s / strata % strata) + mesh_rng_float(&rng)) / (float)strata;
+            float sx = (2.0f * (x + jx) / IMAGE_WIDTH - 1.0f) * tan_half * aspect;
+            float sy = (1.0f - 2.0f * (y + jy) / IMAGE_HEIGHT) * tan_half;
+            float d[3];
+            for (int k = 0; k < 3; k++)
+                d[k] = forward[k] + sx * right[k] + sy * up[k];
+            float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            float4 origin = {{eye[0], eye[1], eye[2], 0.0f}};
+            float4 dir = {{d[0] / len, d[1] / len, d[2] / len, INFINITY}};
+            rays[i].origin = origin;
+            rays[i].dir = dir;
+        }
+    }
     *count = n;
     return rays;
 }
@@ -240,11 +272,72 @@ static double time_query(GpuMesh *g, cl_kernel kernel, cl_mem rays, uint32_t n, 
     return best;
 }
 
+/* The persistent and dynamic kernels hand rays to work items in another order, which must not
+ * change any ray's result: they are checked bit for bit against the plain kernel. */
+static void check_same_hits(GpuMesh *g, cl_mem rays, uint32_t n, cl_mem hits)
+{
+    cl_mem plain = upload(g->dev, "plain_hits", n * sizeof(float4), NULL);
+    time_query(g, g->closest, rays, n, plain, 0);
+    float4 *a = malloc(2 * (size_t)n * sizeof *a);
+    if (!a)
+        die("out of memory for %u hits", n);
+    device_read(g->dev, hits, 0, n * sizeof *a, a);
+    device_read(g->dev, plain, 0, n * sizeof *a, a + n);
+    for (uint32_t i = 0; i < n; i++)
+        if (memcmp(&a[i], &a[n + i], sizeof *a))
+            die("ray %u: the persistent or dynamic kernel's hit differs from the plain kernel's", i);
+    free(a);
+    CL_CHECK(clReleaseMemObject(plain));
+}
+
+/* --count-steps: per closest-hit query, node visits and triangle tests (packs on the wide
+ * layouts), their means, and their SIMD efficiency on 32-lane warps: the mean over the mean of
+ * each warp's largest count, i.e. the share of lanes busy while a warp walks as long as its
+ * longest ray (rays in launch order, one per work item). */
+#define STEPS_WARP 32
+static void count_steps(FILE *csv, GpuMesh *g, const char *name, const char *kind, cl_mem rays,
+                        uint32_t n, cl_mem steps)
+{
+    time_query(g, g->count, rays, n, steps, 0);
+    cl_uint *counts = malloc(n * sizeof *counts);
+    if (!counts)
+        die("out of memory for %u counts", n);
+    device_read(g->dev, steps, 0, n * sizeof *counts, counts);
+    double mean[2] = {0, 0}, warp_max[2] = {0, 0};
+    for (uint32_t w = 0; w < n; w += STEPS_WARP)
+        for (int part = 0; part < 2; part++) {
+            uint32_t most = 0;
+            for (uint32_t i = w; i < w + STEPS_WARP && i < n; i++) {
+                uint32_t c = part ? counts[i] >> 16 : counts[i] & 0xffffu;
+                mean[part] += c;
+                most = c > most ? c : most;
+            }
+            warp_max[part] += (double)most * (w + STEPS_WARP <= n ? STEPS_WARP : n - w);
+        }
+    free(counts);
+    for (int part = 0; part < 2; part++) {
+        warp_max[part] /= n;
+        mean[part] /= n;
+    }
+    printf("%-16s %9u %-8s %9u %9.2f %9.2f %6.3f %9.2f %9.2f %6.3f\n", name, g->num_tris, kind, n,
+           mean[0], warp_max[0], mean[0] / warp_max[0], mean[1], warp_max[1], mean[1] / warp_max[1]);
+    fprintf(csv, "%s,%u,%s,%u,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", name, g->num_tris, kind, n, mean[0],
+            warp_max[0], mean[0] / warp_max[0], mean[1], warp_max[1], mean[1] / warp_max[1]);
+    fflush(stdout);
+}
+
 /* Times closest and any hit for one batch; returns the hit fraction and leaves hits in `hits`. */
 static void bench_queries(FILE *csv, GpuMesh *g, const char *name, const char *kind, cl_mem rays,
                           uint32_t n, cl_mem hits, cl_mem occluded, int reps)
 {
+    if (g->count) {
+        time_query(g, g->closest, rays, n, hits, 0); /* the hits the diffuse rays start from */
+        count_steps(csv, g, name, kind, rays, n, occluded);
+        return;
+    }
     double closest_ms = time_query(g, g->persistent ? g->persistent : g->closest, rays, n, hits, reps);
+    if (g->persistent)
+        check_same_hits(g, rays, n, hits);
     double any_ms = time_query(g, g->any, rays, n, occluded, reps);
     cl_uint *flags = malloc(n * sizeof *flags);
     device_read(g->dev, occluded, 0, n * sizeof *flags, flags);
@@ -267,11 +360,15 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
 {
     GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
                  device_kernel(dev, "bvh_test_trace_any"), device_kernel(dev, "bvh_test_bounce_rays"),
-                 NULL, NULL, NULL, mesh->num_triangles, NULL, NULL, 0, 0};
-    const char *persistent = getenv("BVH_PERSISTENT");
+                 NULL, NULL, NULL, mesh->num_triangles, NULL, NULL, 0, 0,
+                 o->count_steps ? device_kernel(dev, "bvh_test_count_steps") : NULL};
+    const char *persistent = getenv("BVH_PERSISTENT"), *dynamic = getenv("BVH_DYNAMIC");
+    if (dynamic && atoi(dynamic) > 0)
+        persistent = dynamic;
     if (persistent && atoi(persistent) > 0) {
         Error err = {0};
-        g.persistent = device_kernel(dev, "bvh_test_trace_closest_persistent");
+        g.persistent = device_kernel(dev, persistent == dynamic ? "bvh_test_trace_closest_dynamic"
+                                                                : "bvh_test_trace_closest_persistent");
         g.counter = device_buffer(dev, "ray_counter", CL_MEM_READ_WRITE, sizeof(cl_uint), NULL, &err);
         if (!g.counter)
             die("%s", err.message);
@@ -294,7 +391,7 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
     free(corners);
 
     uint32_t n;
-    Ray *rays = primary_rays(mesh, o->spp, &n);
+    Ray *rays = primary_rays(mesh, o->spp, o->rows, &n);
     cl_mem ray_buf = upload(dev, "rays", n * sizeof(Ray), rays);
     cl_mem hits = upload(dev, "hits", n * sizeof(float4), NULL);
     cl_mem occluded = upload(dev, "occluded", n * sizeof(cl_uint), NULL);
@@ -368,14 +465,19 @@ int main(int argc, char **argv)
     if (!source || fread(source, 1, (size_t)size, f) != (size_t)size)
         die("cannot read %s", KERNEL_FILE);
     fclose(f);
+    if (o.count_steps) { /* the counters sit in the traversal itself, so they need their own build */
+        size_t used = strlen(dev.build_options);
+        snprintf(dev.build_options + used, sizeof dev.build_options - used, " -DBVH_COUNT_STEPS");
+    }
     if (!device_build(&dev, source, KERNEL_FILE, &err))
         die("%s", err.message);
     free(source);
     char device_folder[256], folder[1024];
     bench_folder_name(dev.name, device_folder, sizeof device_folder);
     snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
-    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, best of %d\n", dev.name,
-           dev.platform_name, dev.driver_version, dev.bvh_width, o.spp, o.reps);
+    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, rays in %s, best of %d\n", dev.name,
+           dev.platform_name, dev.driver_version, dev.bvh_width, o.spp,
+           o.rows ? "scanline order" : "4x4-pixel tiles", o.reps);
 
     const uint32_t sizes[] = {1000, 10000, 100000, 1000000, 2000000};
     const struct {
@@ -393,6 +495,21 @@ int main(int argc, char **argv)
         if (load_asset(&o, assets[i].path, &meshes[count]))
             snprintf(names[count++], sizeof names[0], "%s", assets[i].name);
 
+    if (o.count_steps) {
+        printf("\nsteps per ray      triangles rays          count     nodes  warp max   SIMD     tests  warp max   SIMD\n");
+        FILE *steps_csv = open_csv(folder, "bvh_steps.csv",
+                                   "mesh,triangles,rays,count,nodes,nodes_warp_max,nodes_simd,tests,"
+                                   "tests_warp_max,tests_simd");
+        for (int i = 0; i < count; i++)
+            if (meshes[i].num_triangles <= 1100000)
+                bench_trace(steps_csv, &dev, names[i], &meshes[i], &o);
+        fclose(steps_csv);
+        printf("\nwrote %s/bvh_steps.csv\n", folder);
+        for (int i = 0; i < count; i++)
+            mesh_free(&meshes[i]);
+        device_close(&dev);
+        return 0;
+    }
     printf("\nbuild (one core)  triangles    wall ms  Mtris/s  Mtris/s    nodes       SAH   SAH full  binned vs\n"
            "                                        (wall)    (cpu)                         sweep  full sweep\n");
     FILE *build_csv = open_csv(folder, "bvh_build.csv",

@@ -31,6 +31,21 @@ kernel void bvh_test_trace_any(const global TraversalNode *restrict nodes,
     occluded[i] = trace_any(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w) ? 1u : 0u;
 }
 
+#ifdef BVH_COUNT_STEPS
+/* bench_bvh --count-steps: each closest-hit query's node visits and triangle (or pack) tests. */
+kernel void bvh_test_count_steps(const global TraversalNode *restrict nodes,
+                                 const global TraversalPrim *restrict tris, uint num_tris,
+                                 const global float4 *restrict rays, uint num_rays,
+                                 global uint *restrict steps)
+{
+    uint i = get_global_id(0);
+    if (i >= num_rays)
+        return;
+    float4 origin = rays[2 * i], dir = rays[2 * i + 1];
+    steps[i] = trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w).steps;
+}
+#endif
+
 /* Secondary rays from the closest hits of `rays`, as an integrator makes them: the hit point is
  * interpolated from the barycentrics (as surface_at does), the direction is cosine-distributed
  * about the geometric normal on the side the ray came from (reflect = 1) or the far side
@@ -101,3 +116,54 @@ kernel void bvh_test_trace_closest_persistent(const global TraversalNode *restri
         hits[i] = bvh_test_hit_record(hit);
     }
 }
+
+#if BVH_WIDTH == 2
+/* Dynamic fetch (Aila & Laine 2009, "replacing terminated rays"): persistent work items that start
+ * a new ray once their own is done, one node step at a time, instead of waiting for the slowest
+ * ray of their warp. Diffuse rays differ several-fold in length: on the dragon a warp's longest
+ * walk is about twice its mean (SIMD efficiency 0.48, counted on PoCL). A refetch costs an atomic
+ * and a ray load, so on NVIDIA the idle lanes of a warp wait until DYNAMIC_FETCH_THRESHOLD of them
+ * are idle and fetch together (a warp vote by inline PTX); elsewhere each fetches at once. */
+#ifndef DYNAMIC_FETCH_THRESHOLD
+#define DYNAMIC_FETCH_THRESHOLD 16
+#endif
+#if defined(PT_VENDOR_NVIDIA) && !defined(PT_NO_WARP_ASM)
+inline bool warp_should_fetch(bool idle)
+{
+    uint mask, votes;
+    asm volatile("activemask.b32 %0;" : "=r"(mask));
+    asm volatile("{ .reg .pred p; setp.ne.u32 p, %1, 0; vote.sync.ballot.b32 %0, p, %2; }"
+                 : "=r"(votes)
+                 : "r"((uint)idle), "r"(mask));
+    return popcount(votes) >= DYNAMIC_FETCH_THRESHOLD || votes == mask;
+}
+#else
+inline bool warp_should_fetch(bool idle) { return true; }
+#endif
+
+kernel void bvh_test_trace_closest_dynamic(const global TraversalNode *restrict nodes,
+                                           const global TraversalPrim *restrict tris,
+                                           uint num_tris, const global float4 *restrict rays,
+                                           uint num_rays, global float4 *restrict hits,
+                                           volatile global uint *next)
+{
+    uint stack[BVH_STACK_SIZE];
+    Traversal tr;
+    uint i = 0;
+    bool active = false;
+    for (;;) {
+        if (warp_should_fetch(!active) && !active) {
+            i = next_ray_index(next);
+            if (i >= num_rays)
+                break;
+            float4 origin = rays[2 * i], dir = rays[2 * i + 1];
+            traversal_start(&tr, nodes, xyz(origin), xyz(dir), origin.w, dir.w);
+            active = true;
+        }
+        if (active && traversal_step(&tr, nodes, tris, false, stack)) {
+            hits[i] = bvh_test_hit_record(tr.walk.hit);
+            active = false;
+        }
+    }
+}
+#endif
