@@ -136,8 +136,8 @@ inline bool visit_child(const global BvhTriangle *tris, float4 lo, float4 hi, fl
 
 /* A walk in progress, split into steps so that a kernel can start a new ray in a SIMD lane whose
  * ray is done while the other lanes go on (bvh_test.cl's dynamic kernel); trace_bvh runs one walk
- * to the end. The stack stays with the caller: OpenCL C 1.2 has no pointers inside private
- * structs that the compiler keeps in registers. */
+ * to the end. The stack stays with the caller, so that the struct is a few scalars that the
+ * compiler keeps in registers. */
 typedef struct {
     BoxRay box;
     WatertightRay tri;

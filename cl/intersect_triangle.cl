@@ -9,7 +9,7 @@ typedef struct {
     float u, v;
     uint prim; /* original triangle index, HIT_NONE on a miss */
 #ifdef BVH_COUNT_STEPS
-    uint steps; /* node visits + (triangle or pack tests << 16): bench_bvh --count-steps */
+    uint visits, tests; /* node visits, triangle (or pack) tests: bench_bvh --count-steps */
 #endif
 } Hit;
 
@@ -17,9 +17,9 @@ typedef struct {
 
 /* Work counters for bench_bvh --count-steps, compiled out otherwise. */
 #ifdef BVH_COUNT_STEPS
-#define COUNT_STEPS(hit, nodes, tests) ((hit).steps += (nodes) + ((tests) << 16))
+#define COUNT_STEPS(hit, nodes, triangles) ((hit).visits += (nodes), (hit).tests += (triangles))
 #else
-#define COUNT_STEPS(hit, nodes, tests) ((void)0)
+#define COUNT_STEPS(hit, nodes, triangles) ((void)0)
 #endif
 
 /* Per-ray constants: the axes are permuted so that z is the dominant direction axis, then the

@@ -441,7 +441,10 @@ static bool same_closest(float4 a, float4 b)
 
 /* ---- Host reference: the watertight test of cl/intersect_triangle.cl, operation for operation,
  * over every triangle in file order (C runs this loop some 30 times faster than PoCL). ISO C
- * compiles without fma contraction, so the explicit fmaf calls round exactly as the kernel's. */
+ * compiles without fma contraction, so the explicit fmaf calls round exactly as the kernel's. One
+ * step is written the other way round on purpose: the kernel permutes (vertex - origin), this
+ * subtracts the permuted origin from the permuted vertex; the two are exactly equal, and the
+ * bit-for-bit comparisons below hold the kernel to that. */
 
 typedef struct {
     int axis_z;

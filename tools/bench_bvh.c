@@ -296,24 +296,28 @@ static void check_same_hits(GpuMesh *g, cl_mem rays, uint32_t n, cl_mem hits)
  * longest ray (rays in launch order, one per work item). */
 #define STEPS_WARP 32
 static void count_steps(FILE *csv, GpuMesh *g, const char *name, const char *kind, cl_mem rays,
-                        uint32_t n, cl_mem steps)
+                        uint32_t n)
 {
-    time_query(g, g->count, rays, n, steps, 0);
-    cl_uint *counts = malloc(n * sizeof *counts);
+    cl_mem counts_buf = upload(g->dev, "step_counts", n * sizeof(cl_uint2), NULL);
+    time_query(g, g->count, rays, n, counts_buf, 0);
+    cl_uint2 *counts = malloc(n * sizeof *counts);
     if (!counts)
         die("out of memory for %u counts", n);
-    device_read(g->dev, steps, 0, n * sizeof *counts, counts);
+    device_read(g->dev, counts_buf, 0, n * sizeof *counts, counts);
+    CL_CHECK(clReleaseMemObject(counts_buf));
+    /* part 0: node visits, part 1: triangle (or pack) tests */
     double mean[2] = {0, 0}, warp_max[2] = {0, 0};
-    for (uint32_t w = 0; w < n; w += STEPS_WARP)
+    for (uint32_t w = 0; w < n; w += STEPS_WARP) {
+        uint32_t lanes = n - w < STEPS_WARP ? n - w : STEPS_WARP;
         for (int part = 0; part < 2; part++) {
             uint32_t most = 0;
-            for (uint32_t i = w; i < w + STEPS_WARP && i < n; i++) {
-                uint32_t c = part ? counts[i] >> 16 : counts[i] & 0xffffu;
-                mean[part] += c;
-                most = c > most ? c : most;
+            for (uint32_t i = w; i < w + lanes; i++) {
+                mean[part] += counts[i].s[part];
+                most = counts[i].s[part] > most ? counts[i].s[part] : most;
             }
-            warp_max[part] += (double)most * (w + STEPS_WARP <= n ? STEPS_WARP : n - w);
+            warp_max[part] += (double)most * lanes;
         }
+    }
     free(counts);
     for (int part = 0; part < 2; part++) {
         warp_max[part] /= n;
@@ -332,7 +336,7 @@ static void bench_queries(FILE *csv, GpuMesh *g, const char *name, const char *k
 {
     if (g->count) {
         time_query(g, g->closest, rays, n, hits, 0); /* the hits the diffuse rays start from */
-        count_steps(csv, g, name, kind, rays, n, occluded);
+        count_steps(csv, g, name, kind, rays, n);
         return;
     }
     double closest_ms = time_query(g, g->persistent ? g->persistent : g->closest, rays, n, hits, reps);
@@ -475,9 +479,12 @@ int main(int argc, char **argv)
     char device_folder[256], folder[1024];
     bench_folder_name(dev.name, device_folder, sizeof device_folder);
     snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
-    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, rays in %s, best of %d\n", dev.name,
-           dev.platform_name, dev.driver_version, dev.bvh_width, o.spp,
-           o.rows ? "scanline order" : "4x4-pixel tiles", o.reps);
+    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, rays in %s, ", dev.name, dev.platform_name,
+           dev.driver_version, dev.bvh_width, o.spp, o.rows ? "scanline order" : "4x4-pixel tiles");
+    if (o.count_steps)
+        printf("work counts\n");
+    else
+        printf("best of %d\n", o.reps);
 
     const uint32_t sizes[] = {1000, 10000, 100000, 1000000, 2000000};
     const struct {

@@ -6,17 +6,22 @@
 
 inline float4 bvh_test_hit_record(Hit hit) { return (float4)(hit.t, hit.u, hit.v, as_float(hit.prim)); }
 
+/* The closest hit of ray i of the batch. */
+inline Hit bvh_test_closest(const global TraversalNode *nodes, const global TraversalPrim *tris,
+                            uint num_tris, const global float4 *rays, uint i)
+{
+    float4 origin = rays[2 * i], dir = rays[2 * i + 1];
+    return trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w);
+}
+
 kernel void bvh_test_trace_closest(const global TraversalNode *restrict nodes,
                                    const global TraversalPrim *restrict tris, uint num_tris,
                                    const global float4 *restrict rays, uint num_rays,
                                    global float4 *restrict hits)
 {
     uint i = get_global_id(0);
-    if (i >= num_rays)
-        return;
-    float4 origin = rays[2 * i], dir = rays[2 * i + 1];
-    Hit hit = trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w);
-    hits[i] = bvh_test_hit_record(hit);
+    if (i < num_rays)
+        hits[i] = bvh_test_hit_record(bvh_test_closest(nodes, tris, num_tris, rays, i));
 }
 
 kernel void bvh_test_trace_any(const global TraversalNode *restrict nodes,
@@ -36,13 +41,13 @@ kernel void bvh_test_trace_any(const global TraversalNode *restrict nodes,
 kernel void bvh_test_count_steps(const global TraversalNode *restrict nodes,
                                  const global TraversalPrim *restrict tris, uint num_tris,
                                  const global float4 *restrict rays, uint num_rays,
-                                 global uint *restrict steps)
+                                 global uint2 *restrict counts)
 {
     uint i = get_global_id(0);
-    if (i >= num_rays)
-        return;
-    float4 origin = rays[2 * i], dir = rays[2 * i + 1];
-    steps[i] = trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w).steps;
+    if (i < num_rays) {
+        Hit hit = bvh_test_closest(nodes, tris, num_tris, rays, i);
+        counts[i] = (uint2)(hit.visits, hit.tests);
+    }
 }
 #endif
 
@@ -110,22 +115,20 @@ kernel void bvh_test_trace_closest_persistent(const global TraversalNode *restri
                                               uint num_rays, global float4 *restrict hits,
                                               volatile global uint *next)
 {
-    for (uint i = next_ray_index(next); i < num_rays; i = next_ray_index(next)) {
-        float4 origin = rays[2 * i], dir = rays[2 * i + 1];
-        Hit hit = trace_closest(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w);
-        hits[i] = bvh_test_hit_record(hit);
-    }
+    for (uint i = next_ray_index(next); i < num_rays; i = next_ray_index(next))
+        hits[i] = bvh_test_hit_record(bvh_test_closest(nodes, tris, num_tris, rays, i));
 }
 
 #if BVH_WIDTH == 2
 /* Dynamic fetch (Aila & Laine 2009, "replacing terminated rays"): persistent work items that start
  * a new ray once their own is done, one node step at a time, instead of waiting for the slowest
  * ray of their warp. Diffuse rays differ several-fold in length: on the dragon a warp's longest
- * walk is about twice its mean (SIMD efficiency 0.48, counted on PoCL). A refetch costs an atomic
- * and a ray load, so on NVIDIA the idle lanes of a warp wait until DYNAMIC_FETCH_THRESHOLD of them
- * are idle and fetch together (a warp vote by inline PTX); elsewhere each fetches at once. */
+ * walk is about twice its mean (47% of the lanes busy, bench_bvh --count-steps). A refetch costs an
+ * atomic and a ray load, so on NVIDIA the idle lanes of a warp wait until DYNAMIC_FETCH_THRESHOLD
+ * of them are idle and fetch together (a warp vote by inline PTX); elsewhere each fetches at once.
+ * 24 was the best of 8, 16, 24 and 32 on the H100, and no faster than the plain kernel. */
 #ifndef DYNAMIC_FETCH_THRESHOLD
-#define DYNAMIC_FETCH_THRESHOLD 16
+#define DYNAMIC_FETCH_THRESHOLD 24
 #endif
 #if defined(PT_VENDOR_NVIDIA) && !defined(PT_NO_WARP_ASM)
 inline bool warp_should_fetch(bool idle)
