@@ -14,8 +14,16 @@ typedef struct {
 } BoxRay;
 
 /* 1 + 2 gamma(3) (pbrt-v3, "Robust ray-bounds intersection"): widens the exit distance so that
- * rounding in the slab test never culls a box that the watertight triangle test would hit. */
+ * rounding in the slab test never culls a box that the watertight triangle test would hit. The
+ * quantised test rounds four times per distance (frame origin minus ray origin, times the inverse
+ * direction, the fused step, and the inverse direction itself): 1 + 2 gamma(5). Its rounding that
+ * is not relative to the distance (from the frame's origin to the plane) is at most 2^-14 of a
+ * step, and host/bvh_quantized.c rounds planes outwards by 2^-10 of a step to cover it. */
+#if BVH_QUANTIZED
+#define BOX_EXIT_SCALE 1.0000012f
+#else
 #define BOX_EXIT_SCALE 1.00000036f
+#endif
 
 inline BoxRay box_ray(float3 origin, float3 dir)
 {
@@ -71,6 +79,78 @@ inline float box_slack_of(float3 lo, float3 hi, float3 origin, WatertightRay tra
 }
 
 #if BVH_WIDTH == 2 /* else cl/bvh_traverse_wide.cl; trace_closest and trace_any follow it */
+/* A child reference is an inner node index, or a leaf (sign bit set) whose triangle range is
+ * spelled differently by the two node formats: the float node has ~first in the reference and the
+ * count in a lane of its own (`lane`), the quantised one packs both into the reference. */
+inline bool child_is_leaf(uint ref) { return as_int(ref) < 0; }
+#if BVH_QUANTIZED
+inline uint leaf_first(uint ref, uint lane) { return (ref & ~BVH_QUANTIZED_LEAF) >> BVH_QUANTIZED_COUNT_BITS; }
+inline uint leaf_count(uint ref, uint lane) { return ref & ((1u << BVH_QUANTIZED_COUNT_BITS) - 1u); }
+
+/* The frame of a quantised node, as seen by one ray: the distance to the frame's origin planes
+ * and the distance per step, per axis (plane = origin + q * step, so t = q * per_step + at_origin). */
+typedef struct {
+    float3 at_origin, per_step;
+} QuantizedFrame;
+
+inline float3 frame_origin(uint4 frame)
+{
+    return (float3)(as_float(frame.x & ~0xffu), as_float(frame.y & ~0xffu), as_float(frame.z & ~0xffu));
+}
+inline float3 frame_step(uint4 frame)
+{
+    return (float3)(as_float((frame.x & 0xffu) << 23), as_float((frame.y & 0xffu) << 23),
+                    as_float((frame.z & 0xffu) << 23));
+}
+
+inline float box_slack(const global BvhNodeQuantized *root, float3 origin, WatertightRay tray)
+{
+    float3 lo = frame_origin(root->frame);
+    return box_slack_of(lo, lo + 255.0f * frame_step(root->frame), origin, tray);
+}
+
+inline float quantized_plane(uint word, uint shift) { return (float)((word >> shift) & 0xffu); }
+
+/* box_entry for the child whose plane bytes start at bit `base` of each axis word (0: left, 16:
+ * right). Byte base + 0 is the box's low plane, base + 8 its high one: the entry plane is the
+ * high one where the direction is negative. NaN (a ray in a plane, or 0 steps times an infinite
+ * inverse direction) is dropped as in box_entry: the box is kept, never wrongly culled. */
+inline bool quantized_box_entry(BoxRay ray, QuantizedFrame f, uint3 words, uint base, float tmin,
+                                float tmax, float *t_entry)
+{
+    uint sx = base + ((uint)ray.dir_negative.x & 8u);
+    uint sy = base + ((uint)ray.dir_negative.y & 8u);
+    uint sz = base + ((uint)ray.dir_negative.z & 8u);
+    float t0 = max_into(fma(quantized_plane(words.x, sx), f.per_step.x, f.at_origin.x), tmin);
+    t0 = max_into(fma(quantized_plane(words.y, sy), f.per_step.y, f.at_origin.y), t0);
+    t0 = max_into(fma(quantized_plane(words.z, sz), f.per_step.z, f.at_origin.z), t0);
+    float t1 = min_into(fma(quantized_plane(words.x, sx ^ 8u), f.per_step.x, f.at_origin.x), tmax);
+    t1 = min_into(fma(quantized_plane(words.y, sy ^ 8u), f.per_step.y, f.at_origin.y), t1);
+    t1 = min_into(fma(quantized_plane(words.z, sz ^ 8u), f.per_step.z, f.at_origin.z), t1);
+    *t_entry = t0;
+    return t0 <= t1 * BOX_EXIT_SCALE;
+}
+
+/* Both children of a node: whether the ray meets each box within [tmin, tmax], where it enters,
+ * and the child's reference (lane unused). */
+inline void test_children(const global BvhNodeQuantized *node, BoxRay ray, float tmin, float tmax,
+                          bool hit[2], float t[2], uint ref[2], uint lane[2])
+{
+    uint4 frame = node->frame, refs = node->refs;
+    QuantizedFrame f;
+    f.at_origin = (frame_origin(frame) - ray.origin) * ray.inv_dir;
+    f.per_step = frame_step(frame) * ray.inv_dir;
+    uint3 words = (uint3)(frame.w, refs.x, refs.y);
+    hit[0] = quantized_box_entry(ray, f, words, 0u, tmin, tmax, &t[0]);
+    hit[1] = quantized_box_entry(ray, f, words, 16u, tmin, tmax, &t[1]);
+    ref[0] = refs.z;
+    ref[1] = refs.w;
+    lane[0] = lane[1] = 0u;
+}
+#else
+inline uint leaf_first(uint ref, uint lane) { return ~ref; }
+inline uint leaf_count(uint ref, uint lane) { return lane; }
+
 inline float box_slack(const global BvhNode *root, float3 origin, WatertightRay tray)
 {
     float3 lo = fmin(xyz(root->lmin), xyz(root->rmin));
@@ -78,11 +158,19 @@ inline float box_slack(const global BvhNode *root, float3 origin, WatertightRay 
     return box_slack_of(lo, hi, origin, tray);
 }
 
-/* Leaf children carry ~first_triangle (a negative int) in the box-min w lane and their triangle
- * count in the box-max w lane. */
-inline bool child_is_leaf(float4 lo) { return as_int(lo.w) < 0; }
-inline uint leaf_first(float4 lo) { return ~as_uint(lo.w); }
-inline uint leaf_count(float4 hi) { return as_uint(hi.w); }
+/* The float node: references in the w lanes of the box minima, leaf counts in those of the maxima. */
+inline void test_children(const global BvhNode *node, BoxRay ray, float tmin, float tmax,
+                          bool hit[2], float t[2], uint ref[2], uint lane[2])
+{
+    float4 lmin = node->lmin, lmax = node->lmax, rmin = node->rmin, rmax = node->rmax;
+    hit[0] = box_entry(ray, lmin, lmax, tmin, tmax, &t[0]);
+    hit[1] = box_entry(ray, rmin, rmax, tmin, tmax, &t[1]);
+    ref[0] = as_uint(lmin.w);
+    ref[1] = as_uint(rmin.w);
+    lane[0] = as_uint(lmax.w);
+    lane[1] = as_uint(rmax.w);
+}
+#endif
 
 /* Intersects the leaf's triangles, shrinking hit->t; true when any hit (for early exit). */
 inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint count,
@@ -118,19 +206,20 @@ typedef struct {
 /* Visits one child whose box the ray meets at t_entry: a leaf is intersected now, an inner node
  * becomes the next node or, if there is one already, goes on the stack. True when an any-hit query
  * is answered. */
-inline bool visit_child(const global BvhTriangle *tris, float4 lo, float4 hi, float t_entry,
+inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, float t_entry,
                         WatertightRay ray, float tmin, bool any_hit, Walk *walk, uint *stack)
 {
     /* The sibling visited first may have moved the closest hit in front of this box. */
     if (!(t_entry <= (walk->hit.t + walk->slack) * BOX_EXIT_SCALE))
         return false;
-    if (child_is_leaf(lo))
-        return intersect_leaf(tris, leaf_first(lo), leaf_count(hi), ray, tmin, any_hit, &walk->hit) &&
+    if (child_is_leaf(ref))
+        return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin, any_hit,
+                              &walk->hit) &&
                any_hit;
     if (walk->next == 0)
-        walk->next = as_uint(lo.w);
+        walk->next = ref;
     else if (walk->stack_size < BVH_STACK_SIZE) /* always true: the builder bounds the depth */
-        stack[walk->stack_size++] = as_uint(lo.w);
+        stack[walk->stack_size++] = ref;
     return false;
 }
 
@@ -146,8 +235,8 @@ typedef struct {
     uint node;
 } Traversal;
 
-inline void traversal_start(Traversal *tr, const global BvhNode *nodes, float3 origin, float3 dir,
-                            float tmin, float tmax)
+inline void traversal_start(Traversal *tr, const global TraversalNode *nodes, float3 origin,
+                            float3 dir, float tmin, float tmax)
 {
     tr->box = box_ray(origin, dir);
     tr->tri = watertight_ray(origin, dir);
@@ -160,36 +249,26 @@ inline void traversal_start(Traversal *tr, const global BvhNode *nodes, float3 o
 
 /* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
  * at the first hit found, otherwise when no node is left. */
-inline bool traversal_step(Traversal *tr, const global BvhNode *nodes, const global BvhTriangle *tris,
-                           bool any_hit, uint *stack)
+inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
+                           const global BvhTriangle *tris, bool any_hit, uint *stack)
 {
     COUNT_STEPS(tr->walk.hit, 1u, 0u);
-    float4 near_lo = nodes[tr->node].lmin, near_hi = nodes[tr->node].lmax;
-    float4 far_lo = nodes[tr->node].rmin, far_hi = nodes[tr->node].rmax;
-    float t_near, t_far;
-    float box_tmax = tr->walk.hit.t + tr->walk.slack;
-    bool hit_near = box_entry(tr->box, near_lo, near_hi, tr->box_tmin, box_tmax, &t_near);
-    bool hit_far = box_entry(tr->box, far_lo, far_hi, tr->box_tmin, box_tmax, &t_far);
-    /* Nearer child first: it is the more likely to shorten hit.t for the other. */
-    if (hit_far && (!hit_near || t_far < t_near)) {
-        float4 lo = near_lo;
-        float4 hi = near_hi;
-        float t = t_near;
-        near_lo = far_lo;
-        near_hi = far_hi;
-        t_near = t_far;
-        far_lo = lo;
-        far_hi = hi;
-        t_far = t;
-        hit_far = hit_near;
-        hit_near = true;
-    }
+    bool hit[2];
+    float t[2];
+    uint ref[2], lane[2];
+    test_children(&nodes[tr->node], tr->box, tr->box_tmin, tr->walk.hit.t + tr->walk.slack, hit, t,
+                  ref, lane);
+    /* Nearer child first: it is the more likely to shorten hit.t for the other. Selects, not
+     * indices: a private array indexed at run time would live in memory. */
+    bool swap = hit[1] && (!hit[0] || t[1] < t[0]);
     tr->walk.next = 0;
-    if (hit_near &&
-        visit_child(tris, near_lo, near_hi, t_near, tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+    if ((hit[0] || hit[1]) &&
+        visit_child(tris, swap ? ref[1] : ref[0], swap ? lane[1] : lane[0], swap ? t[1] : t[0],
+                    tr->tri, tr->tmin, any_hit, &tr->walk, stack))
         return true;
-    if (hit_far &&
-        visit_child(tris, far_lo, far_hi, t_far, tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+    if (hit[0] && hit[1] &&
+        visit_child(tris, swap ? ref[0] : ref[1], swap ? lane[0] : lane[1], swap ? t[0] : t[1],
+                    tr->tri, tr->tmin, any_hit, &tr->walk, stack))
         return true;
     if (tr->walk.next == 0) {
         if (tr->walk.stack_size == 0)
@@ -201,8 +280,8 @@ inline bool traversal_step(Traversal *tr, const global BvhNode *nodes, const glo
 }
 
 /* The shared walk: with any_hit it returns at the first hit found, otherwise the closest. */
-inline Hit trace_bvh(const global BvhNode *nodes, const global BvhTriangle *tris, float3 origin,
-                     float3 dir, float tmin, float tmax, bool any_hit)
+inline Hit trace_bvh(const global TraversalNode *nodes, const global BvhTriangle *tris,
+                     float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
 {
     Traversal tr;
     uint stack[BVH_STACK_SIZE];

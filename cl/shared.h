@@ -39,6 +39,24 @@ typedef struct {
     float4 rmax; /* right child box max; w: as_float(right triangle count) */
 } BvhNode;
 
+/* The same node quantised to 32 bytes, one memory sector of a GPU, for the 2-wide traversal with
+ * -DBVH_QUANTIZED=1 (host/bvh_quantized.c; after Ylitie, Karras & Laine 2017, "Efficient incoherent
+ * ray traversal on GPUs through compressed wide BVHs"). Each child box plane is an 8-bit step count
+ * in a per-node frame, plane = origin + q * step along each axis, rounded outwards so that the
+ * quantised box holds the exact one. frame.xyz: the origin's float bits with the low 8 mantissa
+ * bits replaced by the biased exponent of step (step = 2^(e - 127); the origin is rounded down to
+ * fit). Plane words, one per axis (frame.w: x, refs.x: y, refs.y: z): bytes [left lo, left hi,
+ * right lo, right hi]. refs.zw: left and right child, an inner node index or
+ * BVH_QUANTIZED_LEAF | first_triangle << 4 | count. */
+typedef struct {
+    uint4 frame;
+    uint4 refs;
+} BvhNodeQuantized;
+#define BVH_QUANTIZED_LEAF 0x80000000u
+#define BVH_QUANTIZED_COUNT_BITS 4u
+/* first_triangle < this limit */
+#define BVH_QUANTIZED_MAX_TRIANGLES (1u << (31u - BVH_QUANTIZED_COUNT_BITS))
+
 /* Triangle in BVH leaf order, precomputed for the intersection test. */
 typedef struct {
     float4 v0; /* w: as_float(original triangle index) */
@@ -86,12 +104,18 @@ typedef struct {
 #ifndef BVH_WIDTH
 #define BVH_WIDTH 2
 #endif
+#ifndef BVH_QUANTIZED
+#define BVH_QUANTIZED 0
+#endif
 #if BVH_WIDTH == 8
 typedef BvhNode8 TraversalNode;
 typedef TrianglePack8 TraversalPrim;
 #elif BVH_WIDTH == 4
 typedef BvhNode4 TraversalNode;
 typedef TrianglePack4 TraversalPrim;
+#elif BVH_WIDTH == 2 && BVH_QUANTIZED
+typedef BvhNodeQuantized TraversalNode;
+typedef BvhTriangle TraversalPrim;
 #elif BVH_WIDTH == 2
 typedef BvhNode TraversalNode;
 typedef BvhTriangle TraversalPrim;
@@ -217,6 +241,7 @@ typedef struct {
 #define SIZEOF_TRIANGLE_PACK4 9
 #define SIZEOF_BVH_NODE8 10
 #define SIZEOF_TRIANGLE_PACK8 11
-#define SIZEOF_COUNT 12
+#define SIZEOF_BVH_NODE_QUANTIZED 12
+#define SIZEOF_COUNT 13
 
 #endif

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh_quantized.h"
 #include "error.h"
 
 _Static_assert(offsetof(BvhNode4, child) == 6 * 4 * sizeof(float), "BvhNode4: six rows, then child");
@@ -158,10 +159,16 @@ static uint32_t emit_node(Widener *w, uint32_t index, uint32_t stacked)
     return node;
 }
 
-void bvh_layout(BvhLayout *out, const Bvh *bvh, int width)
+void bvh_layout(BvhLayout *out, const Bvh *bvh, int width, bool quantized)
 {
     memset(out, 0, sizeof *out);
     out->width = width;
+    if (width == 2 && quantized) {
+        BvhNodeQuantized *nodes = bvh_quantize(bvh);
+        *out = (BvhLayout){2, nodes, sizeof *nodes, bvh->num_nodes, bvh->tris, sizeof(BvhTriangle),
+                           bvh->num_tris, BVH_STACK_SIZE, nodes};
+        return;
+    }
     if (width == 2) {
         *out = (BvhLayout){2, bvh->nodes, sizeof(BvhNode), bvh->num_nodes, bvh->tris,
                            sizeof(BvhTriangle), bvh->num_tris, BVH_STACK_SIZE, NULL};

@@ -5,6 +5,7 @@
 #ifndef PT_BVH_WIDE_H
 #define PT_BVH_WIDE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -22,11 +23,11 @@ typedef struct {
     void *owned;         /* wide: the arrays above, freed by bvh_layout_free */
 } BvhLayout;
 
-/* The layout of bvh for the given width (2: bvh's own arrays, which must outlive the layout; 4 or
- * 8: collapsed copies). Each wide node takes the 2-wide children and opens the one with the
+/* The layout of bvh for the given width (2: bvh's own arrays, which must outlive the layout, or
+ * with quantized its nodes quantised to 32 bytes (bvh_quantized.h); 4 or 8: collapsed copies). Each wide node takes the 2-wide children and opens the one with the
  * largest surface area until it has width children (Wald et al. 2008, "Getting rid of packets"),
  * as far as the traversal stack allows; each leaf becomes ceil(count / width) packs. */
-void bvh_layout(BvhLayout *out, const Bvh *bvh, int width);
+void bvh_layout(BvhLayout *out, const Bvh *bvh, int width, bool quantized);
 
 /* The SAH costs to build the 2-wide tree with for a layout. A wide layout tests a leaf's pack of
  * up to `width` triangles in about the time of one triangle, so its leaves may be fuller: a

@@ -170,13 +170,16 @@ static void choose_build_options(Device *dev)
         maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
                     ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
                     : "-cl-mad-enable -cl-no-signed-zeros";
-    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s",
-             maths, dev->bvh_width, dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s",
+             maths, dev->bvh_width, dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",
+             dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
 }
 
 /* The BVH layout (bvh_wide.h). A GPU runs each work item as one SIMD lane, so the 2-wide tree
  * with one box per lane is its natural layout; a CPU runs a work item on a whole core, whose
- * SIMD units only work when one item tests many boxes at once (8 lanes of AVX). */
+ * SIMD units only work when one item tests many boxes at once (8 lanes of AVX). The 2-wide nodes
+ * are 64-byte floats by default; PT_BVH_QUANTIZED=1 halves them (bvh_quantized.h), which
+ * measured 9-10% slower on the H100 (bench/README.md) but halves the nodes' memory. */
 static bool choose_bvh_width(Device *dev, Error *err)
 {
     const char *env = getenv("PT_BVH_WIDTH");
@@ -189,6 +192,20 @@ static bool choose_bvh_width(Device *dev, Error *err)
         dev->bvh_width = atoi(env);
     } else {
         dev->bvh_width = (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2;
+    }
+    const char *quantized = getenv("PT_BVH_QUANTIZED");
+    if (quantized && *quantized) {
+        if (strcmp(quantized, "0") && strcmp(quantized, "1")) {
+            error_set(err, ERR_USAGE, NULL, 0, "PT_BVH_QUANTIZED=%s: use 0 or 1", quantized);
+            return false;
+        }
+        dev->bvh_quantized = quantized[0] == '1';
+        if (dev->bvh_quantized && dev->bvh_width != 2) {
+            error_set(err, ERR_USAGE, NULL, 0,
+                      "PT_BVH_QUANTIZED=1: quantised nodes are a 2-wide layout, and this device "
+                      "walks the %d-wide one (PT_BVH_WIDTH=2 selects it)", dev->bvh_width);
+            return false;
+        }
     }
     return true;
 }

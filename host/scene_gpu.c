@@ -31,7 +31,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     out->textures = upload(dev, out, "textures", data->textures.count * sizeof(TextureInfo),
                            data->textures.infos, err);
     BvhLayout layout;
-    bvh_layout(&layout, bvh, dev->bvh_width);
+    bvh_layout(&layout, bvh, dev->bvh_width, dev->bvh_quantized);
     out->bvh_nodes = upload(dev, out, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes,
                             err);
     out->bvh_tris = upload(dev, out, "bvh_triangles", layout.num_prims * layout.prim_size,

@@ -10,6 +10,7 @@
 
 _Static_assert(sizeof(Triangle) == 16, "Triangle layout");
 _Static_assert(sizeof(BvhNode) == 64, "BvhNode layout");
+_Static_assert(sizeof(BvhNodeQuantized) == 32, "BvhNodeQuantized layout");
 _Static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle layout");
 _Static_assert(sizeof(BvhNode4) == 112 && sizeof(TrianglePack4) == 160, "4-wide BVH layout");
 _Static_assert(sizeof(BvhNode8) == 224 && sizeof(TrianglePack8) == 320, "8-wide BVH layout");

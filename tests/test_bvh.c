@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "bvh.h"
+#include "bvh_quantized.h"
 #include "bvh_wide.h"
 #include "obj_loader.h"
 #include "procedural_mesh.h"
@@ -282,7 +283,7 @@ static TraceScene scene_create(Device *dev, Mesh mesh)
     bvh_build_for_width(&scene.bvh, mesh.positions, mesh.triangles, mesh.num_triangles, dev->bvh_width);
     mesh_bounds(&mesh, scene.lo, scene.hi);
     BvhLayout layout;
-    bvh_layout(&layout, &scene.bvh, dev->bvh_width);
+    bvh_layout(&layout, &scene.bvh, dev->bvh_width, dev->bvh_quantized);
     scene.nodes = device_buffer(dev, "bvh_nodes", CL_MEM_READ_ONLY,
                                 layout.num_nodes * layout.node_size, layout.nodes, &err);
     scene.tris = device_buffer(dev, "bvh_triangles", CL_MEM_READ_ONLY,
@@ -801,7 +802,7 @@ static uint32_t check_wide_layout(const Mesh *mesh, int width, const char *name)
     Bvh bvh;
     bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, width);
     BvhLayout layout;
-    bvh_layout(&layout, &bvh, width);
+    bvh_layout(&layout, &bvh, width, false);
     cr_assert_eq(layout.width, width);
     cr_assert_eq(layout.node_size, width == 4 ? sizeof(BvhNode4) : sizeof(BvhNode8));
     WideCheck c = {&layout, mesh, calloc(mesh->num_triangles + 1, 4), calloc(layout.num_nodes, 1), 0, 0};
@@ -839,6 +840,66 @@ Test(bvh, wide_layout_invariants_hold)
             uint32_t stack = check_wide_layout(&cases[i].mesh, width, cases[i].name);
             cr_log_info("%s, %d-wide: stack need %u", cases[i].name, width, stack);
         }
+        mesh_free(&cases[i].mesh);
+    }
+}
+
+/* Every quantised child box holds its exact box with the margin the traversal relies on
+ * (host/bvh_quantized.c), is at most two steps looser per side, and keeps its reference; an empty
+ * child is inverted on every axis with no triangles. */
+static void check_quantized(const Mesh *mesh, const char *name)
+{
+    Bvh bvh;
+    bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
+    BvhNodeQuantized *q = bvh_quantize(&bvh);
+    unsigned errors = 0;
+    for (uint32_t i = 0; i < bvh.num_nodes; i++) {
+        const BvhNode *n = &bvh.nodes[i];
+        const float4 *lo[2] = {&n->lmin, &n->rmin}, *hi[2] = {&n->lmax, &n->rmax};
+        const uint32_t refs[2] = {q[i].refs.s[2], q[i].refs.s[3]};
+        for (int c = 0; c < 2; c++) {
+            double qlo[3], qhi[3];
+            bvh_quantized_child_box(&q[i], c, qlo, qhi);
+            uint32_t ref, count;
+            memcpy(&ref, &lo[c]->s[3], sizeof ref);
+            memcpy(&count, &hi[c]->s[3], sizeof count);
+            bool empty = !(lo[c]->s[0] <= hi[c]->s[0]);
+            for (int k = 0; k < 3; k++) {
+                double step = ldexp(1.0, (int)(q[i].frame.s[k] & 0xffu) - 127), margin = step / 1024;
+                bool ok = empty ? qlo[k] > qhi[k]
+                                : qlo[k] <= lo[c]->s[k] - margin && qhi[k] >= hi[c]->s[k] + margin &&
+                                      qlo[k] >= lo[c]->s[k] - 2 * step && qhi[k] <= hi[c]->s[k] + 2 * step;
+                if (!ok && errors++ < 5)
+                    cr_log_error("%s: node %u child %d axis %d: [%.9g, %.9g] against [%.9g, %.9g]", name,
+                                 i, c, k, qlo[k], qhi[k], lo[c]->s[k], hi[c]->s[k]);
+            }
+            uint32_t want = (int32_t)ref >= 0 ? ref
+                                              : BVH_QUANTIZED_LEAF | ~ref << BVH_QUANTIZED_COUNT_BITS | count;
+            if (refs[c] != want && errors++ < 5)
+                cr_log_error("%s: node %u child %d: reference %08x, want %08x", name, i, c, refs[c], want);
+        }
+    }
+    cr_expect_eq(errors, 0, "%s: %u quantisation errors", name, errors);
+    free(q);
+    bvh_free(&bvh);
+}
+
+Test(bvh, quantized_nodes_hold_their_children)
+{
+    struct {
+        const char *name;
+        Mesh mesh;
+    } cases[] = {{"icosphere", mesh_icosphere(4)}, {"torus", mesh_torus(30000)},
+                 {"soup", mesh_soup(5000, 7)},     {"one", mesh_soup(1, 1)},
+                 {"copies", mesh_copies(5000)},    {"empty", mesh_soup(0, 1)},
+                 {"axis chains", mesh_axis_chains(1280)}, {"far torus", mesh_torus(30000)}};
+    /* Far from the origin, small against its coordinates: the frame origin loses the most bits. */
+    Mesh *far = &cases[7].mesh;
+    for (uint32_t v = 0; v < far->num_positions; v++)
+        for (int k = 0; k < 3; k++)
+            far->positions[v].s[k] = far->positions[v].s[k] * 1e-3f - 3.0e4f * (k + 1) * (k == 1 ? -1 : 1);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        check_quantized(&cases[i].mesh, cases[i].name);
         mesh_free(&cases[i].mesh);
     }
 }

@@ -31,6 +31,7 @@ Test(device, shared_struct_sizes_match_host)
     cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK4], sizeof(TrianglePack4));
     cr_expect_eq(sizes[SIZEOF_BVH_NODE8], sizeof(BvhNode8));
     cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK8], sizeof(TrianglePack8));
+    cr_expect_eq(sizes[SIZEOF_BVH_NODE_QUANTIZED], sizeof(BvhNodeQuantized));
     clReleaseKernel(kernel);
     clReleaseMemObject(out);
     test_device_release(dev);
@@ -65,6 +66,23 @@ Test(device, bvh_width_comes_from_the_device_type_or_pt_bvh_width)
     cr_expect_not(device_open(&dev, "cpu", &err));
     cr_expect_eq(err.code, ERR_USAGE);
     cr_expect(strstr(err.message, "PT_BVH_WIDTH=3") != NULL, "%s", err.message);
+    setenv("PT_BVH_WIDTH", "2", 1);
+    setenv("PT_BVH_QUANTIZED", "1", 1);
+    err = (Error){0};
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    cr_expect(dev.bvh_quantized);
+    cr_expect(strstr(device_build_options(&dev), "-DBVH_QUANTIZED=1") != NULL, "%s", device_build_options(&dev));
+    device_close(&dev);
+    setenv("PT_BVH_WIDTH", "8", 1);
+    err = (Error){0};
+    cr_expect_not(device_open(&dev, "cpu", &err), "quantised nodes are 2-wide only");
+    cr_expect(strstr(err.message, "PT_BVH_QUANTIZED=1") != NULL, "%s", err.message);
+    setenv("PT_BVH_QUANTIZED", "yes", 1);
+    unsetenv("PT_BVH_WIDTH");
+    err = (Error){0};
+    cr_expect_not(device_open(&dev, "cpu", &err));
+    cr_expect(strstr(err.message, "PT_BVH_QUANTIZED=yes") != NULL, "%s", err.message);
+    unsetenv("PT_BVH_QUANTIZED");
 }
 
 Test(device, allocation_above_the_limit_names_the_buffer)

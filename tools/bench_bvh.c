@@ -381,7 +381,7 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
     Bvh bvh;
     bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, dev->bvh_width);
     BvhLayout layout;
-    bvh_layout(&layout, &bvh, dev->bvh_width);
+    bvh_layout(&layout, &bvh, dev->bvh_width, dev->bvh_quantized);
     g.nodes = upload(dev, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes);
     g.tris = upload(dev, "bvh_triangles", layout.num_prims * layout.prim_size, layout.prims);
     g.num_prims = layout.num_prims;
@@ -479,8 +479,10 @@ int main(int argc, char **argv)
     char device_folder[256], folder[1024];
     bench_folder_name(dev.name, device_folder, sizeof device_folder);
     snprintf(folder, sizeof folder, "%s/%s", o.out, device_folder);
-    printf("bench_bvh: %s (%s, %s), %d-wide BVH, %d spp, rays in %s, ", dev.name, dev.platform_name,
-           dev.driver_version, dev.bvh_width, o.spp, o.rows ? "scanline order" : "4x4-pixel tiles");
+    printf("bench_bvh: %s (%s, %s), %d-wide BVH%s, %d spp, rays in %s, ", dev.name,
+           dev.platform_name, dev.driver_version, dev.bvh_width,
+           dev.bvh_quantized ? " (quantised nodes)" : "", o.spp,
+           o.rows ? "scanline order" : "4x4-pixel tiles");
     if (o.count_steps)
         printf("work counts\n");
     else

@@ -15,4 +15,5 @@ kernel void report_sizes(global uint *out)
     out[SIZEOF_TRIANGLE_PACK4] = sizeof(TrianglePack4);
     out[SIZEOF_BVH_NODE8] = sizeof(BvhNode8);
     out[SIZEOF_TRIANGLE_PACK8] = sizeof(TrianglePack8);
+    out[SIZEOF_BVH_NODE_QUANTIZED] = sizeof(BvhNodeQuantized);
 }
