@@ -9,6 +9,7 @@
 #include "bvh_quantized.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -826,16 +826,34 @@ static uint32_t check_wide_layout(const Mesh *mesh, int width, const char *name)
     return c.max_stack;
 }
 
+/* The meshes every layout is checked on: the awkward cases of the builder (one triangle, nine,
+ * identical copies, none, chains along the axes) and a torus far from the origin and small against
+ * its coordinates, where quantised frames lose the most bits. */
+typedef struct {
+    const char *name;
+    Mesh mesh;
+} NamedMesh;
+#define LAYOUT_MESHES 9
+static void layout_meshes(NamedMesh out[LAYOUT_MESHES])
+{
+    NamedMesh cases[LAYOUT_MESHES] = {
+        {"icosphere", mesh_icosphere(4)}, {"torus", mesh_torus(30000)},
+        {"soup", mesh_soup(5000, 7)},     {"one", mesh_soup(1, 1)},
+        {"nine", mesh_soup(9, 3)},        {"copies", mesh_copies(5000)},
+        {"empty", mesh_soup(0, 1)},       {"axis chains", mesh_axis_chains(1280)},
+        {"far torus", mesh_torus(30000)}};
+    Mesh *far = &cases[8].mesh;
+    for (uint32_t v = 0; v < far->num_positions; v++)
+        for (int k = 0; k < 3; k++)
+            far->positions[v].s[k] = far->positions[v].s[k] * 1e-3f - 3.0e4f * (k + 1) * (k == 1 ? -1 : 1);
+    memcpy(out, cases, sizeof cases);
+}
+
 Test(bvh, wide_layout_invariants_hold)
 {
-    struct {
-        const char *name;
-        Mesh mesh;
-    } cases[] = {{"icosphere", mesh_icosphere(4)}, {"torus", mesh_torus(30000)},
-                 {"soup", mesh_soup(5000, 7)},     {"one", mesh_soup(1, 1)},
-                 {"nine", mesh_soup(9, 3)},        {"copies", mesh_copies(5000)},
-                 {"empty", mesh_soup(0, 1)},       {"axis chains", mesh_axis_chains(1280)}};
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    NamedMesh cases[LAYOUT_MESHES];
+    layout_meshes(cases);
+    for (size_t i = 0; i < LAYOUT_MESHES; i++) {
         for (int width = 4; width <= 8; width += 4) {
             uint32_t stack = check_wide_layout(&cases[i].mesh, width, cases[i].name);
             cr_log_info("%s, %d-wide: stack need %u", cases[i].name, width, stack);
@@ -886,19 +904,9 @@ static void check_quantized(const Mesh *mesh, const char *name)
 
 Test(bvh, quantized_nodes_hold_their_children)
 {
-    struct {
-        const char *name;
-        Mesh mesh;
-    } cases[] = {{"icosphere", mesh_icosphere(4)}, {"torus", mesh_torus(30000)},
-                 {"soup", mesh_soup(5000, 7)},     {"one", mesh_soup(1, 1)},
-                 {"copies", mesh_copies(5000)},    {"empty", mesh_soup(0, 1)},
-                 {"axis chains", mesh_axis_chains(1280)}, {"far torus", mesh_torus(30000)}};
-    /* Far from the origin, small against its coordinates: the frame origin loses the most bits. */
-    Mesh *far = &cases[7].mesh;
-    for (uint32_t v = 0; v < far->num_positions; v++)
-        for (int k = 0; k < 3; k++)
-            far->positions[v].s[k] = far->positions[v].s[k] * 1e-3f - 3.0e4f * (k + 1) * (k == 1 ? -1 : 1);
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    NamedMesh cases[LAYOUT_MESHES];
+    layout_meshes(cases);
+    for (size_t i = 0; i < LAYOUT_MESHES; i++) {
         check_quantized(&cases[i].mesh, cases[i].name);
         mesh_free(&cases[i].mesh);
     }
