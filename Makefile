@@ -28,14 +28,18 @@ Q := @
 endif
 
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
-CL_SOURCES := cl/shared.h cl/util.cl cl/rng.cl cl/intersect_triangle.cl cl/bvh_traverse.cl cl/bvh_traverse_wide.cl cl/ray_offset.cl \
-              cl/texture.cl cl/camera.cl cl/surface.cl cl/sampling.cl cl/bsdf.cl cl/light_sample.cl \
-              cl/path_state.cl cl/scan.cl cl/sort_materials.cl cl/render_aov.cl \
-              cl/generate_camera_rays.cl cl/intersect_closest.cl cl/shade_surface.cl \
-              cl/intersect_shadow.cl cl/accumulate_film.cl
+CL_SOURCES := cl/shared.h \
+              cl/core/util.cl cl/core/rng.cl cl/core/sampling.cl cl/core/camera.cl \
+              cl/geometry/intersect_triangle.cl cl/geometry/bvh_traverse.cl cl/geometry/bvh_traverse_wide.cl \
+              cl/geometry/ray_offset.cl cl/geometry/surface.cl cl/material/texture.cl \
+              cl/material/bsdf.cl cl/light/light_sample.cl \
+              cl/parallel/scan.cl cl/parallel/sort_materials.cl \
+              cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \
+              cl/stages/intersect_closest.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
+              cl/stages/accumulate_film.cl
 
-HOST_C   := $(filter-out host/main.c,$(wildcard host/*.c))
-HOST_CXX := $(wildcard host/*.cc)
+HOST_C   := $(wildcard host/*/*.c)
+HOST_CXX := $(wildcard host/*/*.cc)
 LIB_OBJS := $(HOST_C:host/%.c=$(BUILD)/host/%.o) $(HOST_CXX:host/%.cc=$(BUILD)/host/%.o) \
             $(BUILD)/kernel_source.o
 TESTS    := $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_*.c))
@@ -55,6 +59,7 @@ run: deps
 	$(BUILD)/pt render $(SCENE) $(if $(DEVICE),--device $(DEVICE))
 
 test: deps
+	$(Q)./tools/check-layers.sh
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
 	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh \

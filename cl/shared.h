@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* shared.h: every struct and constant that crosses the host/device boundary. Compiled by the host C
- * compiler (through host/shared_types.h) and by the OpenCL C compiler (first file of the program).
+ * compiler (through host/base/shared_types.h) and by the OpenCL C compiler (first file of the program).
  * Rules: only 4-byte scalars, float2/float4/uint4 (float8/uint8 in the 8-wide BVH); no float3, bool,
  * size_t, enum or pointers; sizes
  * are checked on the host with _Static_assert and on the device by the report_sizes test kernel. */
@@ -40,7 +40,7 @@ typedef struct {
 } BvhNode;
 
 /* The same node quantised to 32 bytes, one memory sector of a GPU, for the 2-wide traversal with
- * -DBVH_QUANTIZED=1 (host/bvh_quantized.c; after Ylitie, Karras & Laine 2017, "Efficient incoherent
+ * -DBVH_QUANTIZED=1 (host/accel/bvh_quantized.c; after Ylitie, Karras & Laine 2017, "Efficient incoherent
  * ray traversal on GPUs through compressed wide BVHs"). Each child box plane is an 8-bit step count
  * in a per-node frame, plane = origin + q * step along each axis, rounded outwards so that the
  * quantised box holds the exact one. frame.xyz: the origin's float bits with the low 8 mantissa
@@ -64,11 +64,11 @@ typedef struct {
     float4 v2;
 } BvhTriangle;
 
-/* Entries of the traversal's private stack; host/bvh.c bounds the tree's depth so it never
+/* Entries of the traversal's private stack; host/accel/bvh.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
 
-/* Wide BVH for CPUs (host/bvh_wide.c, cl/bvh_traverse_wide.cl): the 2-wide tree collapsed to 4 or 8
+/* Wide BVH for CPUs (host/accel/bvh_wide.c, cl/geometry/bvh_traverse_wide.cl): the 2-wide tree collapsed to 4 or 8
  * children per node, stored lane by lane so that one SIMD instruction tests every child box, and
  * leaves of triangle packs tested 4 or 8 at a time. A CPU runs a work item on one core lane by
  * lane; these float4/float8 operations are what keep its SIMD units busy. GPUs keep the 2-wide
@@ -99,7 +99,7 @@ typedef struct {
  * collapse (bvh_layout) checks that no path needs more. */
 #define BVH_WIDE_STACK_SIZE 192
 
-/* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device.c). */
+/* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device/device.c). */
 #ifdef __OPENCL_C_VERSION__
 #ifndef BVH_WIDTH
 #define BVH_WIDTH 2
@@ -190,7 +190,7 @@ typedef struct {
 /* ---- Lights --------------------------------------------------------------------------------- */
 
 /* One entry of the alias table over emissive triangles, chosen in proportion to emitted power
- * (area x luminance of Ke). Vose's method, built on the host (host/lights.c). */
+ * (area x luminance of Ke). Vose's method, built on the host (host/scene/lights.c). */
 typedef struct {
     float prob;    /* probability of keeping this entry rather than its alias */
     uint alias;    /* entry taken otherwise */

@@ -10,18 +10,18 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "aov.h"
-#include "bvh.h"
-#include "camera.h"
-#include "cli.h"
-#include "device.h"
-#include "image_io.h"
-#include "scene.h"
-#include "scene_gpu.h"
-#include "wavefront.h"
-#include "bench.h"
-#include "session.h"
-#include "viewer.h"
+#include "render/aov.h"
+#include "accel/bvh.h"
+#include "scene/camera.h"
+#include "app/cli.h"
+#include "device/device.h"
+#include "io/image_io.h"
+#include "scene/scene.h"
+#include "render/scene_upload.h"
+#include "render/wavefront.h"
+#include "app/bench.h"
+#include "render/session.h"
+#include "viewer/viewer.h"
 #include <signal.h>
 
 typedef struct {
@@ -163,7 +163,8 @@ static int command_render(const Options *o)
 {
     Error err = {0};
     Session session;
-    if (!session_open(&session, o, &err))
+    RenderDesc render = cli_render_desc(o);
+    if (!session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
     char suffix[32] = "";
@@ -238,7 +239,10 @@ int main(int argc, char **argv)
     case CMD_RENDER:
         return command_render(&o);
     case CMD_VIEW:
-        return command_view(&o);
+        {
+        ViewerDesc view = cli_viewer_desc(&o);
+        return command_view(&view);
+    }
     case CMD_BENCH:
         return command_bench(&o);
     }

@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "obj_loader.h"
-#include "shared_types.h"
+#include "base/error.h"
+#include "io/obj_loader.h"
+#include "base/shared_types.h"
 
 typedef struct {
     float4 *positions;

@@ -9,7 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "bvh_wide.h"
+#include "accel/bvh_wide.h"
 
 bool assets_available(void)
 {

@@ -7,11 +7,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "bvh.h"
-#include "device.h"
-#include "scene.h"
-#include "scene_gpu.h"
-#include "wavefront.h"
+#include "accel/bvh.h"
+#include "device/device.h"
+#include "scene/scene.h"
+#include "render/scene_upload.h"
+#include "render/wavefront.h"
 
 #define ASSETS_DIR "../shared/assets"
 

@@ -11,14 +11,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
-#include "bvh_quantized.h"
-#include "bvh_wide.h"
-#include "obj_loader.h"
+#include "accel/bvh.h"
+#include "accel/bvh_quantized.h"
+#include "accel/bvh_wide.h"
+#include "io/obj_loader.h"
 #include "procedural_mesh.h"
 #include "support.h"
 
-#define HIT_NONE_HOST 0xffffffffu /* HIT_NONE of cl/intersect_triangle.cl */
+#define HIT_NONE_HOST 0xffffffffu /* HIT_NONE of cl/geometry/intersect_triangle.cl */
 
 /* ---- Host-side invariants ------------------------------------------------------------------ */
 
@@ -440,7 +440,7 @@ static bool same_closest(float4 a, float4 b)
            fabsf(a.s[0] - b.s[0]) <= 1e-6f * fmaxf(fabsf(a.s[0]), fabsf(b.s[0]));
 }
 
-/* ---- Host reference: the watertight test of cl/intersect_triangle.cl, operation for operation,
+/* ---- Host reference: the watertight test of cl/geometry/intersect_triangle.cl, operation for operation,
  * over every triangle in file order (C runs this loop some 30 times faster than PoCL). ISO C
  * compiles without fma contraction, so the explicit fmaf calls round exactly as the kernel's. One
  * step is written the other way round on purpose: the kernel permutes (vertex - origin), this
@@ -863,7 +863,7 @@ Test(bvh, wide_layout_invariants_hold)
 }
 
 /* Every quantised child box holds its exact box with the margin the traversal relies on
- * (host/bvh_quantized.c), is at most two steps looser per side, and keeps its reference; an empty
+ * (host/accel/bvh_quantized.c), is at most two steps looser per side, and keeps its reference; an empty
  * child is inverted on every axis with no triangles. */
 static void check_quantized(const Mesh *mesh, const char *name)
 {

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "device.h"
-#include "shared_types.h"
+#include "device/device.h"
+#include "base/shared_types.h"
 #include "support.h"
 
 Test(device, shared_struct_sizes_match_host)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Flattening (host/scene_data.c): meshes appended one after another land at their offsets, corners
+/* Flattening (host/scene/scene_data.c): meshes appended one after another land at their offsets, corners
  * with the same (v, vt, vn) share one vertex, materials map from MTL as the README says, the default
  * material is added once, lights are exactly the emissive triangles, and bad or missing inputs give
  * the documented error or warning. */
@@ -11,8 +11,8 @@
 
 #include <stb_image_write.h>
 
-#include "scene.h"
-#include "scene_data.h"
+#include "scene/scene.h"
+#include "scene/scene_data.h"
 #include "support.h"
 
 static const char *write_file(const char *dir, const char *name, const char *text)

@@ -16,7 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "image_io.h"
+#include "io/image_io.h"
 #include "support.h"
 
 /* ---- helpers ----------------------------------------------------------------------------- */

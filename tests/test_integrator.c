@@ -8,11 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
-#include "scene.h"
-#include "scene_gpu.h"
+#include "accel/bvh.h"
+#include "scene/scene.h"
+#include "render/scene_upload.h"
 #include "support.h"
-#include "wavefront.h"
+#include "render/wavefront.h"
 
 /* Writes a UV sphere (radius r, centre c) as OBJ; inward = true flips the winding so the
  * counter-clockwise normals point inside. */

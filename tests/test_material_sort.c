@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Material sort (host/material_sort.c, cl/sort_materials.cl) against a serial stable counting sort:
+/* Material sort (host/parallel/material_sort.c, cl/parallel/sort_materials.cl) against a serial stable counting sort:
  * the output list equals the reference entry for entry (so grouping, key order, misses last and
  * stability are all checked), entries past n are not written and the input list is left alone.
  * For list sizes around the tile (4096 entries with work-groups of 256), 1 to 20000 materials
@@ -11,12 +11,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "material_sort.h"
+#include "parallel/material_sort.h"
 #include "support.h"
 #include "xorshift.h"
 
 #define SENTINEL 0xdeadbeefu
-#define HIT_NONE 0xffffffffu /* cl/intersect_triangle.cl */
+#define HIT_NONE 0xffffffffu /* cl/geometry/intersect_triangle.cl */
 
 static const uint32_t sizes[] = {0, 1, 255, 256, 257, 4097, (1u << 20) + 3};
 #define NUM_SIZES (sizeof sizes / sizeof sizes[0])

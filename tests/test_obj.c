@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* OBJ/MTL loading (host/obj_loader.cc, host/obj_lines.c): every public asset imports with counts
+/* OBJ/MTL loading (host/io/obj_loader.cc, host/io/obj_lines.c): every public asset imports with counts
  * that match an independent scan of its lines, faces are triangulated with the right area and
  * material, and each kind of bad input gives its own error naming the file and the line. */
 #include <criterion/criterion.h>
@@ -11,8 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "obj_lines.h"
-#include "obj_loader.h"
+#include "io/obj_lines.h"
+#include "io/obj_loader.h"
 #include "support.h"
 
 /* ---- independent line scan of an OBJ ---------------------------------------------------- */

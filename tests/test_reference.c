@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
-#include "image_io.h"
+#include "io/image_io.h"
 #include "support.h"
 
 #define RENDERS 8

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Stream compaction (host/compact.c, cl/scan.cl) against a serial reference: the count is exact,
+/* Stream compaction (host/parallel/compact.c, cl/parallel/scan.cl) against a serial reference: the count is exact,
  * the indices are the alive slots in increasing order, nothing past the count is written, and this
  * holds for sizes around every tile boundary, all densities, flag values other than 1, work-group
  * sizes from 1 up (small groups force several scan levels), and a reused compactor. */
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compact.h"
+#include "parallel/compact.h"
 #include "support.h"
 
 #define SENTINEL 0xdeadbeefu

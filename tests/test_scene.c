@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Scene descriptions (host/scene.c): every kind of bad JSON gives its own error naming the key (or
+/* Scene descriptions (host/scene/scene.c): every kind of bad JSON gives its own error naming the key (or
  * the line), good scenes parse with the documented defaults, a bare .obj and a folder with
  * scene.json load, the framed camera sees the whole object, and every public OBJ imports. */
 #include <criterion/criterion.h>
@@ -9,8 +9,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "camera.h"
-#include "scene.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
 #include "support.h"
 
 static char g_dir[64];

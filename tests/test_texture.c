@@ -11,9 +11,9 @@
 
 #include <stb_image_write.h>
 
-#include "device.h"
+#include "device/device.h"
 #include "support.h"
-#include "texture.h"
+#include "scene/texture.h"
 
 static char g_path[512];
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Ear clipping (host/triangulate.c): every polygon is given in 2-D, embedded in a tilted 3-D plane,
+/* Ear clipping (host/io/triangulate.c): every polygon is given in 2-D, embedded in a tilted 3-D plane,
  * triangulated, and checked against the 2-D original: triangle count, total area, every triangle
  * inside the polygon (sample points inside, no edge crossing the boundary), same orientation as the
  * polygon, no degenerate triangle. Degenerate inputs must terminate and stay inside. */
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "triangulate.h"
+#include "io/triangulate.h"
 
 #define MAX_CORNERS 512
 #define GUARD 0xDEADBEEFu

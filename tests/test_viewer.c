@@ -24,7 +24,7 @@
 #include <stb_image.h>
 
 #include "support.h"
-#include "viewer_camera.h"
+#include "viewer/camera_controls.h"
 
 /* ---- A private X server per test ------------------------------------------------------------ */
 
@@ -228,7 +228,7 @@ static double expect_screenshot_is_the_render(const char *dir, const char *name,
     return noise;
 }
 
-/* The viewer's summary line at exit (host/viewer_stats.h). */
+/* The viewer's summary line at exit (host/viewer/stats.h). */
 typedef struct {
     int frames, spp;
     double first_ms, mean_ms, median_ms, p95_ms, max_ms;

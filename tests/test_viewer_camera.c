@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-/* The viewer's camera controls (host/viewer_camera.h) as plain functions: each control moves the
+/* The viewer's camera controls (host/viewer/camera_controls.h) as plain functions: each control moves the
  * pose by the amount its contract states, and --camera JSON round-trips and names bad keys. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
 
-#include "camera.h"
-#include "viewer_camera.h"
+#include "scene/camera.h"
+#include "viewer/camera_controls.h"
 
 #define PI 3.14159265f
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-/* The viewer's pacing (host/viewer_pacing.h): a window, the step that cannot be interrupted, takes
+/* The viewer's pacing (host/viewer/pacing.h): a window, the step that cannot be interrupted, takes
  * at most a third of the frame budget at the measured rate, on a slow CPU as on a GPU. */
 #include <criterion/criterion.h>
 
-#include "viewer_pacing.h"
+#include "viewer/pacing.h"
 
 static void expect_paced(double rate)
 {

@@ -33,10 +33,10 @@
 #include <time.h>
 
 #include "bench_common.h"
-#include "bvh.h"
-#include "bvh_wide.h"
-#include "device.h"
-#include "obj_loader.h"
+#include "accel/bvh.h"
+#include "accel/bvh_wide.h"
+#include "device/device.h"
+#include "io/obj_loader.h"
 #include "procedural_mesh.h"
 
 #define KERNEL_FILE "tests/cl/bvh_test.cl"

@@ -12,8 +12,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "device.h"
-#include "error.h"
+#include "device/device.h"
+#include "base/error.h"
 
 /* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3". */
 static inline void bench_folder_name(const char *device_name, char *out, size_t size)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* bench_scan: throughput of the stream compaction (host/compact.c) against the device's own copy
+/* bench_scan: throughput of the stream compaction (host/parallel/compact.c) against the device's own copy
  * bandwidth, for n = 2^16 .. 2^24 flags at densities 0.5 and 0.9.
  *
  *   build/tools/bench_scan [--device SPEC] [--group-size G] [--min-log2 16] [--max-log2 24]
@@ -16,8 +16,8 @@
 #include <string.h>
 
 #include "bench_common.h"
-#include "compact.h"
-#include "device.h"
+#include "parallel/compact.h"
+#include "device/device.h"
 
 typedef struct {
     const char *device;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* bench_sort: time of the material sort (host/material_sort.c) for n paths and several material
+/* bench_sort: time of the material sort (host/parallel/material_sort.c) for n paths and several material
  * counts, against the device's copy of the same list.
  *
  *   build/tools/bench_sort [--device gpu|cpu|P:D] [--n N] [--materials 8,64,1024] [--reps R]
@@ -20,11 +20,11 @@
 #include <time.h>
 
 #include "bench_common.h"
-#include "device.h"
-#include "material_sort.h"
+#include "device/device.h"
+#include "parallel/material_sort.h"
 #include "xorshift.h"
 
-#define HIT_NONE 0xffffffffu /* cl/intersect_triangle.cl */
+#define HIT_NONE 0xffffffffu /* cl/geometry/intersect_triangle.cl */
 #define MAX_MATERIAL_COUNTS 16
 #define COHERENT_RUN 64
 

@@ -11,7 +11,7 @@ tmp=$out.tmp
     echo "#include <stddef.h>"
     echo "const unsigned char pt_kernel_source[] = {"
     for f in "$@"; do
-        printf '#line 1 "%s"\n' "$(basename "$f")" | od -An -v -tu1
+        printf '#line 1 "%s"\n' "${f#cl/}" | od -An -v -tu1
         cat "$f" | od -An -v -tu1
         printf '\n' | od -An -v -tu1
     done | tr -s ' \n' '\n\n' | grep -v '^$' | paste -sd, - | sed 's/\(\([0-9]*,\)\{24\}\)/\1\n/g'

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_group_exclusive_sum: runs cl/scan.cl's work-group scan on in[], one value per work item;
+/* test_group_exclusive_sum: runs cl/parallel/scan.cl's work-group scan on in[], one value per work item;
  * writes each item's exclusive prefix to prefix[] and each group's total to totals[group].
  * scratch: 2 uints per work item. */
 kernel void test_group_exclusive_sum(global const uint *in, global uint *prefix,

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* sample_texture_at_uvs: texture_sample (cl/texture.cl) of texture `index` at each uv, so the host
+/* sample_texture_at_uvs: texture_sample (cl/material/texture.cl) of texture `index` at each uv, so the host
  * can compare with its own bilinear, sRGB-decoded reference. */
 kernel void sample_texture_at_uvs(const global uint *texels, const global TextureInfo *textures,
                                   uint index, const global float2 *uvs, global float4 *out, uint n)

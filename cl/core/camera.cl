@@ -1,0 +1,25 @@
+/* SPDX-License-Identifier: MIT */
+/* camera.cl: primary rays. Pinhole, or thin lens when the lens radius is positive; uniformly
+ * jittered sub-pixel position (box filter). Image x goes right, y goes down. */
+
+/* jitter: sub-pixel position in [0,1)^2; lens: two uniforms for the aperture. */
+inline void camera_ray(constant RenderParams *p, uint x, uint y, float2 jitter, float2 lens,
+                       float3 *origin, float3 *dir)
+{
+    Camera cam = p->camera;
+    float tan_half = cam.up.w, aspect = cam.forward.w;
+    float sx = (2.0f * ((float)x + jitter.x) / (float)p->width - 1.0f) * tan_half * aspect;
+    float sy = (1.0f - 2.0f * ((float)y + jitter.y) / (float)p->height) * tan_half;
+    float3 d = normalize(xyz(cam.forward) + sx * xyz(cam.right) + sy * xyz(cam.up));
+    float3 o = xyz(cam.eye);
+    float lens_radius = cam.eye.w, focus_distance = cam.right.w;
+    if (lens_radius > 0.0f) {
+        /* Points at the focus distance (measured along the view axis) stay sharp. */
+        float3 focus = o + d * (focus_distance / dot(d, xyz(cam.forward)));
+        float2 l = lens_radius * sample_disk_concentric(lens.x, lens.y);
+        o = o + l.x * xyz(cam.right) + l.y * xyz(cam.up);
+        d = normalize(focus - o);
+    }
+    *origin = o;
+    *dir = d;
+}

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+/* pt bench: a warm-up render (kernel compilation and first-launch costs stay out of the figures),
+ * then timed renders of each mode (with and without compaction and refills), then one profiled
+ * render for per-stage times (profiling waits after every launch, so its wall time is not used for
+ * throughput). */
+#include "app/bench.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/error.h"
+#include "render/session.h"
+#include "render/wavefront.h"
+
+static RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
+{
+    RenderStats stats;
+    Error err = {0};
+    if (!wavefront_render(&s->dev, &s->scene, &s->buffers, &settings, rgb, &stats, &err))
+        die("%s", err.message);
+    return stats;
+}
+
+static void print_row(const char *label, const RenderStats *st)
+{
+    printf("%-16s %8.1f %12.2f %12.2f %12.2f %12.2f %9.3f\n", label, st->seconds * 1e3,
+           st->paths / st->seconds * 1e-6, (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
+           st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
+           (double)(st->extension_rays + st->shadow_rays) / (double)st->paths);
+}
+
+static void append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+{
+    FILE *f = fopen(path, "a");
+    if (!f)
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,max_depth,mode,seconds,mpaths_per_s,mrays_per_s,"
+                   "mext_per_s,mshadow_per_s,pool,window,state_mib\n");
+    fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%u,%.1f\n", s->dev.name,
+            s->scene.desc.path, s->scene.desc.width, s->scene.desc.height, st->spp_done,
+            s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
+            (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
+            st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
+            st->pool_size, st->window_size, st->device_bytes / 1048576.0);
+    fclose(f);
+}
+
+/* FILE.csv -> FILE_<suffix>.csv */
+static void sibling_path(char *out, size_t size, const char *csv, const char *suffix)
+{
+    size_t n = strlen(csv);
+    if (n >= 4 && !strcmp(csv + n - 4, ".csv"))
+        n -= 4;
+    snprintf(out, size, "%.*s_%s.csv", (int)n, csv, suffix);
+}
+
+/* The profiled run: per-stage launches and ms into FILE_stages.csv, live paths per step into
+ * FILE_live.csv (next to the --csv FILE). */
+static void append_profile_csv(const char *csv, const Session *s, const RenderStats *st)
+{
+    char path[4096];
+    sibling_path(path, sizeof path, csv, "stages");
+    FILE *f = fopen(path, "a");
+    if (!f)
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,stage,launches,ms\n");
+    for (int k = 0; k < STAGE_COUNT; k++)
+        fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%s,%u,%.4f\n", s->dev.name, s->scene.desc.path,
+                s->scene.desc.width, s->scene.desc.height, st->spp_done, stage_names[k],
+                st->stage_launches[k], st->stage_ms[k]);
+    fclose(f);
+    sibling_path(path, sizeof path, csv, "live");
+    if (!(f = fopen(path, "a")))
+        die("cannot append to %s", path);
+    if (ftell(f) == 0)
+        fprintf(f, "device,scene,width,height,spp,step,live_paths\n");
+    for (int b = 0; b < 64 && st->live_per_step[b]; b++)
+        fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
+                s->scene.desc.width, s->scene.desc.height, st->spp_done, b,
+                (unsigned long long)st->live_per_step[b]);
+    fclose(f);
+}
+
+/* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools,
+ * shadow rays queued), the same with a shadow flag per active path, with material sorting,
+ * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
+ * neither (every bounce over the whole pool). */
+typedef struct {
+    const char *name;
+    bool no_compaction;
+    uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
+    bool shadow_flags;
+    bool sort_materials;
+    bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
+} BenchMode;
+
+static const BenchMode modes[] = {
+    {"refill", false, 0, false, false, false},
+    {"shadow-flags", false, 0, true, false, false},
+    {"no-refill", false, 1, false, false, false},
+    {"no-compaction", true, 0, false, false, false},
+    {"sort-materials", false, 0, false, true, false},
+    {"brute-force", false, 0, false, false, true},
+};
+#define BRUTE_FORCE_MAX_TRIANGLES 4096
+#define NUM_MODES (sizeof modes / sizeof modes[0])
+
+int command_bench(const Options *o)
+{
+    Error err = {0};
+    Session s;
+    RenderDesc desc = cli_render_desc(o);
+    if (!session_open(&s, &desc, &err))
+        die("%s", err.message);
+    session_print_summary(&s);
+    const SceneDesc *d = &s.scene.desc;
+    float *rgb = malloc((size_t)d->width * d->height * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed, .quiet = true,
+                           .no_nee = o->no_nee};
+
+    RenderStats stats[NUM_MODES];
+    size_t num_modes = NUM_MODES;
+    if (s.scene.data.num_triangles > BRUTE_FORCE_MAX_TRIANGLES)
+        num_modes--; /* the brute-force row comes last */
+    RenderSettings settings[NUM_MODES];
+    for (size_t m = 0; m < num_modes; m++) {
+        settings[m] = base;
+        settings[m].no_compaction = modes[m].no_compaction;
+        settings[m].window_size = modes[m].window_size;
+        settings[m].shadow_flags = modes[m].shadow_flags;
+        settings[m].brute_force = modes[m].brute_force;
+        settings[m].sort_materials = modes[m].sort_materials;
+        /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
+         * more, once per machine); keep that out of the figures. */
+        RenderSettings warm = settings[m];
+        warm.spp = 1;
+        bench_render(&s, warm, rgb);
+    }
+    for (size_t m = 0; m < num_modes; m++)
+        stats[m] = bench_render(&s, settings[m], rgb);
+
+    printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths, window %u samples, "
+           "%.1f MiB of path state\n",
+           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name, stats[0].pool_size,
+           stats[0].window_size, stats[0].device_bytes / 1048576.0);
+    printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
+           "Mshadow/s", "rays/path");
+    for (size_t m = 0; m < num_modes; m++) {
+        print_row(modes[m].name, &stats[m]);
+        if (o->csv)
+            append_csv(o->csv, &s, modes[m].name, &stats[m]);
+    }
+
+    RenderSettings profiled = base;
+    profiled.profile = true;
+    RenderStats prof = bench_render(&s, profiled, rgb);
+    double total = 0.0;
+    for (int k = 0; k < STAGE_COUNT; k++)
+        total += prof.stage_ms[k];
+    printf("%-22s %9s %11s %7s\n", "stage (profiled run)", "launches", "total ms", "share");
+    for (int k = 0; k < STAGE_COUNT; k++)
+        printf("%-22s %9u %11.2f %6.1f%%\n", stage_names[k], prof.stage_launches[k], prof.stage_ms[k],
+               total > 0 ? 100.0 * prof.stage_ms[k] / total : 0.0);
+    if (o->csv)
+        append_profile_csv(o->csv, &s, &prof);
+    printf("live paths per step (all windows):");
+    for (int b = 0; b < 64 && prof.live_per_step[b]; b++)
+        printf(" %llu", (unsigned long long)prof.live_per_step[b]);
+    printf("\n");
+    free(rgb);
+    session_close(&s);
+    return 0;
+}

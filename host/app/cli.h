@@ -1,0 +1,41 @@
+/* SPDX-License-Identifier: MIT */
+/* cli.h: the command line of shared/DESIGN.md, parsed into one options struct (zero = default). */
+#ifndef PT_CLI_H
+#define PT_CLI_H
+
+#include <stdbool.h>
+
+#include "base/error.h"
+#include "render/session.h"
+#include "viewer/viewer.h"
+
+typedef enum { CMD_NONE, CMD_HELP, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
+
+typedef struct {
+    Command command;
+    const char *scene;  /* SCENE argument */
+    const char *device; /* --device, NULL = default */
+    const char *output; /* -o, NULL = out/<scene name>.{exr,png}, never overwriting */
+    const char *aov;    /* --aov albedo|normal|depth, NULL = path tracing */
+    int spp, max_depth, width, height; /* 0 = from the scene */
+    unsigned seed;
+    bool seed_given;
+    float exposure; /* stops, PNG only */
+    bool quiet;
+    bool preview;   /* with -o X.exr, also write X.png */
+    bool no_nee, no_compaction, profile, sort_materials;
+    bool no_cache;   /* compile the kernels even if the kernel cache has them */
+    const char *csv; /* pt bench: append results to this CSV file */
+    int frames;              /* pt view: quit after this many frames; 0 = run until closed */
+    const char *screenshot;  /* pt view: PNG of the window's framebuffer at exit */
+    const char *camera_json; /* pt view: start pose, a JSON object like the scene's camera */
+} Options;
+
+/* Parses argv; returns false with ERR_USAGE naming the offending argument. */
+bool cli_parse(int argc, char **argv, Options *out, Error *err);
+void cli_print_help(void);
+/* The parts of the options that the render core and the viewer take. */
+RenderDesc cli_render_desc(const Options *o);
+ViewerDesc cli_viewer_desc(const Options *o);
+
+#endif

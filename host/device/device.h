@@ -1,0 +1,81 @@
+/* SPDX-License-Identifier: MIT */
+/* device.h: OpenCL platform/device selection, the one program built from the embedded cl/ sources,
+ * checked buffer allocation and kernel launches. Nothing here knows about rendering. */
+#ifndef PT_DEVICE_H
+#define PT_DEVICE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "device/cl_check.h"
+#include "base/error.h"
+
+typedef struct {
+    cl_platform_id platform;
+    cl_device_id device;
+    cl_context context;
+    cl_command_queue queue; /* in order, with profiling enabled */
+    cl_program program;
+    cl_device_type type;
+    cl_ulong max_alloc;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE */
+    cl_ulong global_mem; /* CL_DEVICE_GLOBAL_MEM_SIZE */
+    size_t max_work_group;
+    cl_uint compute_units;
+    bool is_nvidia;
+    int bvh_width;       /* BVH layout the kernels walk (bvh_wide.h): 2 on GPUs, 8 on CPUs, or
+                          * PT_BVH_WIDTH */
+    bool bvh_quantized;  /* 2-wide: 32-byte nodes (bvh_quantized.h); PT_BVH_QUANTIZED=0/1 */
+    char build_options[256]; /* see device_build_options */
+    int platform_index, device_index;
+    char name[256];
+    char platform_name[256];
+    char driver_version[128];
+    double build_seconds; /* time to get the program: compile, or load from the kernel cache */
+    bool use_cache;       /* set before device_build; device_open sets it unless PT_NO_CACHE=1 */
+    bool cache_hit;       /* the program came from the kernel cache */
+} Device;
+
+/* Prints every platform and device (name, type, compute units, memory, max allocation, OpenCL C
+ * version). Returns false with ERR_NO_PLATFORM when there is none. */
+bool device_list(FILE *out, Error *err);
+
+/* Opens a device. spec: NULL or "" (first GPU, else first CPU), "gpu", "cpu", or "P:D" (platform
+ * and device index as `pt devices` prints them). ERR_DEVICE_UNKNOWN names the spec. */
+bool device_open(Device *dev, const char *spec, Error *err);
+
+/* Builds the program from the embedded cl/ sources followed by extra_source (may be NULL; tests add
+ * their kernels this way). On failure prints the full build log and returns
+ * ERR_KERNEL_BUILD. */
+bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err);
+
+/* The build options, in one place: logged with every build. */
+const char *device_build_options(const Device *dev);
+
+cl_kernel device_kernel(Device *dev, const char *name);
+
+/* Allocates a buffer named for error messages; a size above CL_DEVICE_MAX_MEM_ALLOC_SIZE is
+ * ERR_ALLOC_TOO_LARGE naming the buffer, its size and the limit. host may be NULL. A zero size
+ * allocates a small dummy buffer so kernels always get a valid argument. */
+cl_mem device_buffer(Device *dev, const char *name, cl_mem_flags flags, size_t size,
+                     const void *host, Error *err);
+
+/* Blocking transfers. */
+void device_read(Device *dev, cl_mem buf, size_t offset, size_t size, void *dst);
+void device_write(Device *dev, cl_mem buf, size_t offset, size_t size, const void *src);
+
+/* Sets one kernel argument from an lvalue: KERNEL_ARG(k, 0, buffer); */
+#define KERNEL_ARG(kernel, index, value) \
+    CL_CHECK(clSetKernelArg((kernel), (index), sizeof(value), &(value)))
+
+/* Device time of an enqueued command in ms (from profiling events: the queue has them on); waits
+ * for it and releases the event. */
+double device_event_ms(cl_event event);
+
+/* Launches a 1-D kernel over n items (global size rounded up to the work-group size `local`, or
+ * to 64 when local is 0; kernels check their id against n). Returns the kernel's time in ms
+ * when profile_ms is not NULL (waits for it). */
+void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *profile_ms);
+
+void device_close(Device *dev);
+
+#endif

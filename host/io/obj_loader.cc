@@ -1,0 +1,387 @@
+// SPDX-License-Identifier: MIT
+/* The C API of obj_loader.h over Debian's tinyobjloader (2.0.0rc10, float build). The file is read
+ * once: obj_lines checks it line by line (tinyobjloader reads "nan" as 0 and keeps no line
+ * numbers), then tinyobjloader parses the same bytes with its own triangulation off, and every
+ * face is triangulated here by ear clipping. Nothing from tinyobjloader is trusted blindly: counts
+ * and indices are checked again before they are used. */
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+/* error.h is C11; its _Noreturn has the C++11 spelling [[noreturn]]. */
+#define _Noreturn [[noreturn]]
+extern "C" {
+#include "base/error.h"
+#include "io/obj_lines.h"
+#include "io/obj_loader.h"
+#include "io/triangulate.h"
+}
+#undef _Noreturn
+
+namespace {
+
+/* What tinyobj::material_t cannot tell: whether illum and Tf were given, and the MTL's folder. */
+struct MaterialExtras {
+    std::string folder;
+    bool has_illum, has_tf;
+    explicit MaterialExtras(const std::string &folder_, bool has_illum_ = true, bool has_tf_ = true)
+        : folder(folder_), has_illum(has_illum_), has_tf(has_tf_)
+    {
+    }
+};
+
+/* Lets tinyobjloader read the bytes already in memory. */
+struct MemoryBuffer : std::streambuf {
+    explicit MemoryBuffer(std::string &text) { setg(&text[0], &text[0], &text[0] + text.size()); }
+};
+
+std::string folder_of(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos)
+        return "";
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string join_path(const std::string &folder, const std::string &name)
+{
+    if (folder.empty() || name.empty() || name[0] == '/')
+        return name;
+    return folder[folder.size() - 1] == '/' ? folder + name : folder + "/" + name;
+}
+
+bool read_whole_file(const char *path, std::string *text, Error *err)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file) {
+        if (errno == ENOENT)
+            error_set(err, ERR_FILE_MISSING, path, 0, "%s: no such file", path);
+        else
+            error_set(err, ERR_FILE_READ, path, 0, "%s: %s", path, strerror(errno));
+        return false;
+    }
+    char chunk[1 << 16];
+    size_t got;
+    while ((got = fread(chunk, 1, sizeof chunk, file)) > 0)
+        text->append(chunk, got);
+    bool failed = ferror(file) != 0;
+    int read_errno = errno;
+    fclose(file);
+    if (failed)
+        error_set(err, ERR_FILE_READ, path, 0, "%s: %s", path, strerror(read_errno));
+    return !failed;
+}
+
+/* tinyobjloader's messages are '\n'-separated (one is "...found\n."): each line becomes one
+ * warning. Lines repeating what obj_lines or MaterialLibraryReader already said are dropped. */
+void warn_lines(const std::string &source, const std::string &text)
+{
+    static const char *const already_reported[] = {"Degenerated face found",
+                                                   "Failed to load material file(s)"};
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        size_t begin = line.find_first_not_of(" \t\r.");
+        if (begin == std::string::npos)
+            continue;
+        line = line.substr(begin, line.find_last_not_of(" \t\r") + 1 - begin);
+        bool repeated = false;
+        for (const char *known : already_reported)
+            repeated = repeated || line.compare(0, strlen(known), known) == 0;
+        if (!repeated)
+            warn("%s: %s", source.c_str(), line.c_str());
+    }
+}
+
+/* Which materials of one MTL gave illum and Tf/Kt, in the order tinyobj::LoadMtl appends them: a
+ * block is appended when the next newmtl starts if it has a name, and the last block always. */
+std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &folder)
+{
+    struct Block {
+        bool named;
+        MaterialExtras extras;
+    };
+    std::vector<Block> blocks(1, Block{false, MaterialExtras(folder, false, false)});
+    std::string unix_text = text; /* tinyobjloader also ends lines at a lone \r */
+    std::replace(unix_text.begin(), unix_text.end(), '\r', '\n');
+    std::istringstream lines(unix_text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        size_t begin = line.find_first_not_of(" \t");
+        size_t end = line.find_last_not_of(" \t\r");
+        if (begin == std::string::npos || end == std::string::npos)
+            continue;
+        std::string record = line.substr(begin, end + 1 - begin);
+        auto keyword = [&record](const char *word) {
+            size_t n = strlen(word);
+            return record.size() > n && record.compare(0, n, word) == 0 &&
+                   (record[n] == ' ' || record[n] == '\t');
+        };
+        if (keyword("newmtl")) {
+            blocks.push_back(Block{record.size() > 7, MaterialExtras(folder, false, false)});
+        } else if (keyword("illum")) {
+            blocks.back().extras.has_illum = true;
+        } else if (keyword("Tf") || keyword("Kt")) {
+            blocks.back().extras.has_tf = true;
+        }
+    }
+    std::vector<MaterialExtras> appended;
+    for (size_t i = 0; i < blocks.size(); i++)
+        if (blocks[i].named || i + 1 == blocks.size())
+            appended.push_back(blocks[i].extras);
+    return appended;
+}
+
+/* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. */
+class MaterialLibraryReader : public tinyobj::MaterialReader {
+  public:
+    explicit MaterialLibraryReader(const std::string &folder) : folder_(folder) {}
+    std::vector<MaterialExtras> extras; /* parallel to the materials appended */
+
+    bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
+                    std::map<std::string, int> *names, std::string *warnings,
+                    std::string *errors) override
+    {
+        (void)warnings; /* ours go straight to warn(), naming the MTL */
+        std::string path = join_path(folder_, name);
+        std::ifstream file(path.c_str(), std::ios::binary);
+        if (!file) {
+            warn("material library %s not found: its materials are replaced by the default",
+                 path.c_str());
+            return false;
+        }
+        std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        size_t before = materials->size();
+        std::istringstream stream(text);
+        std::string mtl_warnings;
+        tinyobj::LoadMtl(names, materials, &stream, &mtl_warnings, errors);
+        warn_lines(path, mtl_warnings);
+        std::vector<MaterialExtras> found = scan_material_blocks(text, folder_of(path));
+        if (found.size() != materials->size() - before) /* keep tinyobj's values as they are */
+            found.assign(materials->size() - before, MaterialExtras(folder_of(path)));
+        extras.insert(extras.end(), found.begin(), found.end());
+        return true;
+    }
+
+  private:
+    std::string folder_;
+};
+
+void *alloc_array(size_t count, size_t size)
+{
+    void *memory = calloc(count ? count : 1, size);
+    if (!memory)
+        throw std::bad_alloc();
+    return memory;
+}
+
+/* Copies a float attribute, refusing values that are not finite (keyword names the record). */
+bool copy_floats(const std::vector<float> &from, size_t width, const char *keyword,
+                 const std::string &text, const char *path, float **to, Error *err)
+{
+    *to = static_cast<float *>(alloc_array(from.size(), sizeof(float)));
+    for (size_t i = 0; i < from.size(); i++) {
+        if (!std::isfinite(from[i])) {
+            int line = obj_lines_find_record(text.data(), text.size(), keyword, i / width);
+            error_set(err, ERR_OBJ_NONFINITE, path, line, "%s:%d: '%s' record is not finite", path,
+                      line, keyword);
+            return false;
+        }
+        (*to)[i] = from[i];
+    }
+    return true;
+}
+
+void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to)
+{
+    snprintf(to->name, sizeof to->name, "%s", from.name.c_str());
+    for (int c = 0; c < 3; c++) {
+        to->kd[c] = from.diffuse[c];
+        to->ks[c] = from.specular[c];
+        to->ke[c] = from.emission[c];
+        to->tf[c] = extras.has_tf ? from.transmittance[c] : 1.0f;
+    }
+    to->ni = from.ior;
+    to->d = from.dissolve;
+    to->illum = extras.has_illum ? from.illum : -1;
+    std::string map_kd = join_path(extras.folder, from.diffuse_texname);
+    if (map_kd.size() >= sizeof to->map_kd)
+        warn("material %s: map_Kd path longer than %zu characters ignored", to->name,
+             sizeof to->map_kd - 1);
+    else
+        snprintf(to->map_kd, sizeof to->map_kd, "%s", map_kd.c_str());
+}
+
+/* A corner index from tinyobjloader must lie in [lowest, count). */
+bool index_ok(int index, int lowest, size_t count)
+{
+    return index >= lowest && (index < 0 || static_cast<size_t>(index) < count);
+}
+
+/* Triangulates every face into out->corners / material_ids; checks every index first. */
+bool emit_triangles(const std::vector<tinyobj::shape_t> &shapes, const std::string &text,
+                    const char *path, ObjMesh *out, Error *err)
+{
+    size_t max_triangles = 0;
+    for (const tinyobj::shape_t &shape : shapes)
+        for (unsigned char corners : shape.mesh.num_face_vertices)
+            max_triangles += corners >= 3 ? corners - 2u : 0u;
+    out->corners = static_cast<int32_t *>(alloc_array(9 * max_triangles, sizeof(int32_t)));
+    out->material_ids = static_cast<int32_t *>(alloc_array(max_triangles, sizeof(int32_t)));
+    std::vector<float> points;
+    std::vector<uint32_t> triangles;
+    for (const tinyobj::shape_t &shape : shapes) {
+        const tinyobj::mesh_t &mesh = shape.mesh;
+        size_t first = 0;
+        for (size_t face = 0; face < mesh.num_face_vertices.size(); face++) {
+            size_t n = mesh.num_face_vertices[face];
+            if (first + n > mesh.indices.size()) {
+                error_set(err, ERR_OBJ_PARSE, path, 0, "%s: tinyobjloader's faces are inconsistent",
+                          path);
+                return false;
+            }
+            const tinyobj::index_t *corner = &mesh.indices[first];
+            first += n;
+            size_t ordinal = out->num_faces++;
+            points.resize(3 * n);
+            for (size_t k = 0; k < n; k++) {
+                if (!index_ok(corner[k].vertex_index, 0, out->num_positions) ||
+                    !index_ok(corner[k].texcoord_index, -1, out->num_texcoords) ||
+                    !index_ok(corner[k].normal_index, -1, out->num_normals)) {
+                    int line = obj_lines_find_record(text.data(), text.size(), "f", ordinal);
+                    error_set(err, ERR_OBJ_INDEX, path, line,
+                              "%s:%d: face index out of range (corner %zu resolves to %d/%d/%d)",
+                              path, line, k + 1, corner[k].vertex_index + 1,
+                              corner[k].texcoord_index + 1, corner[k].normal_index + 1);
+                    return false;
+                }
+                memcpy(&points[3 * k], &out->positions[3 * corner[k].vertex_index],
+                       3 * sizeof(float));
+            }
+            if (n < 3)
+                continue; /* tinyobjloader drops these; obj_lines has warned */
+            triangles.resize(3 * (n - 2));
+            size_t count = triangulate_polygon(points.data(), n, triangles.data());
+            int material = face < mesh.material_ids.size() ? mesh.material_ids[face] : -1;
+            if (material < -1 || material >= static_cast<int>(out->num_materials))
+                material = -1;
+            for (size_t t = 0; t < count; t++) {
+                int32_t *emitted = out->corners + 9 * out->num_triangles;
+                for (int c = 0; c < 3; c++) {
+                    const tinyobj::index_t &index = corner[triangles[3 * t + c]];
+                    emitted[3 * c + 0] = index.vertex_index;
+                    emitted[3 * c + 1] = index.texcoord_index;
+                    emitted[3 * c + 2] = index.normal_index;
+                }
+                out->material_ids[out->num_triangles++] = material;
+            }
+        }
+    }
+    return true;
+}
+
+/* The record counts tinyobjloader saw must be the ones obj_lines saw, or line numbers would lie. */
+bool counts_agree(const tinyobj::attrib_t &attrib, const ObjRecordCounts &counts,
+                  size_t tinyobj_faces, const char *path, Error *err)
+{
+    if (attrib.vertices.size() == 3 * counts.positions &&
+        attrib.texcoords.size() == 2 * counts.texcoords &&
+        attrib.normals.size() == 3 * counts.normals && tinyobj_faces == counts.faces)
+        return true;
+    error_set(
+        err, ERR_OBJ_PARSE, path, 0,
+        "%s: tinyobjloader read %zu v, %zu vt, %zu vn, %zu f; the file has %zu, %zu, %zu, %zu",
+        path, attrib.vertices.size() / 3, attrib.texcoords.size() / 2, attrib.normals.size() / 3,
+        tinyobj_faces, counts.positions, counts.texcoords, counts.normals, counts.faces);
+    return false;
+}
+
+bool parse_error(const char *path, const std::string &message, Error *err)
+{
+    std::string first = message.substr(0, message.find('\n'));
+    size_t at = first.rfind("line ");
+    int line = at == std::string::npos ? 0 : atoi(first.c_str() + at + 5);
+    error_set(err, ERR_OBJ_PARSE, path, line, "%s:%d: %s", path, line,
+              first.empty() ? "tinyobjloader cannot parse it" : first.c_str());
+    return false;
+}
+
+bool load(const char *path, ObjMesh *out, Error *err)
+{
+    std::string text;
+    if (!read_whole_file(path, &text, err))
+        return false;
+    ObjRecordCounts counts;
+    if (!obj_lines_check(text.data(), text.size(), path, &counts, err))
+        return false;
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warnings, errors;
+    MemoryBuffer buffer(text);
+    std::istream stream(&buffer);
+    MaterialLibraryReader library(folder_of(path));
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &stream, &library,
+                          false, false))
+        return parse_error(path, errors, err);
+    warn_lines(path, warnings + errors);
+    size_t faces = 0;
+    for (const tinyobj::shape_t &shape : shapes)
+        faces += shape.mesh.num_face_vertices.size();
+    if (!counts_agree(attrib, counts, faces, path, err))
+        return false;
+
+    out->num_positions = counts.positions;
+    out->num_texcoords = counts.texcoords;
+    out->num_normals = counts.normals;
+    if (!copy_floats(attrib.vertices, 3, "v", text, path, &out->positions, err) ||
+        !copy_floats(attrib.texcoords, 2, "vt", text, path, &out->texcoords, err) ||
+        !copy_floats(attrib.normals, 3, "vn", text, path, &out->normals, err))
+        return false;
+    out->num_materials = materials.size();
+    out->materials = static_cast<ObjMaterial *>(alloc_array(materials.size(), sizeof(ObjMaterial)));
+    for (size_t i = 0; i < materials.size(); i++)
+        copy_material(materials[i],
+                      i < library.extras.size() ? library.extras[i]
+                                                : MaterialExtras(folder_of(path)),
+                      &out->materials[i]);
+    return emit_triangles(shapes, text, path, out, err);
+}
+
+} // namespace
+
+extern "C" bool obj_load(const char *path, ObjMesh *out, Error *err)
+{
+    memset(out, 0, sizeof *out);
+    bool loaded = false;
+    try {
+        loaded = load(path, out, err);
+    } catch (const std::bad_alloc &) {
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory while loading", path);
+    }
+    if (!loaded)
+        obj_free(out);
+    return loaded;
+}
+
+extern "C" void obj_free(ObjMesh *mesh)
+{
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->texcoords);
+    free(mesh->corners);
+    free(mesh->material_ids);
+    free(mesh->materials);
+    memset(mesh, 0, sizeof *mesh);
+}

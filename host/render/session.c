@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+#include "render/session.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "accel/bvh_wide.h"
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
+{
+    if (o->width) d->width = o->width;
+    if (o->height) d->height = o->height;
+    if (o->spp) d->spp = o->spp;
+    if (o->max_depth) d->max_depth = o->max_depth;
+    /* Pixel indices are 32-bit in the kernels. */
+    if ((uint64_t)d->width * (uint64_t)d->height > (1ull << 31)) {
+        error_set(err, ERR_USAGE, NULL, 0, "film %dx%d is too large (at most 2^31 pixels)", d->width,
+                  d->height);
+        return false;
+    }
+    return true;
+}
+
+bool session_open(Session *s, const RenderDesc *o, Error *err)
+{
+    memset(s, 0, sizeof *s);
+    double t0 = seconds_now();
+    if (!scene_load(o->scene, &s->scene, err))
+        return false;
+    if (!apply_overrides(o, &s->scene.desc, err)) {
+        scene_free(&s->scene);
+        return false;
+    }
+    s->load_seconds = seconds_now() - t0;
+    bool opened = device_open(&s->dev, o->device, err);
+    if (opened && o->no_cache)
+        s->dev.use_cache = false;
+    if (!opened || !device_build(&s->dev, NULL, NULL, err)) {
+        if (s->dev.context)
+            device_close(&s->dev);
+        scene_free(&s->scene);
+        return false;
+    }
+    double t1 = seconds_now();
+    bvh_build_for_width(&s->bvh, s->scene.data.positions, s->scene.data.triangles,
+                        s->scene.data.num_triangles, s->dev.bvh_width);
+    s->bvh_seconds = seconds_now() - t1;
+    if (!scene_buffers_upload(&s->dev, &s->scene.data, &s->bvh, &s->buffers, err)) {
+        session_close(s);
+        return false;
+    }
+    return true;
+}
+
+void session_print_summary(const Session *s)
+{
+    fprintf(stderr,
+            "pt: %s: %u triangles, %u materials, %u textures, %u emissive triangles; load %.2f s, "
+            "BVH %.2f s, kernels %.2f s (%s)\npt: device %s (%s, driver %s), %.1f MiB of scene "
+            "buffers\n",
+            s->scene.desc.path, s->scene.data.num_triangles, s->scene.data.num_materials,
+            s->scene.data.textures.count, s->scene.data.num_emissive, s->load_seconds,
+            s->bvh_seconds, s->dev.build_seconds, s->dev.cache_hit ? "from the kernel cache" : "compiled",
+            s->dev.name, s->dev.platform_name,
+            s->dev.driver_version, (double)s->buffers.bytes / (1 << 20));
+}
+
+void session_close(Session *s)
+{
+    scene_buffers_release(&s->buffers);
+    bvh_free(&s->bvh);
+    if (s->dev.context)
+        device_close(&s->dev);
+    scene_free(&s->scene);
+    memset(s, 0, sizeof *s);
+}

@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* session.h: what every command that renders needs: the scene loaded and flattened, a device with
+ * the program built, the BVH, and the scene's buffers on the device. */
+#ifndef PT_SESSION_H
+#define PT_SESSION_H
+
+#include "accel/bvh.h"
+#include "device/device.h"
+#include "scene/scene.h"
+#include "render/scene_upload.h"
+
+/* What to render and where: the scene file, the device, and overrides of the scene's settings
+ * (zero keeps the scene's value). Commands fill it from their command line. */
+typedef struct {
+    const char *scene;  /* a .json scene, a bare .obj, or a folder holding scene.json */
+    const char *device; /* gpu|cpu|P:D; NULL = the default device */
+    int width, height, spp, max_depth;
+    bool no_cache;      /* compile the kernels even if the kernel cache has them */
+} RenderDesc;
+
+typedef struct {
+    Scene scene;
+    Device dev;
+    Bvh bvh;
+    SceneBuffers buffers;
+    double load_seconds, bvh_seconds; /* dev.build_seconds has the kernel build */
+} Session;
+
+/* Loads desc->scene, applies the overrides (film, spp, depth), opens desc->device. */
+bool session_open(Session *s, const RenderDesc *desc, Error *err);
+void session_print_summary(const Session *s);
+void session_close(Session *s);
+
+#endif

@@ -1,0 +1,84 @@
+/* SPDX-License-Identifier: MIT */
+/* wavefront.h: the path tracer. One kernel per stage (cl/<stage>.cl), a pool of path slots sized
+ * to the device, parallel-scan compaction of live paths between bounces (host/parallel/compact.h), and
+ * slots refilled with new camera paths as paths end, a window of samples at a time. */
+#ifndef PT_WAVEFRONT_H
+#define PT_WAVEFRONT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "device/device.h"
+#include "scene/scene.h"
+#include "render/scene_upload.h"
+
+typedef struct {
+    int spp, max_depth;  /* required */
+    unsigned seed;
+    bool no_nee;         /* BSDF sampling only */
+    bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
+    bool quiet;          /* no progress line */
+    bool profile;        /* time every kernel (waits after each launch) */
+    bool brute_force;    /* no BVH: every ray against every triangle (benchmark ablation) */
+    bool sort_materials; /* shade the live paths grouped by the material they hit */
+    bool shadow_flags;   /* intersect_shadow checks a flag per active path instead of reading
+                          * the queue that shade_surface appends to with atomics (the default:
+                          * 1.5 to 6% faster on an H100; pt bench measures both) */
+    uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
+    uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
+                           * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
+} RenderSettings;
+
+/* Default window: long enough that the pool stays full for most of it (the tail, where the last
+ * paths of the window run with no refills, is about a pool's worth of work). */
+#define WINDOW_PER_POOL 4
+
+enum {
+    STAGE_GENERATE, STAGE_EXTEND, STAGE_SORT, STAGE_SHADE, STAGE_CONNECT, STAGE_COMPACT,
+    STAGE_ACCUMULATE, STAGE_COUNT
+};
+
+typedef struct {
+    int spp_done;              /* samples per pixel in the film (fewer than asked if interrupted) */
+    double seconds;            /* wall time of the sample loop */
+    uint64_t paths;            /* camera paths traced */
+    uint64_t extension_rays;   /* closest-hit rays traced (live paths per bounce) */
+    uint64_t shadow_rays;      /* any-hit rays traced for next-event estimation */
+    uint32_t nonfinite;        /* samples dropped as NaN/Inf */
+    uint32_t pool_size;
+    uint32_t window_size;
+    uint32_t batches;          /* windows rendered */
+    uint64_t device_bytes;     /* path state, window and film on the device */
+    double stage_ms[STAGE_COUNT];   /* with settings.profile */
+    uint32_t stage_launches[STAGE_COUNT];
+    uint64_t live_per_step[64];     /* live paths entering each step (= bounce without refills),
+                                     * summed over windows */
+} RenderStats;
+
+typedef struct Wavefront Wavefront;
+
+/* A progressive render: the device state of one film. Samples continue from where the last call
+ * stopped; the image is the same whatever the steps (the RNG is keyed on pixel and sample). */
+Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                            const RenderSettings *settings, Error *err);
+/* Traces windows until at least min_paths camera paths are done or max_spp samples per pixel are
+ * complete (lower settings.window_size for short steps); waits for them. */
+uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
+int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel so far */
+void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
+void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
+void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
+RenderStats *wavefront_stats(Wavefront *w);
+void wavefront_destroy(Wavefront *w);
+
+/* Renders scene into rgb (width * height * 3 floats, row 0 at the top): the mean of spp samples
+ * per pixel. Stops early, keeping what is done, after wavefront_request_stop(). */
+bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                      const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err);
+
+/* Async-signal-safe: asks a running render to stop after the current batch (Ctrl-C). */
+void wavefront_request_stop(void);
+
+extern const char *const stage_names[STAGE_COUNT];
+
+#endif

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+#include "scene/lights.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/error.h"
+
+static double triangle_area(const SceneData *data, uint32_t t)
+{
+    uint4 v = data->triangles[t].v;
+    const float *a = data->positions[v.s[0]].s, *b = data->positions[v.s[1]].s,
+                *c = data->positions[v.s[2]].s;
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+void light_table_build(LightTable *table, const SceneData *data)
+{
+    memset(table, 0, sizeof *table);
+    uint32_t n = data->num_emissive;
+    if (n == 0)
+        return;
+    double *power = malloc(n * sizeof *power);
+    uint32_t *tris = malloc(n * sizeof *tris);
+    if (!power || !tris)
+        die("out of memory for the light table (%u emitters)", n);
+    double total = 0.0;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t t = data->emissive_triangles[i];
+        double w = triangle_area(data, t) * data->materials[data->material_ids[t]].ke.s[3];
+        if (w > 0.0 && isfinite(w)) {
+            power[count] = w;
+            tris[count++] = t;
+            total += w;
+        }
+    }
+    if (count == 0) {
+        free(power);
+        free(tris);
+        return;
+    }
+    /* Vose's alias method: scaled probabilities split into small (< 1) and large worklists. */
+    LightEntry *entries = calloc(count, sizeof *entries);
+    double *scaled = malloc(count * sizeof *scaled);
+    uint32_t *small = malloc(count * sizeof *small), *large = malloc(count * sizeof *large);
+    if (!entries || !scaled || !small || !large)
+        die("out of memory for the light table (%u emitters)", count);
+    uint32_t n_small = 0, n_large = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        scaled[i] = power[i] / total * count;
+        entries[i].triangle = tris[i];
+        entries[i].pdf = (float)(power[i] / total);
+        if (scaled[i] < 1.0)
+            small[n_small++] = i;
+        else
+            large[n_large++] = i;
+    }
+    while (n_small > 0 && n_large > 0) {
+        uint32_t s = small[--n_small], l = large[--n_large];
+        entries[s].prob = (float)scaled[s];
+        entries[s].alias = l;
+        scaled[l] = (scaled[l] + scaled[s]) - 1.0;
+        if (scaled[l] < 1.0)
+            small[n_small++] = l;
+        else
+            large[n_large++] = l;
+    }
+    /* What remains is 1 up to rounding: keep it always. */
+    while (n_large > 0) {
+        uint32_t l = large[--n_large];
+        entries[l].prob = 1.0f, entries[l].alias = l;
+    }
+    while (n_small > 0) {
+        uint32_t s = small[--n_small];
+        entries[s].prob = 1.0f, entries[s].alias = s;
+    }
+    table->entries = entries;
+    table->count = count;
+    table->total_power = (float)total;
+    free(power), free(tris), free(scaled), free(small), free(large);
+}
+
+void light_table_free(LightTable *table)
+{
+    free(table->entries);
+    memset(table, 0, sizeof *table);
+}

@@ -1,0 +1,21 @@
+/* SPDX-License-Identifier: MIT */
+/* lights.h: the alias table over emissive triangles that next-event estimation samples from. */
+#ifndef PT_LIGHTS_H
+#define PT_LIGHTS_H
+
+#include <stdint.h>
+
+#include "scene/scene_data.h"
+
+typedef struct {
+    LightEntry *entries; /* one per emissive triangle; NULL when there is none */
+    uint32_t count;
+    float total_power;   /* sum of area * luminance(Ke): the pdfs' normaliser */
+} LightTable;
+
+/* Builds the table from data->emissive_triangles, each weighted by area * luminance(Ke). Triangles
+ * of zero area or zero emission are left out. */
+void light_table_build(LightTable *table, const SceneData *data);
+void light_table_free(LightTable *table);
+
+#endif

@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* scene.h: the scene as the user wrote it (JSON v1 of shared/DESIGN.md, or a bare .obj), and the
+ * whole scene loaded and flattened (scene_load). */
+#ifndef PT_SCENE_H
+#define PT_SCENE_H
+
+#include <stdbool.h>
+
+#include "base/error.h"
+#include "scene/camera.h"
+#include "scene/scene_data.h"
+
+typedef struct {
+    char path[1024];    /* the scene file (.json or .obj) */
+    bool camera_given;  /* false: frame the camera on the scene's bounds (bare .obj) */
+    CameraDesc camera;
+    int width, height;  /* film; default 512 x 512 */
+    int spp, max_depth; /* default 64, 8 */
+    float background[3];
+    int num_objects;
+    char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
+} SceneDesc;
+
+/* Reads a scene description. path: a .json scene, a bare .obj, or a folder holding scene.json.
+ * Errors name the file and line (malformed JSON) or the key (unknown key, wrong type, bad value). */
+bool scene_desc_load(const char *path, SceneDesc *out, Error *err);
+void scene_desc_free(SceneDesc *desc);
+
+typedef struct {
+    SceneDesc desc;
+    SceneData data;
+} Scene;
+
+/* scene_desc_load + scene_data_build, and frames the camera when none was given. */
+bool scene_load(const char *path, Scene *out, Error *err);
+void scene_free(Scene *scene);
+
+#endif

@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: MIT
+#include "scene/scene_data.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Triangles that use the default material carry this id until scene_data_finish appends the one
+ * default material of the scene and patches them. */
+#define DEFAULT_MATERIAL_PENDING 0xffffffffu
+
+void scene_data_init(SceneData *data)
+{
+    memset(data, 0, sizeof *data);
+}
+
+void scene_data_free(SceneData *data)
+{
+    free(data->positions);
+    free(data->normals);
+    free(data->uvs);
+    free(data->triangles);
+    free(data->material_ids);
+    free(data->materials);
+    texture_set_free(&data->textures);
+    free(data->emissive_triangles);
+    memset(data, 0, sizeof *data);
+}
+
+/* ---- Materials ------------------------------------------------------------------------------ */
+
+static float luminance3(const float c[3])
+{
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+/* Reflectances above 1 would create energy and non-finite ones poison the image: clamp to [0, 1]. */
+static float4 reflectance(const float c[3])
+{
+    float4 out = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    for (int i = 0; i < 3; i++)
+        out.s[i] = isfinite(c[i]) ? fminf(fmaxf(c[i], 0.0f), 1.0f) : 0.0f;
+    return out;
+}
+
+Material material_from_obj(const ObjMaterial *m, uint32_t map_kd)
+{
+    Material out = {.kd = reflectance(m->kd), .ks = reflectance(m->ks), .tf = reflectance(m->tf),
+                    .type = MATERIAL_DIFFUSE, .map_kd = map_kd};
+    for (int i = 0; i < 3; i++)
+        out.ke.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
+    out.ke.s[3] = luminance3(out.ke.s);
+    /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
+    if (out.tf.s[0] + out.tf.s[1] + out.tf.s[2] <= 0.0f)
+        out.tf = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
+    out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
+    bool has_ks = out.ks.s[0] + out.ks.s[1] + out.ks.s[2] > 0.0f;
+    bool refracts = m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f);
+    if ((m->illum == 3 || m->illum == 5) && has_ks)
+        out.type = MATERIAL_MIRROR;
+    else if (refracts)
+        out.type = MATERIAL_DIELECTRIC;
+    return out;
+}
+
+static Material default_material(void)
+{
+    ObjMaterial grey = {.kd = {0.8f, 0.8f, 0.8f}, .ni = 1.0f, .d = 1.0f, .illum = -1};
+    return material_from_obj(&grey, NO_TEXTURE);
+}
+
+/* Appends the mesh's materials and loads their textures. A missing texture file is a warning (the
+ * material keeps its Kd); a corrupt one is an error. */
+static bool append_materials(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
+{
+    if (mesh->num_materials > (size_t)UINT32_MAX - 1 - data->num_materials) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: too many materials", obj_path);
+        return false;
+    }
+    size_t count = data->num_materials + mesh->num_materials;
+    Material *grown = realloc(data->materials, (count ? count : 1) * sizeof *grown);
+    if (!grown) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory for materials", obj_path);
+        return false;
+    }
+    data->materials = grown;
+    for (size_t i = 0; i < mesh->num_materials; i++) {
+        const ObjMaterial *m = &mesh->materials[i];
+        uint32_t map_kd = NO_TEXTURE;
+        if (m->map_kd[0]) {
+            Error texture_err = {0};
+            map_kd = texture_set_add(&data->textures, m->map_kd, &texture_err);
+            if (texture_err.code == ERR_FILE_MISSING) {
+                warn("%s: texture %s of material '%s' not found: using its Kd", obj_path, m->map_kd,
+                     m->name);
+            } else if (error_is_set(&texture_err)) {
+                error_set(err, texture_err.code, texture_err.file, 0, "%s (material '%s' of %s)",
+                          texture_err.message, m->name, obj_path);
+                return false;
+            }
+        }
+        data->materials[data->num_materials++] = material_from_obj(m, map_kd);
+    }
+    return true;
+}
+
+/* ---- Vertex unification --------------------------------------------------------------------- */
+
+/* Open-addressing hash map from a corner's (position, texcoord, normal) indices to its unified
+ * vertex. Sized to at least twice the corner count, so probes stay short; slot.vertex 0 = empty. */
+typedef struct {
+    int32_t p, t, n;
+    uint32_t vertex; /* unified index + 1 */
+} CornerSlot;
+
+typedef struct {
+    CornerSlot *slots;
+    size_t mask;
+} CornerMap;
+
+static bool corner_map_init(CornerMap *map, size_t corners)
+{
+    size_t size = 16;
+    while (size < 2 * corners)
+        size *= 2;
+    map->slots = calloc(size, sizeof *map->slots);
+    map->mask = size - 1;
+    return map->slots != NULL;
+}
+
+static size_t corner_hash(int32_t p, int32_t t, int32_t n)
+{
+    uint64_t h = (uint64_t)(uint32_t)p * 0x9E3779B97F4A7C15ull;
+    h ^= (uint64_t)(uint32_t)t * 0xC2B2AE3D27D4EB4Full;
+    h ^= (uint64_t)(uint32_t)n * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    return (size_t)h;
+}
+
+/* Returns the slot for the key: either holding it, or empty (where it goes). */
+static CornerSlot *corner_map_find(CornerMap *map, const int32_t key[3])
+{
+    size_t i = corner_hash(key[0], key[1], key[2]) & map->mask;
+    for (;;) {
+        CornerSlot *s = &map->slots[i];
+        if (!s->vertex || (s->p == key[0] && s->t == key[1] && s->n == key[2]))
+            return s;
+        i = (i + 1) & map->mask;
+    }
+}
+
+static bool grow(void **array, size_t count, size_t element_size)
+{
+    void *grown = realloc(*array, (count ? count : 1) * element_size);
+    if (grown)
+        *array = grown;
+    return grown != NULL;
+}
+
+/* Checks one corner's indices against the mesh (obj_load already does; this guards the flattener). */
+static bool corner_valid(const ObjMesh *mesh, const int32_t c[3])
+{
+    return c[0] >= 0 && (size_t)c[0] < mesh->num_positions && c[1] < (int64_t)mesh->num_texcoords &&
+           c[2] < (int64_t)mesh->num_normals;
+}
+
+/* Writes the mesh's triangles (vertex indices offset by the vertices already present) and records,
+ * for each new unified vertex, the corner that first used it. */
+static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+                          uint32_t material_base, uint32_t *first_corner, uint32_t *num_new,
+                          Error *err)
+{
+    CornerMap map;
+    if (!corner_map_init(&map, 3 * mesh->num_triangles)) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        return false;
+    }
+    uint32_t base = data->num_vertices, count = 0;
+    for (size_t tri = 0; tri < mesh->num_triangles; tri++) {
+        uint32_t v[3], flags = TRIANGLE_HAS_NORMALS | TRIANGLE_HAS_UVS;
+        for (int k = 0; k < 3; k++) {
+            const int32_t *key = &mesh->corners[9 * tri + 3 * k];
+            if (!corner_valid(mesh, key)) {
+                free(map.slots);
+                error_set(err, ERR_OBJ_INDEX, obj_path, 0, "%s: triangle %zu has an index out of range",
+                          obj_path, tri);
+                return false;
+            }
+            CornerSlot *slot = corner_map_find(&map, key);
+            if (!slot->vertex) {
+                *slot = (CornerSlot){key[0], key[1], key[2], ++count};
+                first_corner[count - 1] = (uint32_t)(3 * tri + (size_t)k);
+            }
+            v[k] = base + slot->vertex - 1;
+            if (key[1] < 0)
+                flags &= ~TRIANGLE_HAS_UVS;
+            if (key[2] < 0)
+                flags &= ~TRIANGLE_HAS_NORMALS;
+        }
+        size_t t = data->num_triangles + tri;
+        data->triangles[t].v = (uint4){{v[0], v[1], v[2], flags}};
+        int32_t m = mesh->material_ids[tri];
+        bool has_material = m >= 0 && (size_t)m < mesh->num_materials;
+        data->material_ids[t] = has_material ? material_base + (uint32_t)m : DEFAULT_MATERIAL_PENDING;
+    }
+    free(map.slots);
+    *num_new = count;
+    return true;
+}
+
+/* Fills the new vertices' attributes from the corners that created them. Returns false (error set)
+ * for a non-finite position. Normals that are non-finite or zero are stored as zero, and clear
+ * *normals_ok so the caller drops TRIANGLE_HAS_NORMALS where they are used. */
+static bool fill_vertices(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+                          const uint32_t *first_corner, uint32_t num_new, bool *normals_ok, Error *err)
+{
+    *normals_ok = true;
+    for (uint32_t i = 0; i < num_new; i++) {
+        const int32_t *c = &mesh->corners[3 * (size_t)first_corner[i]];
+        const float *p = &mesh->positions[3 * (size_t)c[0]];
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            error_set(err, ERR_OBJ_NONFINITE, obj_path, 0, "%s: vertex %d is not finite", obj_path,
+                      c[0] + 1);
+            return false;
+        }
+        uint32_t v = data->num_vertices + i;
+        data->positions[v] = (float4){{p[0], p[1], p[2], 0.0f}};
+        float4 normal = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        if (c[2] >= 0) {
+            const float *n = &mesh->normals[3 * (size_t)c[2]];
+            float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            if (isfinite(len2) && len2 > 0.0f)
+                normal = (float4){{n[0], n[1], n[2], 0.0f}};
+            else
+                *normals_ok = false;
+        }
+        data->normals[v] = normal;
+        float2 uv = {{0.0f, 0.0f}};
+        if (c[1] >= 0) {
+            const float *t = &mesh->texcoords[2 * (size_t)c[1]];
+            if (isfinite(t[0]) && isfinite(t[1]))
+                uv = (float2){{t[0], t[1]}};
+        }
+        data->uvs[v] = uv;
+    }
+    return true;
+}
+
+static bool is_zero(float4 v) { return v.s[0] == 0.0f && v.s[1] == 0.0f && v.s[2] == 0.0f; }
+
+/* A corner whose normal was unusable has a zero normal: shade those triangles flat. */
+static void drop_bad_normals(SceneData *data, uint32_t first_triangle)
+{
+    for (uint32_t t = first_triangle; t < data->num_triangles; t++) {
+        uint4 *v = &data->triangles[t].v;
+        if (is_zero(data->normals[v->s[0]]) || is_zero(data->normals[v->s[1]]) ||
+            is_zero(data->normals[v->s[2]]))
+            v->s[3] &= ~TRIANGLE_HAS_NORMALS;
+    }
+}
+
+bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
+{
+    /* Every corner may become a vertex: both counts must stay below 2^32 - 1 for uint indices. */
+    size_t max_new_vertices = 3 * mesh->num_triangles;
+    if (mesh->num_triangles > UINT32_MAX - 1 - (size_t)data->num_triangles ||
+        max_new_vertices > UINT32_MAX - 1 - (size_t)data->num_vertices) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: %zu triangles exceed the 2^32 limit",
+                  obj_path, mesh->num_triangles);
+        return false;
+    }
+    uint32_t material_base = data->num_materials;
+    if (!append_materials(data, mesh, obj_path, err))
+        return false;
+    size_t num_triangles = data->num_triangles + mesh->num_triangles;
+    uint32_t *first_corner = malloc((max_new_vertices ? max_new_vertices : 1) * sizeof *first_corner);
+    if (!first_corner || !grow((void **)&data->triangles, num_triangles, sizeof(Triangle)) ||
+        !grow((void **)&data->material_ids, num_triangles, sizeof(uint32_t))) {
+        free(first_corner);
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        return false;
+    }
+    uint32_t num_new = 0;
+    bool normals_ok = true;
+    bool ok = unify_corners(data, mesh, obj_path, material_base, first_corner, &num_new, err);
+    size_t num_vertices = (size_t)data->num_vertices + num_new;
+    if (ok && !(grow((void **)&data->positions, num_vertices, sizeof(float4)) &&
+                grow((void **)&data->normals, num_vertices, sizeof(float4)) &&
+                grow((void **)&data->uvs, num_vertices, sizeof(float2)))) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        ok = false;
+    }
+    ok = ok && fill_vertices(data, mesh, obj_path, first_corner, num_new, &normals_ok, err);
+    free(first_corner);
+    if (!ok)
+        return false;
+    uint32_t first_triangle = data->num_triangles;
+    data->num_vertices = (uint32_t)num_vertices;
+    data->num_triangles = (uint32_t)num_triangles;
+    if (!normals_ok)
+        drop_bad_normals(data, first_triangle);
+    return true;
+}
+
+/* ---- Finishing ------------------------------------------------------------------------------ */
+
+/* Appends the default material once if any triangle needs it, and points those triangles at it. */
+static bool resolve_default_material(SceneData *data, Error *err)
+{
+    uint32_t index = data->num_materials;
+    bool needed = false;
+    for (uint32_t t = 0; t < data->num_triangles; t++) {
+        if (data->material_ids[t] == DEFAULT_MATERIAL_PENDING) {
+            data->material_ids[t] = index;
+            needed = true;
+        }
+    }
+    if (!needed)
+        return true;
+    if (!grow((void **)&data->materials, (size_t)index + 1, sizeof(Material))) {
+        error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for materials");
+        return false;
+    }
+    data->materials[data->num_materials++] = default_material();
+    return true;
+}
+
+static float triangle_area2(const SceneData *data, const Triangle *tri)
+{
+    const float *a = data->positions[tri->v.s[0]].s, *b = data->positions[tri->v.s[1]].s,
+                *c = data->positions[tri->v.s[2]].s;
+    float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                  e1[0] * e2[1] - e1[1] * e2[0]};
+    return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+}
+
+/* Lights are the triangles whose material emits. Zero-area ones are left out: they emit nothing and
+ * would make an area pdf infinite. */
+static bool build_emissive_table(SceneData *data, Error *err)
+{
+    uint32_t count = 0;
+    for (uint32_t t = 0; t < data->num_triangles; t++)
+        if (data->materials[data->material_ids[t]].ke.s[3] > 0.0f &&
+            triangle_area2(data, &data->triangles[t]) > 0.0f)
+            count++;
+    free(data->emissive_triangles);
+    data->emissive_triangles = malloc((count ? count : 1) * sizeof(uint32_t));
+    if (!data->emissive_triangles) {
+        error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for the light table");
+        return false;
+    }
+    data->num_emissive = 0;
+    for (uint32_t t = 0; t < data->num_triangles; t++)
+        if (data->materials[data->material_ids[t]].ke.s[3] > 0.0f &&
+            triangle_area2(data, &data->triangles[t]) > 0.0f)
+            data->emissive_triangles[data->num_emissive++] = t;
+    return true;
+}
+
+bool scene_data_finish(SceneData *data, const char *scene_path, Error *err)
+{
+    if (data->num_triangles == 0) {
+        error_set(err, ERR_NO_TRIANGLES, scene_path, 0, "%s: the scene has no triangles", scene_path);
+        return false;
+    }
+    if (!resolve_default_material(data, err) || !build_emissive_table(data, err))
+        return false;
+    /* Every stored vertex comes from a triangle corner, so these are the bounds of used vertices. */
+    for (int i = 0; i < 3; i++) {
+        data->bounds_min[i] = INFINITY;
+        data->bounds_max[i] = -INFINITY;
+    }
+    for (uint32_t v = 0; v < data->num_vertices; v++) {
+        for (int i = 0; i < 3; i++) {
+            data->bounds_min[i] = fminf(data->bounds_min[i], data->positions[v].s[i]);
+            data->bounds_max[i] = fmaxf(data->bounds_max[i], data->positions[v].s[i]);
+        }
+    }
+    return true;
+}

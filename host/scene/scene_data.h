@@ -1,0 +1,42 @@
+/* SPDX-License-Identifier: MIT */
+/* scene_data.h: every mesh and texture of a scene flattened into one array per attribute, indexed by
+ * offsets, ready to upload as is. Vertices are unified (one index per corner for position, normal
+ * and uv). */
+#ifndef PT_SCENE_DATA_H
+#define PT_SCENE_DATA_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "io/obj_loader.h"
+#include "base/shared_types.h"
+#include "scene/texture.h"
+
+typedef struct {
+    float4 *positions; /* w = 0 */
+    float4 *normals;   /* w = 0; zero where the mesh has none */
+    float2 *uvs;
+    uint32_t num_vertices;
+    Triangle *triangles;
+    uint32_t *material_ids; /* per triangle */
+    uint32_t num_triangles;
+    Material *materials;
+    uint32_t num_materials;
+    TextureSet textures;
+    uint32_t *emissive_triangles; /* indices of triangles whose material emits */
+    uint32_t num_emissive;
+    float bounds_min[3], bounds_max[3];
+} SceneData;
+
+void scene_data_init(SceneData *data);
+/* Appends one loaded OBJ: vertices, triangles (indices offset), materials (ids offset), textures. */
+bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err);
+/* Finishes: bounds, emissive table; ERR_NO_TRIANGLES for an empty scene (names scene_path). */
+bool scene_data_finish(SceneData *data, const char *scene_path, Error *err);
+void scene_data_free(SceneData *data);
+
+/* Maps one MTL material onto the kernels' Material (see README "Materials"). */
+Material material_from_obj(const ObjMaterial *m, uint32_t map_kd);
+
+#endif

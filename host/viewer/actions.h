@@ -1,0 +1,19 @@
+/* SPDX-License-Identifier: MIT */
+/* viewer_actions.h: the single-key actions of 'pt view' (host/viewer/actions.c). */
+#ifndef PT_VIEWER_ACTIONS_H
+#define PT_VIEWER_ACTIONS_H
+
+#include <stdbool.h>
+
+#include "viewer/state.h"
+
+/* F: the thin lens focuses on the surface under the cursor; false (and a message) on a miss. */
+bool viewer_focus_under_cursor(Viewer *v);
+/* [ and ]: the aperture shrinks or grows by factors of 1.5 (steps < 0 or > 0), down to 0. */
+void viewer_change_aperture(Viewer *v, int steps);
+/* S: PNG + EXR of the film as out/<scene>-view-N, N the first free number; prints the names. */
+void viewer_save_film(Viewer *v);
+/* C: the camera as a JSON fragment for a scene file. */
+void viewer_print_camera(const Viewer *v);
+
+#endif

@@ -1,0 +1,26 @@
+/* SPDX-License-Identifier: MIT */
+/* viewer.h: 'pt view', the interactive window: progressive rendering of the scene with camera
+ * controls (keys: viewer_input.h). */
+#ifndef PT_VIEWER_H
+#define PT_VIEWER_H
+
+#include <stdbool.h>
+
+#include "render/session.h"
+
+/* What 'pt view' is asked for; zero means default. */
+typedef struct {
+    RenderDesc render;       /* .spp 0 = sample until closed */
+    unsigned seed;
+    float exposure;          /* stops */
+    bool no_nee, no_compaction, sort_materials, quiet;
+    int frames;              /* quit after this many frames; 0 = run until closed */
+    const char *screenshot;  /* PNG of the window's framebuffer at exit */
+    const char *camera_json; /* start pose, a JSON object like the scene's camera */
+} ViewerDesc;
+
+/* Runs the window until Esc, closing it, or o->frames frames; returns the exit status. Without a
+ * display it ends with one line pointing to 'pt render' and status 1. */
+int command_view(const ViewerDesc *o);
+
+#endif
