@@ -14,6 +14,7 @@
 
 #include "device/device.h"
 #include "base/error.h"
+#include "base/fs.h"
 
 /* "NVIDIA H100 80GB HBM3" -> "NVIDIA-H100-80GB-HBM3". */
 static inline void bench_folder_name(const char *device_name, char *out, size_t size)
@@ -35,16 +36,8 @@ static inline void bench_folder_name(const char *device_name, char *out, size_t 
 /* Opens path for writing after creating its folders (mkdir -p); dies when it cannot. */
 static inline FILE *bench_open_csv(const char *path)
 {
-    char folder[1024];
-    snprintf(folder, sizeof folder, "%s", path);
-    for (char *p = folder + 1; *p; p++) {
-        if (*p != '/')
-            continue;
-        *p = '\0';
-        if (mkdir(folder, 0755) != 0 && errno != EEXIST)
-            die("cannot create %s: %s", folder, strerror(errno));
-        *p = '/';
-    }
+    if (!fs_make_parent_dirs(path))
+        die("cannot create the folder of %s: %s", path, strerror(errno));
     FILE *csv = fopen(path, "w");
     if (!csv)
         die("cannot write %s: %s", path, strerror(errno));
