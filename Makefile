@@ -62,8 +62,8 @@ test: deps
 	$(Q)./tools/check-layers.sh
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
-	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh \
-	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh
+	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse \
+	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse
 
 asan:
 	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
@@ -115,6 +115,9 @@ $(BUILD)/tests/%.o: tests/%.c
 $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 	@echo "  LD    $@"
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
+
+# The BVH tests share tests/bvh_fixtures*.c (bvh_fixtures.h).
+$(filter $(BUILD)/tests/test_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/bvh_fixtures*.c))
 
 # Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
 # the tests' header-only helpers, hence -Itests).

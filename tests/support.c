@@ -107,6 +107,19 @@ const char *test_temp_dir(void)
     return path;
 }
 
+const char *test_write_file(const char *dir, const char *name, const char *text)
+{
+    static char paths[8][512];
+    static int slot;
+    char *path = paths[slot++ % 8];
+    snprintf(path, 512, "%s/%s", dir, name);
+    FILE *file = fopen(path, "wb");
+    cr_assert(file, "cannot write %s", path);
+    fputs(text, file);
+    fclose(file);
+    return path;
+}
+
 void render_fixture_open(RenderFixture *f, const char *scene_path, int width, int height)
 {
     Error err = {0};

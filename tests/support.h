@@ -34,6 +34,9 @@ char *test_read_file(const char *path, size_t *size);
 
 /* A fresh temporary folder under /tmp; returned string is static per call site use. */
 const char *test_temp_dir(void);
+/* Writes text to dir/name (failing the test when it cannot) and returns that path, which stays
+ * valid for the next 7 calls. */
+const char *test_write_file(const char *dir, const char *name, const char *text);
 
 /* A scene loaded onto the test device, ready to render many times. */
 typedef struct {

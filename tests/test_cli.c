@@ -50,14 +50,6 @@ static Run run_pt(const char *dir, const char *args)
     return r;
 }
 
-static void write_text(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    cr_assert(f, "cannot write %s", path);
-    fputs(text, f);
-    fclose(f);
-}
-
 /* One clear line: exit 1, stderr is a single "pt: ..." line containing every needle. */
 static void expect_clean_error(Run r, const char *what, const char *needle1, const char *needle2)
 {
@@ -95,36 +87,33 @@ Test(cli, bad_command_line)
 Test(cli, bad_scene_files)
 {
     const char *dir = test_temp_dir();
-    char path[512], args[1024];
+    const char *path;
+    char args[1024];
     expect_clean_error(run_pt(NULL, "render /nonexistent/scene.json"), "missing scene", "/nonexistent/scene.json", NULL);
 
-    snprintf(path, sizeof path, "%s/broken.json", dir);
-    write_text(path, "{\n  \"film\": {\"width\": 64,\n  \"height\": 64}\n  \"objects\": []\n}\n");
+    path = test_write_file(dir, "broken.json",
+                           "{\n  \"film\": {\"width\": 64,\n  \"height\": 64}\n  \"objects\": []\n}\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "malformed JSON", "broken.json", ":4");
 
-    snprintf(path, sizeof path, "%s/unknown.json", dir);
-    write_text(path, "{\"objects\": [{\"obj\": \"a.obj\"}], \"colour\": [1, 1, 1]}\n");
+    path = test_write_file(dir, "unknown.json",
+                           "{\"objects\": [{\"obj\": \"a.obj\"}], \"colour\": [1, 1, 1]}\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "unknown key", "colour", NULL);
 
-    snprintf(path, sizeof path, "%s/missing_obj.json", dir);
-    write_text(path, "{\"objects\": [{\"obj\": \"nowhere.obj\"}]}\n");
+    path = test_write_file(dir, "missing_obj.json", "{\"objects\": [{\"obj\": \"nowhere.obj\"}]}\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "missing OBJ", "nowhere.obj", NULL);
 
-    snprintf(path, sizeof path, "%s/bad_index.obj", dir);
-    write_text(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    path = test_write_file(dir, "bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "index out of range", "bad_index.obj", "4");
 
-    snprintf(path, sizeof path, "%s/nan.obj", dir);
-    write_text(path, "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    path = test_write_file(dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "non-finite vertex", "nan.obj", "2");
 
-    snprintf(path, sizeof path, "%s/empty.obj", dir);
-    write_text(path, "# nothing here\n");
+    path = test_write_file(dir, "empty.obj", "# nothing here\n");
     snprintf(args, sizeof args, "render '%s'", path);
     expect_clean_error(run_pt(NULL, args), "no triangles", "empty.obj", NULL);
 }

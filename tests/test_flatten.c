@@ -15,19 +15,6 @@
 #include "scene/scene_data.h"
 #include "support.h"
 
-static const char *write_file(const char *dir, const char *name, const char *text)
-{
-    static char path[8][512];
-    static int next;
-    char *out = path[next++ % 8];
-    snprintf(out, 512, "%s/%s", dir, name);
-    FILE *f = fopen(out, "wb");
-    cr_assert(f, "cannot write %s", out);
-    fputs(text, f);
-    fclose(f);
-    return out;
-}
-
 static ObjMaterial obj_material(const char *name, float r, float g, float b)
 {
     ObjMaterial m = {.kd = {r, g, b}, .ni = 1.0f, .d = 1.0f, .illum = 2};
@@ -294,8 +281,8 @@ Test(flatten, cornell_box_lights_are_the_two_light_triangles)
 Test(flatten, missing_mtl_gives_the_default_material_and_a_warning)
 {
     const char *dir = test_temp_dir();
-    const char *obj = write_file(dir, "lonely.obj",
-                                 "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+    const char *obj = test_write_file(dir, "lonely.obj",
+                                      "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
     warnings_set_quiet(true);
     int before = warning_count();
     Scene scene;
@@ -312,10 +299,10 @@ Test(flatten, missing_mtl_gives_the_default_material_and_a_warning)
 Test(flatten, missing_texture_warns_and_keeps_kd)
 {
     const char *dir = test_temp_dir();
-    write_file(dir, "t.mtl", "newmtl painted\nKd 0.3 0.4 0.5\nmap_Kd not-there.png\n");
-    const char *obj = write_file(dir, "t.obj",
-                                 "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl painted\n"
-                                 "f 1/1 2/1 3/1\n");
+    test_write_file(dir, "t.mtl", "newmtl painted\nKd 0.3 0.4 0.5\nmap_Kd not-there.png\n");
+    const char *obj = test_write_file(dir, "t.obj",
+                                      "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl painted\n"
+                                      "f 1/1 2/1 3/1\n");
     char log_path[512];
     snprintf(log_path, sizeof log_path, "%s/stderr.txt", dir);
     cr_assert(freopen(log_path, "w", stderr));
@@ -341,10 +328,10 @@ Test(flatten, missing_texture_warns_and_keeps_kd)
 Test(flatten, corrupt_texture_is_an_error_naming_the_file)
 {
     const char *dir = test_temp_dir();
-    write_file(dir, "broken.png", "\x89PNG but then nothing that a decoder could use");
-    write_file(dir, "c.mtl", "newmtl broken\nKd 1 1 1\nmap_Kd broken.png\n");
-    const char *obj = write_file(dir, "c.obj", "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                               "usemtl broken\nf 1 2 3\n");
+    test_write_file(dir, "broken.png", "\x89PNG but then nothing that a decoder could use");
+    test_write_file(dir, "c.mtl", "newmtl broken\nKd 1 1 1\nmap_Kd broken.png\n");
+    const char *obj = test_write_file(dir, "c.obj", "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                                    "usemtl broken\nf 1 2 3\n");
     Scene scene;
     Error err = {0};
     cr_expect_not(scene_load(obj, &scene, &err));
@@ -355,13 +342,13 @@ Test(flatten, corrupt_texture_is_an_error_naming_the_file)
 Test(flatten, obj_without_faces_has_no_triangles)
 {
     const char *dir = test_temp_dir();
-    const char *obj = write_file(dir, "points.obj", "# only vertices\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const char *obj = test_write_file(dir, "points.obj", "# only vertices\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
     Scene scene;
     Error err = {0};
     cr_expect_not(scene_load(obj, &scene, &err));
     cr_expect_eq(err.code, ERR_NO_TRIANGLES, "%s", error_code_name(err.code));
     cr_expect(strstr(err.message, "points.obj"), "%s", err.message);
-    const char *empty = write_file(dir, "empty.obj", "");
+    const char *empty = test_write_file(dir, "empty.obj", "");
     Error err2 = {0};
     cr_expect_not(scene_load(empty, &scene, &err2));
     cr_expect_eq(err2.code, ERR_NO_TRIANGLES, "%s", error_code_name(err2.code));

@@ -15,17 +15,12 @@
 
 static char g_dir[64];
 
+/* Writes name in a temporary folder made on first use (g_dir). */
 static const char *write_file(const char *name, const char *text)
 {
-    static char path[512];
     if (!g_dir[0])
         snprintf(g_dir, sizeof g_dir, "%s", test_temp_dir());
-    snprintf(path, sizeof path, "%s/%s", g_dir, name);
-    FILE *f = fopen(path, "wb");
-    cr_assert(f, "cannot write %s", path);
-    fputs(text, f);
-    fclose(f);
-    return path;
+    return test_write_file(g_dir, name, text);
 }
 
 /* Loads `json` as a scene file and checks the error code and that the message holds `needle`. */

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* bvh_quantized.c: 32-byte 2-wide nodes from the 64-byte ones of bvh.c. Each axis of a node gets
+/* bvh_quantized.c: 32-byte 2-wide nodes from the 64-byte ones of bvh.h. Each axis of a node gets
  * a frame, an origin p and a power-of-two step s, with every child plane on the grid p + q s,
  * q = 0..255, rounded outwards. The margin: the traversal computes a plane's distance as
  * q * (s / d) + (p - o) / d, whose rounding that is not relative to the distance is at most

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* bvh_wide.c: collapses the 2-wide BVH of bvh.c into the 4- or 8-wide layout of
+/* bvh_wide.c: collapses the 2-wide BVH of bvh.h into the 4- or 8-wide layout of
  * cl/geometry/bvh_traverse_wide.cl. Nodes are written depth first, parent before children; packs in leaf
  * order. */
 #include "accel/bvh_wide.h"
