@@ -64,7 +64,7 @@ typedef struct {
     float4 v2;
 } BvhTriangle;
 
-/* Entries of the traversal's private stack; host/accel/bvh.c bounds the tree's depth so it never
+/* Entries of the traversal's private stack; host/accel/bvh_build.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
 

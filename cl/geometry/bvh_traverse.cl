@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bvh_traverse.cl: closest-hit and any-hit queries used by every kernel that traces rays, and the
  * box-test rules that every layout shares. With BVH_WIDTH == 2 (GPUs) it walks
- * the 2-wide node array of host/accel/bvh.c (both child boxes in the parent, Aila & Laine 2009) with a
+ * the 2-wide node array of host/accel/bvh_build.c (both child boxes in the parent, Aila & Laine 2009) with a
  * private stack: both child boxes are tested at once, leaf children are intersected right away
  * (nearer first), the nearer inner child is visited next and the farther one is pushed.
  * Hits are reported for tmin <= t < tmax; prim is the original triangle index. */

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* lanes.h: four floats at a time for the BVH builder (host/accel/bvh.c): SSE2 where the compiler offers
+/* lanes.h: four floats at a time for the BVH builder (host/accel/bvh_build.c): SSE2 where the compiler offers
  * it (every x86-64), plain C with the same results elsewhere. Header-only: every helper is meant
  * to melt into the builder's loops. */
 #ifndef PT_LANES_H

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh_test.cl: batch kernels for tests/test_bvh.c and tools/bench_bvh.c. Rays are two float4s:
+/* bvh_test.cl: batch kernels for tests/test_bvh_*.c and tools/bench_bvh.c. Rays are two float4s:
  * (origin, tmin) and (direction, tmax). Closest hits are written as (t, u, v, as_float(prim)),
  * any-hit answers as 0/1. (The brute-force reference runs on the host: PoCL runs a plain loop over
  * 100k triangles about 30 times slower than the same C.) */
