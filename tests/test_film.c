@@ -52,7 +52,8 @@ Test(film, windows_and_pools_do_not_change_the_bits, .timeout = 300)
         s.window_size = splits[i].window, s.pool_size = splits[i].pool;
         RenderStats stats;
         float *rgb = render_fixture_render(&f, s, &stats);
-        cr_expect_eq(stats.batches, splits[i].batches, "window %u: %u windows", splits[i].window, stats.batches);
+        cr_expect_eq(stats.batches, splits[i].batches, "window %u: %u windows", splits[i].window,
+                     stats.batches);
         cr_expect_eq(stats.pool_size, splits[i].pool < splits[i].window ? splits[i].pool : splits[i].window);
         cr_expect(memcmp(rgb, ref, PIXELS * 3 * sizeof(float)) == 0,
                   "window %u, pool %u: the image differs from one window of 32 spp", splits[i].window,

@@ -42,8 +42,8 @@ struct Wavefront {
     cl_kernel kernels[STAGE_COUNT];
     Compactor *compactor;
     uint32_t num_pixels;
-    uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample from
-                                       * settings.first_sample) */
+    uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
+                                       * film's samples: its index is first_sample + next_sample) */
     RenderStats own_stats;
 };
 
@@ -128,7 +128,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     if (error_is_set(err))
         return false;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
-    if (!film_init(&w->film, dev, w->num_pixels, err))
+    if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err))
         return false;
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
