@@ -226,6 +226,19 @@ typedef struct {
 #define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current batch */
 #define COUNTER_COUNT 4
 
+/* ---- Film ---------------------------------------------------------------------------------- */
+
+/* The film: FILM_WORDS 64-bit words per pixel (a ulong4 on the device, cl_ulong on the host):
+ * the sums of r, g and b in fixed point, FILM_FRACTION_BITS bits after the point, then the
+ * sample count. Each channel of a sample is clamped to [0, FILM_SAMPLE_MAX] and rounded to the
+ * nearest step 2^-FILM_FRACTION_BITS; sums saturate at 2^64 - 1. Saturating integer addition of
+ * non-negative numbers is associative and commutative, so the film's bits do not depend on how
+ * the samples are split or in which order they arrive. Read it with film_sums_to_rgb
+ * (host/render/film.h). */
+#define FILM_WORDS 4
+#define FILM_FRACTION_BITS 24
+#define FILM_SAMPLE_MAX 1048576.0f /* 2^20 */
+
 /* ---- Test support --------------------------------------------------------------------------- */
 
 /* Indices of the sizes written by the report_sizes test kernel. */

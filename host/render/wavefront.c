@@ -9,6 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "render/film.h"
 #include "scene/camera.h"
 #include "parallel/compact.h"
 #include "scene/lights.h"
@@ -29,7 +30,8 @@ struct Wavefront {
     RenderSettings settings;
     RenderParams params;
     RenderStats *stats;
-    cl_mem params_buf, lights_buf, film, counters, active, free_slots, count_buf;
+    Film film;
+    cl_mem params_buf, lights_buf, counters, active, free_slots, count_buf;
     cl_mem shadow_queue, shadow_count; /* unless settings.shadow_flags */
     cl_mem sorted_active;              /* with settings.sort_materials: shade_surface's list */
     MaterialSorter *sorter;
@@ -40,7 +42,8 @@ struct Wavefront {
     cl_kernel kernels[STAGE_COUNT];
     Compactor *compactor;
     uint32_t num_pixels;
-    uint32_t next_sample, next_pixel; /* where the next batch starts */
+    uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
+                                       * film's samples: its index is first_sample + next_sample) */
     RenderStats own_stats;
 };
 
@@ -102,7 +105,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     stats->pool_size = pool;
     stats->window_size = window;
     stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
-                          (uint64_t)w->num_pixels * sizeof(float4);
+                          (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
     LightTable lights;
     light_table_build(&lights, &scene->data);
@@ -125,7 +128,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     if (error_is_set(err))
         return false;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
-    w->film = state_buffer(w, "film", (size_t)w->num_pixels * sizeof(float4), err);
+    if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err))
+        return false;
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
     w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
@@ -163,10 +167,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
 
 void wavefront_reset(Wavefront *w)
 {
-    float4 zero4 = {{0}};
     uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->film, &zero4, sizeof zero4, 0,
-                                 (size_t)w->num_pixels * sizeof(float4), 0, NULL, NULL));
+    film_clear(&w->film);
     CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
                                  COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
     RenderStats sizes = *w->stats;
@@ -229,7 +231,7 @@ static void set_all_args(Wavefront *w)
     KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 2, w->shadow_queue);
     KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 3, w->shadow_count);
     i = set_path_args(w, w->kernels[STAGE_ACCUMULATE], false);
-    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film);
+    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film.sums);
     KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i, w->counters);
 }
 
@@ -308,12 +310,12 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
  * paths are compacted into the active list and the slots of the paths that ended are refilled
  * with the window's next samples, so the pool stays full until the window runs dry; the host
  * reads back one count per step. Without compaction (window = pool) every step runs over the
- * whole window, dead slots idle. The film gets the window's samples at the end, in a fixed order. */
+ * whole window, dead slots idle. The film gets the window's samples at the end, as exact sums. */
 static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_size, uint32_t sample_index)
 {
     w->params.batch_start = window_start;
     w->params.batch_size = window_size;
-    w->params.sample_index = sample_index;
+    w->params.sample_index = w->settings.first_sample + sample_index;
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 
     uint32_t pool = w->stats->pool_size;
@@ -395,6 +397,7 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
 }
 
 int wavefront_spp_done(const Wavefront *w) { return (int)w->next_sample; }
+Film *wavefront_film(Wavefront *w) { return &w->film; }
 RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
 
 /* All spp, a pool's worth at a time, with progress; stops early after wavefront_request_stop(). */
@@ -414,19 +417,9 @@ static void render_all(Wavefront *w, int spp, bool show_progress)
         fputc('\n', stderr);
 }
 
-/* Film (sum, count) to the mean per pixel. */
 void wavefront_read_film(Wavefront *w, float *rgb)
 {
-    float4 *film = malloc((size_t)w->num_pixels * sizeof *film);
-    if (!film)
-        die("out of memory reading the film");
-    device_read(w->dev, w->film, 0, (size_t)w->num_pixels * sizeof *film, film);
-    for (size_t i = 0; i < w->num_pixels; i++) {
-        float count = film[i].s[3];
-        for (int c = 0; c < 3; c++)
-            rgb[3 * i + c] = count > 0.0f ? film[i].s[c] / count : 0.0f;
-    }
-    free(film);
+    film_read(&w->film, rgb);
     uint32_t counters[COUNTER_COUNT];
     device_read(w->dev, w->counters, 0, sizeof counters, counters);
     w->stats->nonfinite = counters[COUNTER_NONFINITE];
@@ -441,7 +434,8 @@ static void wavefront_release(Wavefront *w)
         compactor_destroy(w->compactor);
     if (w->sorter)
         material_sorter_destroy(w->sorter);
-    cl_mem all[] = {w->params_buf, w->lights_buf, w->film, w->counters, w->active, w->free_slots,
+    film_release(&w->film);
+    cl_mem all[] = {w->params_buf, w->lights_buf, w->counters, w->active, w->free_slots,
                     w->count_buf, w->shadow_queue, w->shadow_count, w->sorted_active,
 #define PATH_STATE_LIST(type, name) w->name,
                     PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)

@@ -10,11 +10,14 @@
 
 #include "device/device.h"
 #include "scene/scene.h"
+#include "render/film.h"
 #include "render/scene_upload.h"
 
 typedef struct {
     int spp, max_depth;  /* required */
     unsigned seed;
+    uint32_t first_sample; /* the film gets samples first_sample .. first_sample + spp - 1 of each
+                            * pixel: films of disjoint blocks add up (film_sums_add) to one render */
     bool no_nee;         /* BSDF sampling only */
     bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
     bool quiet;          /* no progress line */
@@ -64,8 +67,9 @@ Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers 
 /* Traces windows until at least min_paths camera paths are done or max_spp samples per pixel are
  * complete (lower settings.window_size for short steps); waits for them. */
 uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
-int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel so far */
+int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel in the film so far */
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
+Film *wavefront_film(Wavefront *w);                 /* its sums: to merge or resume films */
 void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
 void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
 RenderStats *wavefront_stats(Wavefront *w);
