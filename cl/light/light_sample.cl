@@ -4,6 +4,7 @@
 
 typedef struct {
     float3 position;
+    float3 normal;   /* the light's unit geometric normal (its emitting side) */
     float3 radiance; /* Le toward the shading point, 0 if it sees the back */
     float pdf_w;     /* solid-angle pdf at the shading point */
 } LightSample;
@@ -29,6 +30,7 @@ PT_INLINE LightSample light_sample(const global LightEntry *lights, uint num_lig
     float3 cross_n = cross(p1 - p0, p2 - p0);
     float double_area = length(cross_n);
     float3 n_light = cross_n / double_area;
+    ls.normal = n_light;
     float3 to_light = ls.position - from;
     float dist2 = dot(to_light, to_light);
     float cos_light = -dot(to_light, n_light) * rsqrt(dist2);
