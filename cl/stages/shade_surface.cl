@@ -65,7 +65,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
     bool queued = false;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
-        uint key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
         uint bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
@@ -75,7 +75,8 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
             LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
                                           materials, surf.position,
-                                          rng_bounce(key, bounce, DIM_LIGHT_PICK),
+                                          rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
+                                          rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
             float3 wi = normalize(ls.position - surf.position);
