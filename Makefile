@@ -62,8 +62,9 @@ test: deps
 	$(Q)./tools/check-layers.sh
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
-	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse \
-	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse
+	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
+	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
+	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties
 
 asan:
 	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \

@@ -166,7 +166,6 @@ static Estimate estimate(RenderFixture *f, RenderSettings s, int renders)
  * within the measured noise (z < 4.5), and their per-pixel difference must be noise-sized. */
 Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 300)
 {
-    REQUIRE_ASSETS();
     RenderFixture f;
     render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     const int renders = 6;
@@ -185,7 +184,6 @@ Test(integrator, nee_and_bsdf_sampling_converge_to_the_same_image, .timeout = 30
 
 Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
 {
-    REQUIRE_ASSETS();
     RenderFixture f;
     render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     RenderStats with, without, refilled;
@@ -224,7 +222,6 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
 
 Test(integrator, same_seed_same_bits_and_window_split_independent, .timeout = 120)
 {
-    REQUIRE_ASSETS();
     RenderFixture f;
     render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     size_t n = 32 * 32 * 3;

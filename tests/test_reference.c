@@ -54,7 +54,6 @@ static Measured measure(RenderFixture *f, int spp_each, int max_depth)
 
 static void compare_with_reference(const char *name, int spp_total, int reference_spp)
 {
-    REQUIRE_ASSETS();
     char scene[256], ref_path[256], se_path[256];
     snprintf(scene, sizeof scene, "tests/scenes/%s/scene.json", name);
     snprintf(ref_path, sizeof ref_path, "tests/references/%s.exr", name);

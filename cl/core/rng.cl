@@ -2,7 +2,8 @@
 /* rng.cl: counter-based random numbers. Every number is a hash of (pixel, sample, dimension, seed),
  * so a render is a pure function of its settings whatever the device, pass split or path order. */
 
-/* PCG-style 32-bit permutation (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering"). */
+/* PCG-style 32-bit permutation (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering"). A
+ * bijection of uint: distinct inputs give distinct outputs. */
 inline uint hash_pcg(uint v)
 {
     uint state = v * 747796405u + 2891336453u;
@@ -10,32 +11,48 @@ inline uint hash_pcg(uint v)
     return (word >> 22u) ^ word;
 }
 
-/* Per-(pixel, sample, seed) key: hashed once per kernel, then once more per dimension (below), so
- * a path vertex that draws 7 numbers costs 3 + 7 hashes instead of 4 x 7. */
-inline uint rng_path_key(uint pixel, uint sample, uint seed)
+/* Per-(pixel, sample, seed) key, 64 bits: the pixel and the sample are hashed into separate words
+ * (with differently derived seeds), so for one seed the key is injective: no two samples of a
+ * render share a random sequence however many there are. (A 32-bit fold of the three gives about
+ * 2^23 pairs of samples with identical sequences at 512 x 512 x 1024 spp.) Hashed once per kernel,
+ * then twice per dimension (rng_bits). */
+typedef uint2 RngKey;
+
+inline RngKey rng_path_key(uint pixel, uint sample, uint seed)
 {
-    return hash_pcg(pixel ^ hash_pcg(sample ^ hash_pcg(seed)));
+    uint seed_hash = hash_pcg(seed);
+    return (RngKey)(hash_pcg(pixel ^ seed_hash), hash_pcg(sample ^ hash_pcg(seed_hash ^ 0x9e3779b9u)));
 }
+
+/* 32 random bits of one dimension: both key words go through a hash, so two keys whose streams
+ * agree in two dimensions are a 2^-64 coincidence, not a shared word. */
+inline uint rng_bits(RngKey key, uint dimension) { return hash_pcg(hash_pcg(key.x ^ dimension) ^ key.y); }
 
 /* A uniform float in [0, 1): the top 24 bits, so 1.0f is never returned. */
 inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f); }
 
-/* Dimension numbering: each bounce uses DIMS_PER_BOUNCE consecutive dimensions. */
+/* Dimension numbering. Dimensions are hashed, never stored, so unused numbers cost nothing; they are
+ * reserved so that later features do not renumber (and so re-noise) what exists:
+ *   camera, 0..7: jitter x, y, lens u, v; 4 is for the shutter time (motion blur), 5..7 spare;
+ *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light pick, alias coin, light u, v,
+ *   BSDF u, v, lobe, roulette; 8..15 spare for layered materials (a second lobe's u, v, choice)
+ *   and for environment-light sampling. */
 #define DIM_CAMERA_JITTER_X 0u
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u
 #define DIM_LENS_V 3u
-#define DIM_BOUNCE_BASE 4u
-#define DIMS_PER_BOUNCE 8u
+#define DIM_BOUNCE_BASE 8u
+#define DIMS_PER_BOUNCE 16u
 #define DIM_LIGHT_PICK 0u
-#define DIM_LIGHT_U 1u
-#define DIM_LIGHT_V 2u
-#define DIM_BSDF_U 3u
-#define DIM_BSDF_V 4u
-#define DIM_BSDF_LOBE 5u
-#define DIM_ROULETTE 6u
+#define DIM_LIGHT_COIN 1u
+#define DIM_LIGHT_U 2u
+#define DIM_LIGHT_V 3u
+#define DIM_BSDF_U 4u
+#define DIM_BSDF_V 5u
+#define DIM_BSDF_LOBE 6u
+#define DIM_ROULETTE 7u
 
-inline float rng_from_key(uint key, uint dimension) { return uint_to_unit(hash_pcg(dimension ^ key)); }
+inline float rng_from_key(RngKey key, uint dimension) { return uint_to_unit(rng_bits(key, dimension)); }
 
 inline float rng_uniform(uint pixel, uint sample, uint dimension, uint seed)
 {
@@ -43,7 +60,11 @@ inline float rng_uniform(uint pixel, uint sample, uint dimension, uint seed)
 }
 
 /* Dimension `which` (DIM_LIGHT_PICK...) of bounce `bounce` (0 = the camera ray's hit). */
-inline float rng_bounce(uint key, uint bounce, uint which)
+inline uint rng_bounce_bits(RngKey key, uint bounce, uint which)
 {
-    return rng_from_key(key, DIM_BOUNCE_BASE + bounce * DIMS_PER_BOUNCE + which);
+    return rng_bits(key, DIM_BOUNCE_BASE + bounce * DIMS_PER_BOUNCE + which);
+}
+inline float rng_bounce(RngKey key, uint bounce, uint which)
+{
+    return uint_to_unit(rng_bounce_bits(key, bounce, which));
 }

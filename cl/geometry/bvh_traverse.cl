@@ -172,7 +172,9 @@ inline void test_children(const global BvhNode *node, BoxRay ray, float tmin, fl
 }
 #endif
 
-/* Intersects the leaf's triangles, shrinking hit->t; true when any hit (for early exit). */
+/* Intersects the leaf's triangles, shrinking hit->t; true when any hit (for early exit). A hit at
+ * exactly hit->t replaces it when its original index is lower (hit_tie_limit), so ties do not
+ * depend on the order in which the tree presents triangles. */
 inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint count,
                            WatertightRay ray, float tmin, bool any_hit, Hit *hit)
 {
@@ -180,12 +182,13 @@ inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint coun
     for (uint i = first; i < first + count; i++) {
         COUNT_STEPS(*hit, 0u, 1u);
         float t, u, v;
+        uint prim = as_uint(tris[i].v0.w);
         if (intersect_triangle_watertight(ray, xyz(tris[i].v0), xyz(tris[i].v1), xyz(tris[i].v2),
-                                          tmin, hit->t, &t, &u, &v)) {
+                                          tmin, hit_tie_limit(*hit, prim), &t, &u, &v)) {
             hit->t = t;
             hit->u = u;
             hit->v = v;
-            hit->prim = as_uint(tris[i].v0.w);
+            hit->prim = prim;
             found = true;
             if (any_hit)
                 break;

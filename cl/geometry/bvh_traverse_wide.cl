@@ -11,6 +11,7 @@
 #if BVH_WIDTH == 8
 typedef float8 floatW;
 typedef int8 intW;
+typedef uint8 uintW;
 #define VSTORE_W vstore8
 #define LANE_BITS(m)                                                                               \
     (LANE_BIT(m, 0, s0) | LANE_BIT(m, 1, s1) | LANE_BIT(m, 2, s2) | LANE_BIT(m, 3, s3) |            \
@@ -18,6 +19,7 @@ typedef int8 intW;
 #else
 typedef float4 floatW;
 typedef int4 intW;
+typedef uint4 uintW;
 #define VSTORE_W vstore4
 #define LANE_BITS(m) (LANE_BIT(m, 0, s0) | LANE_BIT(m, 1, s1) | LANE_BIT(m, 2, s2) | LANE_BIT(m, 3, s3))
 #endif
@@ -141,16 +143,22 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     floatW det = w0 + w1 + w2;
     floatW inv_det = 1.0f / det;
     floatW t = fma(w0, az, fma(w1, bz, w2 * cz)) * inv_det;
-    uint bits = lane_bits(~(negative & positive) & (det != 0.0f) & (t >= tmin) & (t < hit->t));
+    /* Ties at exactly hit->t go to the lower original index (hit_tie_limit); before any hit
+     * nothing ties, hit->t being the ray's tmax. */
+    uintW prims = pack->prim;
+    uint tie_below = hit->prim == HIT_NONE ? 0u : hit->prim;
+    intW closer = (t < hit->t) | ((t == hit->t) & (prims < (uintW)(tie_below)));
+    uint bits = lane_bits(~(negative & positive) & (det != 0.0f) & (t >= tmin) & closer);
     if (bits == 0u)
         return false;
     float ts[BVH_WIDTH], us[BVH_WIDTH], vs[BVH_WIDTH];
+    const global uint *lane_prim = (const global uint *)&pack->prim;
     VSTORE_W(t, 0, ts);
     uint best = lowest_lane(bits);
     if (!any_hit)
         for (bits &= bits - 1u; bits != 0u; bits &= bits - 1u) {
             uint lane = lowest_lane(bits);
-            if (ts[lane] < ts[best])
+            if (ts[lane] < ts[best] || (ts[lane] == ts[best] && lane_prim[lane] < lane_prim[best]))
                 best = lane;
         }
     VSTORE_W(w1 * inv_det, 0, us);
@@ -158,7 +166,7 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     hit->t = ts[best];
     hit->u = us[best];
     hit->v = vs[best];
-    hit->prim = ((const global uint *)&pack->prim)[best];
+    hit->prim = lane_prim[best];
     return true;
 }
 

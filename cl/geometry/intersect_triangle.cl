@@ -15,6 +15,14 @@ typedef struct {
 
 #define HIT_NONE 0xffffffffu
 
+/* The exclusive upper bound on t for triangle `prim` against the closest hit so far: a tie at
+ * exactly hit.t goes to the lower original index, so every layout and tree reports the same
+ * triangle. Before any hit, hit.t is the ray's tmax, which stays excluded. */
+inline float hit_tie_limit(Hit hit, uint prim)
+{
+    return hit.prim != HIT_NONE && prim < hit.prim ? nextafter(hit.t, INFINITY) : hit.t;
+}
+
 /* Work counters for bench_bvh --count-steps, compiled out otherwise. */
 #ifdef BVH_COUNT_STEPS
 #define COUNT_STEPS(hit, nodes, triangles) ((hit).visits += (nodes), (hit).tests += (triangles))

@@ -65,7 +65,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
     bool queued = false;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
-        uint key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
         uint bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
@@ -75,7 +75,8 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
             LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
                                           materials, surf.position,
-                                          rng_bounce(key, bounce, DIM_LIGHT_PICK),
+                                          rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
+                                          rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
             float3 wi = normalize(ls.position - surf.position);
@@ -85,10 +86,13 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
                 float3 contribution = beta * f_cos * ls.radiance *
                                       (mis_power(ls.pdf_w, bsdf_pdf) / ls.pdf_w);
                 float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
-                float dist = length(ls.position - origin);
-                /* Stop just short of the light so its own triangle does not occlude it. */
-                shadow_origin[slot] = (float4)(origin, dist * (1.0f - 1e-4f));
-                shadow_direction[slot] = (float4)((ls.position - origin) / dist, 0.0f);
+                /* The ray ends at the light point moved off the light by the same robust offset,
+                 * toward the shaded point: it reaches everything in front of the light, however
+                 * close, and never the light's own triangle (the test is half-open, t < tmax). */
+                float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
+                float dist = length(target - origin);
+                shadow_origin[slot] = (float4)(origin, dist);
+                shadow_direction[slot] = (float4)((target - origin) / dist, 0.0f);
                 shadow_contribution[slot] = (float4)(contribution, 1.0f);
                 queued = true;
             }
