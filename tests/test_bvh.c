@@ -18,7 +18,7 @@
 #include "procedural_mesh.h"
 #include "support.h"
 
-#define HIT_NONE_HOST 0xffffffffu /* HIT_NONE of cl/geometry/intersect_triangle.cl */
+#define HIT_NONE_HOST HIT_NONE /* cl/shared.h */
 
 /* ---- Host-side invariants ------------------------------------------------------------------ */
 

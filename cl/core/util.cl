@@ -1,7 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* util.cl: small vector helpers shared by every stage. */
 
-#define PT_PI 3.14159265358979323846f
 #define PT_INV_PI 0.31830988618379067154f
 
 /* Functions a CPU compiler must inline: PoCL's LLVM leaves large ones out of line, and then passes

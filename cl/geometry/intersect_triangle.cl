@@ -13,8 +13,6 @@ typedef struct {
 #endif
 } Hit;
 
-#define HIT_NONE 0xffffffffu
-
 /* Work counters for bench_bvh --count-steps, compiled out otherwise. */
 #ifdef BVH_COUNT_STEPS
 #define COUNT_STEPS(hit, nodes, triangles) ((hit).visits += (nodes), (hit).tests += (triangles))

@@ -8,13 +8,14 @@ typedef struct {
     float pdf_w;     /* solid-angle pdf at the shading point */
 } LightSample;
 
-inline float triangle_area(float3 p0, float3 p1, float3 p2) { return 0.5f * length(cross(p1 - p0, p2 - p0)); }
-
-PT_INLINE LightSample light_sample(const global LightEntry *lights, uint num_lights,
-                         const global float4 *positions, const global Triangle *triangles,
-                         const global uint *material_ids, const global Material *materials,
-                         float3 from, float u_pick, float u1, float u2)
+PT_INLINE LightSample light_sample(const SceneView *scene, uint num_lights, float3 from, float u_pick,
+                                   float u1, float u2)
 {
+    const global LightEntry *lights = scene->lights;
+    const global float4 *positions = scene->positions;
+    const global Triangle *triangles = scene->triangles;
+    const global uint *material_ids = scene->material_ids;
+    const global Material *materials = scene->materials;
     LightSample ls;
     uint index = min((uint)(u_pick * (float)num_lights), num_lights - 1u);
     /* Reuse the pick's fractional part to choose between the entry and its alias. */

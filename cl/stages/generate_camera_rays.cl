@@ -17,12 +17,8 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     uint slot = fresh ? j : free_slots[j];
     uint k = first_sample + j;
     uint pixel = window_pixel(p, k), sample = window_sample(p, k);
-    float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
-                             rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
-    float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
-                           rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
     float3 origin, dir;
-    camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, &origin, &dir);
+    camera_sample(p, pixel, sample, &origin, &dir);
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(dir, 0.0f);
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);

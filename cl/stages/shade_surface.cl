@@ -32,7 +32,7 @@ inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
-inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint slot)
+inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
     uint depth = alive[slot];
     if (depth == 0u)
@@ -48,8 +48,8 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         return false;
     }
     Hit hh = {h.x, h.y, h.z, prim};
-    SurfaceHit surf = surface_at(hh, positions, normals, uvs, triangles, material_ids);
-    Material m = materials[surf.material];
+    SurfaceHit surf = surface_at(scene, hh);
+    Material m = scene->materials[surf.material];
     float3 wo = -xyz(dir4);
     float cos_o_geometric = dot(wo, surf.geometric_normal);
     bool front = cos_o_geometric > 0.0f;
@@ -69,12 +69,11 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         uint bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
-            albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
+            albedo *= xyz(texture_sample(scene, m.map_kd, surf.uv));
 
         /* Next-event estimation: diffuse surfaces only (delta lobes cannot meet a sampled light). */
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
-                                          materials, surf.position,
+            LightSample ls = light_sample(scene, p->num_emissive, surf.position,
                                           rng_bounce(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
@@ -131,9 +130,10 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
                           global uint *shadow_count)
 {
     local uint group_count, group_base;
+    SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    bool queued = i < n_active && shade_path(p, SCENE_ARGS PATH_STATE_ARGS slot);
+    bool queued = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot);
     if (!(p->flags & RENDER_SHADOW_QUEUE))
         return; /* uniform: no barrier below is reached by anyone */
     if (get_local_id(0) == 0)
