@@ -254,7 +254,7 @@ typedef struct {
     X(float4, shadow_direction)    /* xyz; w unused */                                             \
     X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
-    X(uint, alive)                 /* 0: free; else the depth of the ray to trace (1: camera ray) */
+    X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \
     X(float4, radiance)            /* rgb gathered so far by sample k's path */
 

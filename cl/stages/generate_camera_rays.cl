@@ -4,7 +4,7 @@
  * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
- * counts as specular for MIS), throughput = 1, radiance[k] = 0, alive = 1 (depth of the camera
+ * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
  * ray), active[n_live + j]. Next: intersect_closest. */
 
 kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
@@ -24,7 +24,7 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
     shadow_contribution[slot] = (float4)(0.0f);
     sample_id[slot] = k;
-    alive[slot] = 1u;
+    path_depth[slot] = 1u;
     radiance[k] = (float4)(0.0f);
     active[n_live + j] = slot;
 }

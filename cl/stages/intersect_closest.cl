@@ -22,7 +22,7 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    if (i < n_active && alive[slot]) {
+    if (i < n_active && path_depth[slot]) {
         atomic_inc(group_rays);
         float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
         Hit h = brute_force ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, o, d, 0.0f,

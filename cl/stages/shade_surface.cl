@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* shade_surface: one path vertex. Adds emission (MIS-weighted against light sampling), queues a
  * next-event shadow ray for diffuse surfaces, samples the BSDF for the next segment and applies
- * Russian roulette. depth = alive[slot] = segments traced so far (1 after the camera ray); paths
+ * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
- * Reads: hit, ray_*, throughput, alive, sample_id, scene. Writes: radiance[sample_id], throughput,
- * ray_* (next segment), shadow_* (w = 1 when queued), alive (depth + 1, or 0 when the path ends).
+ * Reads: hit, ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
+ * ray_* (next segment), shadow_* (w = 1 when queued), path_depth (depth + 1, or 0 when the path ends).
  * Next: intersect_shadow, then compaction. */
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
@@ -34,7 +34,7 @@ inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
 /* Shades the path in slot; true when it queued a shadow ray. */
 inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
-    uint depth = alive[slot];
+    uint depth = path_depth[slot];
     if (depth == 0u)
         return false;
     uint k = sample_id[slot];
@@ -44,7 +44,7 @@ inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_ST
     uint prim = as_uint(h.w);
     if (prim == HIT_NONE) {
         add_radiance(radiance, k, beta * xyz(p->background));
-        alive[slot] = 0u;
+        path_depth[slot] = 0u;
         return false;
     }
     Hit hh = {h.x, h.y, h.z, prim};
@@ -118,7 +118,7 @@ inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_ST
         }
     }
     add_radiance(radiance, k, gathered);
-    alive[slot] = path_continues ? depth + 1u : 0u;
+    path_depth[slot] = path_continues ? depth + 1u : 0u;
     return queued;
 }
 

@@ -134,7 +134,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         return false;
     /* Every slot starts free: compaction reads the flags of the whole pool. */
     uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->alive, &zero, sizeof zero, 0, pool * sizeof(uint32_t),
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0, pool * sizeof(uint32_t),
                                  0, NULL, NULL));
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
@@ -243,7 +243,7 @@ static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
 static uint32_t compact_paths(Wavefront *w, uint32_t pool)
 {
     double t = seconds_now();
-    uint32_t live = compactor_run(w->compactor, w->alive, w->active, pool);
+    uint32_t live = compactor_run(w->compactor, w->path_depth, w->active, pool);
     if (w->settings.profile)
         w->stats->stage_ms[STAGE_COMPACT] += 1e3 * (seconds_now() - t);
     w->stats->stage_launches[STAGE_COMPACT]++;
