@@ -90,6 +90,17 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
     return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
 }
 
+/* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
+ * intersection kernels of its own, so that the production ones carry no branch for it. */
+static const char *stage_kernel(int stage, bool brute_force)
+{
+    if (brute_force && stage == STAGE_EXTEND)
+        return "intersect_closest_brute_force";
+    if (brute_force && stage == STAGE_CONNECT)
+        return "intersect_shadow_brute_force";
+    return stage_names[stage];
+}
+
 static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
                            const SceneBuffers *buffers, const RenderSettings *s, Error *err)
 {
@@ -134,8 +145,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         return false;
     /* Every slot starts free: compaction reads the flags of the whole pool. */
     uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0, pool * sizeof(uint32_t),
-                                 0, NULL, NULL));
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0,
+                                 pool * sizeof(uint32_t), 0, NULL, NULL));
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
@@ -147,13 +158,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     }
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT && k != STAGE_SORT)
-            w->kernels[k] = device_kernel(dev, stage_names[k]);
-    if (s->brute_force) { /* the ablation's kernels: every ray against every triangle */
-        CL_CHECK(clReleaseKernel(w->kernels[STAGE_EXTEND]));
-        CL_CHECK(clReleaseKernel(w->kernels[STAGE_CONNECT]));
-        w->kernels[STAGE_EXTEND] = device_kernel(dev, "intersect_closest_brute_force");
-        w->kernels[STAGE_CONNECT] = device_kernel(dev, "intersect_shadow_brute_force");
-    }
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force));
     set_all_args(w);
     wavefront_reset(w);
     return true;
