@@ -2,8 +2,8 @@
 /* shared.h: every struct and constant that crosses the host/device boundary. Compiled by the host C
  * compiler (through host/base/shared_types.h) and by the OpenCL C compiler (first file of the program).
  * Rules: only 4-byte scalars, float2/float4/uint4 (float8/uint8 in the 8-wide BVH); no float3, bool,
- * size_t, enum or pointers; sizes
- * are checked on the host with _Static_assert and on the device by the report_sizes test kernel. */
+ * size_t, enum or pointers. SHARED_STRUCTS (end of file) lists every struct and field for the
+ * layout checks on both sides. */
 #ifndef PT_SHARED_H
 #define PT_SHARED_H
 
@@ -27,6 +27,9 @@ typedef cl_uint uint;
 typedef struct {
     uint4 v; /* x, y, z: vertex indices; w: flags */
 } Triangle;
+
+/* Hit.prim and the path state's hit.w (as_float) of a ray that hit nothing. */
+#define HIT_NONE 0xffffffffu
 
 /* BVH node, 2-wide with both children's boxes in the parent (Aila & Laine 2009): one 64-byte fetch
  * decides which children to visit. For each child: box min in xyz, box max in xyz; the w lanes hold
@@ -185,7 +188,6 @@ typedef struct {
 
 #define RENDER_NO_NEE 1u
 #define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
-#define RENDER_BRUTE_FORCE 4u  /* every ray against every triangle (benchmark ablation) */
 
 /* ---- Lights --------------------------------------------------------------------------------- */
 
@@ -197,6 +199,42 @@ typedef struct {
     uint triangle; /* emissive triangle index */
     float pdf;     /* probability of choosing this triangle */
 } LightEntry;
+
+/* ---- Scene buffers ------------------------------------------------------------------------- */
+
+/* The scene's read-only device buffers: element type (as the kernels see it) and name. The
+ * host's SceneBuffers, its upload and release (host/render/scene_upload.c), the kernels' parameter
+ * list (SCENE_PARAMS, cl/stages/path_state.cl), the host's argument binding and the SceneView
+ * that kernels hand to their helpers all expand from this list: a new buffer is one line here
+ * plus where its data comes from in scene_buffers_upload. bvh_tris holds BvhTriangles (2-wide)
+ * or triangle packs (wide layouts). */
+#define SCENE_BUFFERS(X)                                                                           \
+    X(TraversalNode, bvh_nodes)                                                                     \
+    X(TraversalPrim, bvh_tris)                                                                      \
+    X(float4, positions)                                                                            \
+    X(float4, normals)                                                                              \
+    X(float2, uvs)                                                                                  \
+    X(Triangle, triangles)                                                                          \
+    X(uint, material_ids)                                                                           \
+    X(Material, materials)                                                                          \
+    X(uint, texels)                                                                                 \
+    X(TextureInfo, textures)                                                                        \
+    X(LightEntry, lights)
+
+#define SCENE_BUFFER_COUNT_ONE(type, name) +1
+#define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
+
+#ifdef __OPENCL_C_VERSION__
+/* The scene as kernels pass it to helpers: one private struct of the kernel's own buffer
+ * parameters, built at kernel entry (OpenCL C 1.2 allows pointers to global memory in a private
+ * struct, not in a kernel argument). Helpers take `const SceneView *scene`; once inlined, each
+ * member is the kernel parameter itself, restrict and read-only. */
+#define SCENE_VIEW_MEMBER(type, name) const global type *restrict name;
+typedef struct {
+    SCENE_BUFFERS(SCENE_VIEW_MEMBER)
+} SceneView;
+#undef SCENE_VIEW_MEMBER
+#endif
 
 /* ---- Wavefront path state ------------------------------------------------------------------ */
 
@@ -216,7 +254,7 @@ typedef struct {
     X(float4, shadow_direction)    /* xyz; w unused */                                             \
     X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
-    X(uint, alive)                 /* 0: free; else the depth of the ray to trace (1: camera ray) */
+    X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \
     X(float4, radiance)            /* rgb gathered so far by sample k's path */
 
@@ -239,22 +277,42 @@ typedef struct {
 #define FILM_FRACTION_BITS 24
 #define FILM_SAMPLE_MAX 1048576.0f /* 2^20 */
 
-/* ---- Test support --------------------------------------------------------------------------- */
+/* ---- Layout checks ------------------------------------------------------------------------- */
 
-/* Indices of the sizes written by the report_sizes test kernel. */
-#define SIZEOF_TRIANGLE 0
-#define SIZEOF_BVH_NODE 1
-#define SIZEOF_BVH_TRIANGLE 2
-#define SIZEOF_MATERIAL 3
-#define SIZEOF_TEXTURE_INFO 4
-#define SIZEOF_CAMERA 5
-#define SIZEOF_RENDER_PARAMS 6
-#define SIZEOF_LIGHT_ENTRY 7
-#define SIZEOF_BVH_NODE4 8
-#define SIZEOF_TRIANGLE_PACK4 9
-#define SIZEOF_BVH_NODE8 10
-#define SIZEOF_TRIANGLE_PACK8 11
-#define SIZEOF_BVH_NODE_QUANTIZED 12
-#define SIZEOF_COUNT 13
+/* Every struct above with its size, then each of its fields in order. Host and device expand it
+ * alike: host/base/shared_types.h asserts the sizes at compile time, the report_layout test kernel
+ * (tests/cl/sizes.cl) writes sizeof and offsetof of every field, and tests/test_device.c compares
+ * them with the host's and checks that the fields fill the struct (none left out, no padding).
+ * A new shared struct or field gets one line here. */
+#define SHARED_STRUCTS(STRUCT, FIELD)                                                              \
+    STRUCT(Triangle, 16) FIELD(Triangle, v)                                                         \
+    STRUCT(BvhNode, 64) FIELD(BvhNode, lmin) FIELD(BvhNode, lmax) FIELD(BvhNode, rmin)              \
+        FIELD(BvhNode, rmax)                                                                        \
+    STRUCT(BvhNodeQuantized, 32) FIELD(BvhNodeQuantized, frame) FIELD(BvhNodeQuantized, refs)       \
+    STRUCT(BvhTriangle, 48) FIELD(BvhTriangle, v0) FIELD(BvhTriangle, v1) FIELD(BvhTriangle, v2)    \
+    STRUCT(BvhNode4, 112) FIELD(BvhNode4, lo) FIELD(BvhNode4, hi) FIELD(BvhNode4, child)            \
+    STRUCT(TrianglePack4, 160) FIELD(TrianglePack4, v) FIELD(TrianglePack4, prim)                   \
+    STRUCT(BvhNode8, 224) FIELD(BvhNode8, lo) FIELD(BvhNode8, hi) FIELD(BvhNode8, child)            \
+    STRUCT(TrianglePack8, 320) FIELD(TrianglePack8, v) FIELD(TrianglePack8, prim)                   \
+    STRUCT(Material, 80) FIELD(Material, kd) FIELD(Material, ks) FIELD(Material, ke)                \
+        FIELD(Material, tf) FIELD(Material, ior) FIELD(Material, type) FIELD(Material, map_kd)      \
+        FIELD(Material, pad0)                                                                       \
+    STRUCT(TextureInfo, 16) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
+        FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
+    STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
+        FIELD(Camera, forward)                                                                      \
+    STRUCT(RenderParams, 128) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
+        FIELD(RenderParams, width) FIELD(RenderParams, height) FIELD(RenderParams, seed)            \
+        FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)                            \
+        FIELD(RenderParams, num_bvh_prims) FIELD(RenderParams, num_emissive)                        \
+        FIELD(RenderParams, aov) FIELD(RenderParams, emissive_power) FIELD(RenderParams, flags)     \
+        FIELD(RenderParams, batch_start) FIELD(RenderParams, batch_size)                            \
+    STRUCT(LightEntry, 16) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
+        FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)
+
+/* Words written by report_layout: per struct its size, per field its offset and size. */
+#define SHARED_LAYOUT_STRUCT_WORDS(type, size) +1
+#define SHARED_LAYOUT_FIELD_WORDS(type, field) +2
+#define SHARED_LAYOUT_WORDS (0 SHARED_STRUCTS(SHARED_LAYOUT_STRUCT_WORDS, SHARED_LAYOUT_FIELD_WORDS))
 
 #endif

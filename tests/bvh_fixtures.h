@@ -15,7 +15,6 @@
 #include "device/device.h"
 #include "procedural_mesh.h"
 
-#define HIT_NONE_HOST 0xffffffffu /* HIT_NONE of cl/geometry/intersect_triangle.cl */
 
 /* ---- Host-side invariants (bvh_fixtures.c) ------------------------------------------------- */
 

@@ -17,8 +17,8 @@
 static bool same_closest(float4 a, float4 b)
 {
     if (hit_prim(a) == hit_prim(b))
-        return hit_prim(a) == HIT_NONE_HOST || fabsf(a.s[0] - b.s[0]) <= 1e-6f * fabsf(b.s[0]);
-    return hit_prim(a) != HIT_NONE_HOST && hit_prim(b) != HIT_NONE_HOST &&
+        return hit_prim(a) == HIT_NONE || fabsf(a.s[0] - b.s[0]) <= 1e-6f * fabsf(b.s[0]);
+    return hit_prim(a) != HIT_NONE && hit_prim(b) != HIT_NONE &&
            fabsf(a.s[0] - b.s[0]) <= 1e-6f * fmaxf(fabsf(a.s[0]), fabsf(b.s[0]));
 }
 
@@ -107,7 +107,7 @@ float4 brute_force_closest(const TraceScene *scene, const Ray *r)
     RefRay ray = ref_ray(o, d);
     float line_scale = 1.7320509f * max_abs3(d[0], d[1], d[2]);
     float best_t = r->dir.s[3], best_u = 0.0f, best_v = 0.0f;
-    uint32_t best = HIT_NONE_HOST;
+    uint32_t best = HIT_NONE;
     const Mesh *mesh = &scene->mesh;
     for (uint32_t k = 0; k < mesh->num_triangles; k++) {
         const float *sphere = scene->spheres[k].s;
@@ -155,7 +155,7 @@ uint32_t check_against_brute_force(TraceScene *scene, const Ray *rays, uint32_t 
     for (uint32_t i = 0; i < n; i++) {
         if (!same_closest(hits[i], reference[i]))
             log_mismatch(&closest_bad, name, "closest hit differs", i, &rays[i], hits[i], reference[i]);
-        bool hit = hit_prim(hits[i]) != HIT_NONE_HOST;
+        bool hit = hit_prim(hits[i]) != HIT_NONE;
         if (any[i] != (cl_uint)hit)
             log_mismatch(&any_bad, name, "any hit differs", i, &rays[i], hits[i], reference[i]);
         if (hit) {

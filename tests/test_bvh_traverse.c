@@ -138,9 +138,9 @@ static void check_watertight(Mesh mesh, const char *name)
     trace(&scene, "bvh_test_trace_closest", rays, n, hits);
     uint32_t leaks = 0, reference_leaks = 0;
     for (uint32_t i = 0; i < n; i++) {
-        if (hit_prim(hits[i]) == HIT_NONE_HOST && leaks++ < 5)
+        if (hit_prim(hits[i]) == HIT_NONE && leaks++ < 5)
             cr_log_error("%s: ray %u at a shared edge or vertex leaks through the BVH", name, i);
-        if (hit_prim(brute_force_closest(&scene, &rays[i])) == HIT_NONE_HOST)
+        if (hit_prim(brute_force_closest(&scene, &rays[i])) == HIT_NONE)
             reference_leaks++;
     }
     cr_expect_eq(leaks, 0, "%s: %u of %u rays through edges and vertices leak", name, leaks, n);
@@ -188,7 +188,7 @@ Test(bvh, axis_parallel_rays_through_grid_lines_hit_at_the_exact_distance)
     trace(&scene, "bvh_test_trace_any", rays, n, any);
     uint32_t wrong = 0;
     for (uint32_t i = 0; i < n; i++)
-        if ((hit_prim(hits[i]) == HIT_NONE_HOST || hits[i].s[0] != expected_t[i] || !any[i]) &&
+        if ((hit_prim(hits[i]) == HIT_NONE || hits[i].s[0] != expected_t[i] || !any[i]) &&
             wrong++ < 5)
             cr_log_error("ray %u o=(%g %g %g) d=(%g %g %g): prim %d t %g, expected t %g", i,
                          rays[i].origin.s[0], rays[i].origin.s[1], rays[i].origin.s[2],
@@ -272,13 +272,13 @@ static void check_offset_rays(Mesh mesh, const char *name, bool convex)
         uint32_t sources = 0, self_hits = 0, wrong = 0;
         for (uint32_t i = 0; i < n; i++) {
             uint32_t source = hit_prim(hits[i]), prim = hit_prim(bounce_hits[i]);
-            if (source == HIT_NONE_HOST)
+            if (source == HIT_NONE)
                 continue;
             sources++;
             if (prim == source && self_hits++ < 5)
                 cr_log_error("%s: %s ray %u re-hits its triangle %u at t %g", name,
                              reflect ? "reflected" : "transmitted", i, source, bounce_hits[i].s[0]);
-            if (convex && (reflect ? prim != HIT_NONE_HOST : prim == HIT_NONE_HOST) && wrong++ < 5)
+            if (convex && (reflect ? prim != HIT_NONE : prim == HIT_NONE) && wrong++ < 5)
                 cr_log_error("%s: %s ray %u from triangle %u %s", name,
                              reflect ? "reflected" : "transmitted", i, source,
                              reflect ? "hits the convex mesh again" : "escapes the convex mesh");
@@ -342,7 +342,7 @@ Test(bvh, empty_scene_misses_everything)
     trace(&scene, "bvh_test_trace_closest", rays, 64, hits);
     trace(&scene, "bvh_test_trace_any", rays, 64, any);
     for (int i = 0; i < 64; i++) {
-        cr_expect_eq(hit_prim(hits[i]), HIT_NONE_HOST, "ray %d hits an empty scene", i);
+        cr_expect_eq(hit_prim(hits[i]), HIT_NONE, "ray %d hits an empty scene", i);
         cr_expect_eq(any[i], 0u, "ray %d is occluded in an empty scene", i);
     }
     trace_scene_release(&scene);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Device layer: the program builds on PoCL, shared structs have the same size on both sides, bad
+/* Device layer: the program builds on PoCL, shared structs have the same layout on both sides, bad
  * device specs and oversized allocations are reported, a broken kernel shows its build log. */
 #include <criterion/criterion.h>
 #include <stdlib.h>
@@ -9,29 +9,71 @@
 #include "base/shared_types.h"
 #include "support.h"
 
-Test(device, shared_struct_sizes_match_host)
+/* The host's side of report_layout (tests/cl/sizes.cl), word for word, with names for messages. */
+typedef struct {
+    cl_uint words[SHARED_LAYOUT_WORDS];
+    const char *names[SHARED_LAYOUT_WORDS];
+} Layout;
+
+static void host_layout(Layout *l)
+{
+    size_t i = 0;
+#define HOST_STRUCT(type, size) l->names[i] = "sizeof(" #type ")", l->words[i++] = sizeof(type);
+#define HOST_FIELD(type, field)                                                                    \
+    l->names[i] = "offsetof(" #type ", " #field ")", l->words[i++] = offsetof(type, field);        \
+    l->names[i] = "sizeof(" #type "." #field ")", l->words[i++] = sizeof(((type *)0)->field);
+    SHARED_STRUCTS(HOST_STRUCT, HOST_FIELD)
+#undef HOST_STRUCT
+#undef HOST_FIELD
+}
+
+/* Every field starts where the one before it ends and the last ends at sizeof: no field of a
+ * shared struct is left out of SHARED_STRUCTS, and no compiler inserts padding. Returns the number
+ * of gaps. */
+static int layout_gaps(const Layout *l)
+{
+    int gaps = 0;
+    size_t i = 0, end = 0, struct_size = 0;
+    const char *struct_name = NULL;
+#define CHECK_END()                                                                                \
+    if (struct_name && end != struct_size) {                                                       \
+        cr_log_error("%s: fields end at %zu", struct_name, end);                                   \
+        gaps++;                                                                                    \
+    }
+#define GAP_STRUCT(type, size)                                                                     \
+    CHECK_END();                                                                                   \
+    struct_name = l->names[i], struct_size = l->words[i++], end = 0;
+#define GAP_FIELD(type, field)                                                                     \
+    if (l->words[i] != end) {                                                                      \
+        cr_log_error("%s = %u, the field before ends at %zu", l->names[i], l->words[i], end);      \
+        gaps++;                                                                                    \
+    }                                                                                              \
+    end = (size_t)l->words[i] + l->words[i + 1], i += 2;
+    SHARED_STRUCTS(GAP_STRUCT, GAP_FIELD)
+    CHECK_END();
+#undef GAP_STRUCT
+#undef GAP_FIELD
+#undef CHECK_END
+    return gaps;
+}
+
+Test(device, shared_struct_layout_matches_host)
 {
     Device *dev = test_device();
     Error err = {0};
-    cl_mem out = device_buffer(dev, "sizes", CL_MEM_WRITE_ONLY, SIZEOF_COUNT * sizeof(cl_uint), NULL, &err);
-    cl_kernel kernel = device_kernel(dev, "report_sizes");
-    KERNEL_ARG(kernel, 0, out);
+    cl_mem out = device_buffer(dev, "layout", CL_MEM_WRITE_ONLY, SHARED_LAYOUT_WORDS * sizeof(cl_uint),
+                               NULL, &err);
+    cl_kernel kernel = device_kernel(dev, "report_layout");
+    KERNEL_ARGS(kernel, 0, KARG(out));
     device_run(dev, kernel, 1, 1, NULL);
-    cl_uint sizes[SIZEOF_COUNT];
-    device_read(dev, out, 0, sizeof sizes, sizes);
-    cr_expect_eq(sizes[SIZEOF_TRIANGLE], sizeof(Triangle));
-    cr_expect_eq(sizes[SIZEOF_BVH_NODE], sizeof(BvhNode));
-    cr_expect_eq(sizes[SIZEOF_BVH_TRIANGLE], sizeof(BvhTriangle));
-    cr_expect_eq(sizes[SIZEOF_MATERIAL], sizeof(Material));
-    cr_expect_eq(sizes[SIZEOF_TEXTURE_INFO], sizeof(TextureInfo));
-    cr_expect_eq(sizes[SIZEOF_CAMERA], sizeof(Camera));
-    cr_expect_eq(sizes[SIZEOF_RENDER_PARAMS], sizeof(RenderParams));
-    cr_expect_eq(sizes[SIZEOF_LIGHT_ENTRY], sizeof(LightEntry));
-    cr_expect_eq(sizes[SIZEOF_BVH_NODE4], sizeof(BvhNode4));
-    cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK4], sizeof(TrianglePack4));
-    cr_expect_eq(sizes[SIZEOF_BVH_NODE8], sizeof(BvhNode8));
-    cr_expect_eq(sizes[SIZEOF_TRIANGLE_PACK8], sizeof(TrianglePack8));
-    cr_expect_eq(sizes[SIZEOF_BVH_NODE_QUANTIZED], sizeof(BvhNodeQuantized));
+    static Layout host;
+    host_layout(&host);
+    cl_uint device[SHARED_LAYOUT_WORDS];
+    device_read(dev, out, 0, sizeof device, device);
+    for (size_t i = 0; i < SHARED_LAYOUT_WORDS; i++)
+        cr_expect_eq(device[i], host.words[i], "%s: device %u, host %u", host.names[i], device[i],
+                     host.words[i]);
+    cr_expect_eq(layout_gaps(&host), 0, "the host's shared structs have gaps or unlisted fields");
     clReleaseKernel(kernel);
     clReleaseMemObject(out);
     test_device_release(dev);
@@ -128,7 +170,7 @@ Test(device, kernel_cache_hit_and_corrupt_entry_rebuild, .timeout = 120)
     /* The cached program works. */
     cl_mem out = device_buffer(&b, "out", CL_MEM_WRITE_ONLY, sizeof(cl_int), NULL, &err);
     cl_kernel kernel = device_kernel(&b, "cache_probe");
-    KERNEL_ARG(kernel, 0, out);
+    KERNEL_ARGS(kernel, 0, KARG(out));
     device_run(&b, kernel, 1, 1, NULL);
     cl_int value = 0;
     device_read(&b, out, 0, sizeof value, &value);

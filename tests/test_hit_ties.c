@@ -14,7 +14,6 @@
 #include "procedural_mesh.h"
 #include "support.h"
 
-#define HIT_NONE_HOST 0xffffffffu /* HIT_NONE of cl/geometry/intersect_triangle.cl */
 #define GRID 16                   /* squares per side of the grid */
 #define COPIES 3                  /* coincident copies of every triangle */
 #define STEPS_PER_UNIT 4          /* ray positions per unit: vertices, edges, diagonals, insides */
@@ -133,11 +132,11 @@ static void check_ties(uint64_t seed)
                 float z = from_below ? PLANE_Z - 1.0f : PLANE_Z + 1.0f;
                 rays[count].origin = (float4){{x, y, z, 0.0f}};
                 rays[count].dir = (float4){{0.0f, 0.0f, from_below ? 1.0f : -1.0f, INFINITY}};
-                expected[count] = HIT_NONE_HOST;
-                for (uint32_t t = 0; t < mesh.num_triangles && expected[count] == HIT_NONE_HOST; t++)
+                expected[count] = HIT_NONE;
+                for (uint32_t t = 0; t < mesh.num_triangles && expected[count] == HIT_NONE; t++)
                     if (triangle_contains(&mesh, t, x, y))
                         expected[count] = t;
-                cr_assert_neq(expected[count], HIT_NONE_HOST, "(%g, %g) is on the grid", x, y);
+                cr_assert_neq(expected[count], HIT_NONE, "(%g, %g) is on the grid", x, y);
                 count++;
             }
     float4 *hits = trace_closest_hits(dev, &mesh, rays, n);

@@ -16,7 +16,6 @@
 #include "xorshift.h"
 
 #define SENTINEL 0xdeadbeefu
-#define HIT_NONE 0xffffffffu /* cl/geometry/intersect_triangle.cl */
 
 static const uint32_t sizes[] = {0, 1, 255, 256, 257, 4097, (1u << 20) + 3};
 #define NUM_SIZES (sizeof sizes / sizeof sizes[0])

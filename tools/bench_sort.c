@@ -20,11 +20,11 @@
 #include <time.h>
 
 #include "bench_common.h"
+#include "base/shared_types.h"
 #include "device/device.h"
 #include "parallel/material_sort.h"
 #include "xorshift.h"
 
-#define HIT_NONE 0xffffffffu /* cl/geometry/intersect_triangle.cl */
 #define MAX_MATERIAL_COUNTS 16
 #define COHERENT_RUN 64
 

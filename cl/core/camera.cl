@@ -23,3 +23,15 @@ inline void camera_ray(constant RenderParams *p, uint x, uint y, float2 jitter, 
     *origin = o;
     *dir = d;
 }
+
+/* The camera ray of sample `sample` of pixel `pixel` (row-major): the one place that draws the
+ * camera's random numbers (jitter, lens), so every kernel that starts paths sees the same rays. */
+inline void camera_sample(constant RenderParams *p, uint pixel, uint sample, float3 *origin,
+                          float3 *dir)
+{
+    float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
+                             rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
+    float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
+                           rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
+    camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, origin, dir);
+}

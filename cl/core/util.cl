@@ -1,7 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* util.cl: small vector helpers shared by every stage. */
 
-#define PT_PI 3.14159265358979323846f
 #define PT_INV_PI 0.31830988618379067154f
 
 /* Functions a CPU compiler must inline: PoCL's LLVM leaves large ones out of line, and then passes
@@ -16,8 +15,6 @@
 inline float3 xyz(float4 v) { return (float3)(v.x, v.y, v.z); }
 
 inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-
-inline float luminance(float3 rgb) { return dot(rgb, (float3)(0.2126f, 0.7152f, 0.0722f)); }
 
 /* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
 inline void make_basis(float3 n, float3 *t, float3 *b)

@@ -294,7 +294,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global BvhTriangle
     return tr.walk.hit;
 }
 
-/* Every triangle, no BVH: the baseline of the brute-force ablation (RENDER_BRUTE_FORCE). */
+/* Every triangle, no BVH: the baseline of the brute-force ablation (the *_brute_force stages). */
 inline Hit trace_brute_force(const global BvhTriangle *tris, uint num_tris, float3 origin,
                              float3 dir, float tmin, float tmax, bool any_hit)
 {

@@ -257,7 +257,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
     }
 }
 
-/* Every pack, no tree: the baseline of the brute-force ablation (RENDER_BRUTE_FORCE). */
+/* Every pack, no tree: the baseline of the brute-force ablation (the *_brute_force stages). */
 inline Hit trace_brute_force(const global TraversalPrim *packs, uint num_packs, float3 origin,
                              float3 dir, float tmin, float tmax, bool any_hit)
 {

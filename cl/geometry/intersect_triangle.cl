@@ -13,8 +13,6 @@ typedef struct {
 #endif
 } Hit;
 
-#define HIT_NONE 0xffffffffu
-
 /* The exclusive upper bound on t for triangle `prim` against the closest hit so far: a tie at
  * exactly hit.t goes to the lower original index, so every layout and tree reports the same
  * triangle. Before any hit, hit.t is the ray's tmax, which stays excluded. */
@@ -102,10 +100,3 @@ inline bool intersect_triangle_watertight(WatertightRay ray, float3 v0, float3 v
     return true;
 }
 
-/* One-off test for callers that do not trace many triangles along one ray. */
-inline bool intersect_triangle(float3 origin, float3 dir, float3 v0, float3 v1, float3 v2,
-                               float tmin, float tmax, float *t_out, float *u_out, float *v_out)
-{
-    return intersect_triangle_watertight(watertight_ray(origin, dir), v0, v1, v2, tmin, tmax, t_out,
-                                         u_out, v_out);
-}

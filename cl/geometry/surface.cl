@@ -9,12 +9,12 @@ typedef struct {
     uint material;
 } SurfaceHit;
 
-PT_INLINE SurfaceHit surface_at(Hit hit, const global float4 *positions, const global float4 *normals,
-                      const global float2 *uvs, const global Triangle *triangles,
-                      const global uint *material_ids)
+PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit)
 {
     SurfaceHit s;
-    uint4 tri = triangles[hit.prim].v;
+    const global float4 *positions = scene->positions, *normals = scene->normals;
+    const global float2 *uvs = scene->uvs;
+    uint4 tri = scene->triangles[hit.prim].v;
     float3 p0 = xyz(positions[tri.x]), p1 = xyz(positions[tri.y]), p2 = xyz(positions[tri.z]);
     float w0 = 1.0f - hit.u - hit.v;
     s.position = w0 * p0 + hit.u * p1 + hit.v * p2;
@@ -30,6 +30,6 @@ PT_INLINE SurfaceHit surface_at(Hit hit, const global float4 *positions, const g
         s.uv = w0 * uvs[tri.x] + hit.u * uvs[tri.y] + hit.v * uvs[tri.z];
     else
         s.uv = (float2)(hit.u, hit.v);
-    s.material = material_ids[hit.prim];
+    s.material = scene->material_ids[hit.prim];
     return s;
 }

@@ -9,8 +9,6 @@ typedef struct {
     float pdf_w;     /* solid-angle pdf at the shading point */
 } LightSample;
 
-inline float triangle_area(float3 p0, float3 p1, float3 p2) { return 0.5f * length(cross(p1 - p0, p2 - p0)); }
-
 /* The alias table's choice from two independent random numbers: the entry, uniform over
  * [0, num_lights) from 32 bits by a multiply-high (each index gets floor or ceil of 2^32 / n of the
  * values: exact for powers of two, within n / 2^32 relative otherwise), then the entry or its alias
@@ -23,11 +21,14 @@ inline LightEntry light_pick(const global LightEntry *lights, uint num_lights, u
     return u_coin < entry.prob ? entry : lights[entry.alias];
 }
 
-PT_INLINE LightSample light_sample(const global LightEntry *lights, uint num_lights,
-                         const global float4 *positions, const global Triangle *triangles,
-                         const global uint *material_ids, const global Material *materials,
-                         float3 from, uint pick_bits, float u_coin, float u1, float u2)
+PT_INLINE LightSample light_sample(const SceneView *scene, uint num_lights, float3 from,
+                                   uint pick_bits, float u_coin, float u1, float u2)
 {
+    const global LightEntry *lights = scene->lights;
+    const global float4 *positions = scene->positions;
+    const global Triangle *triangles = scene->triangles;
+    const global uint *material_ids = scene->material_ids;
+    const global Material *materials = scene->materials;
     LightSample ls;
     LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
     uint4 tri = triangles[entry.triangle].v;

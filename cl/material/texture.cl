@@ -27,10 +27,10 @@ inline int wrap_coord(int i, int n)
     return r < 0 ? r + n : r;
 }
 
-float4 texture_sample(const global uint *texels, const global TextureInfo *textures, uint index,
-                      float2 uv)
+float4 texture_sample(const SceneView *scene, uint index, float2 uv)
 {
-    TextureInfo info = textures[index];
+    const global uint *texels = scene->texels;
+    TextureInfo info = scene->textures[index];
     /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. The
      * fmin/fmax keep a NaN or infinite uv (and rounding of the fraction up to 1) from reaching the
      * float-to-int conversions below, whose out-of-range result is undefined. */

@@ -4,7 +4,7 @@
  * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
- * counts as specular for MIS), throughput = 1, radiance[k] = 0, alive = 1 (depth of the camera
+ * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
  * ray), active[n_live + j]. Next: intersect_closest. */
 
 kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
@@ -17,18 +17,14 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     uint slot = fresh ? j : free_slots[j];
     uint k = first_sample + j;
     uint pixel = window_pixel(p, k), sample = window_sample(p, k);
-    float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
-                             rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
-    float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
-                           rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
     float3 origin, dir;
-    camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, &origin, &dir);
+    camera_sample(p, pixel, sample, &origin, &dir);
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(dir, 0.0f);
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
     shadow_contribution[slot] = (float4)(0.0f);
     sample_id[slot] = k;
-    alive[slot] = 1u;
+    path_depth[slot] = 1u;
     radiance[k] = (float4)(0.0f);
     active[n_live + j] = slot;
 }

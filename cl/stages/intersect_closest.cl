@@ -2,27 +2,51 @@
 /* intersect_closest: extends every live path by one segment.
  * Reads: active[0..n_active), ray_origin, ray_direction. Writes: hit (t, u, v, triangle or
  * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped.
- * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group). */
+ * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group).
+ * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
+ * the test that it renders the same image): a kernel of its own, so that the production kernel
+ * carries no brute-force branch. */
 
-kernel void intersect_closest(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                              const global uint *active, uint n_active, global uint *counters)
+#define INTERSECT_CLOSEST_PARAMS                                                                   \
+    constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \
+        uint n_active, global uint *counters
+
+/* The work-group's share of either kernel; brute_force is a constant in each. */
+PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView *scene,
+                                       PATH_STATE_PARAMS const global uint *active, uint n_active,
+                                       global uint *counters, local uint *group_rays,
+                                       bool brute_force)
 {
-    local uint group_rays;
     if (get_local_id(0) == 0)
-        group_rays = 0;
+        *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    if (i < n_active && alive[slot]) {
-        atomic_inc(&group_rays);
+    if (i < n_active && path_depth[slot]) {
+        atomic_inc(group_rays);
         float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
-        Hit h = (p->flags & RENDER_BRUTE_FORCE)
-                    ? trace_brute_force(bvh_tris, p->num_bvh_prims, o, d, 0.0f, INFINITY, false)
-                    : trace_closest(bvh_nodes, bvh_tris, p->num_bvh_prims, o, d, 0.0f, INFINITY);
+        Hit h = brute_force ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, o, d, 0.0f,
+                                                INFINITY, false)
+                            : trace_closest(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, o,
+                                            d, 0.0f, INFINITY);
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
     }
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0 && group_rays > 0)
-        atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_rays);
+    if (get_local_id(0) == 0 && *group_rays > 0)
+        atomic_add(&counters[COUNTER_EXTENSION_RAYS], *group_rays);
+}
+
+kernel void intersect_closest(INTERSECT_CLOSEST_PARAMS)
+{
+    local uint group_rays;
+    SceneView scene = SCENE_VIEW;
+    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, &group_rays, false);
+}
+
+kernel void intersect_closest_brute_force(INTERSECT_CLOSEST_PARAMS)
+{
+    local uint group_rays;
+    SceneView scene = SCENE_VIEW;
+    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, &group_rays, true);
 }

@@ -6,15 +6,23 @@
  * Runs before compaction: a path killed by Russian roulette may still have a shadow ray.
  * Launched over the active list; with RENDER_SHADOW_QUEUE only the first shadow_count[0] items
  * work, on the slots that shade_surface appended to shadow_queue.
- * counters[COUNTER_SHADOW_RAYS] counts the rays traced (one global atomic per work-group). */
+ * counters[COUNTER_SHADOW_RAYS] counts the rays traced (one global atomic per work-group).
+ * intersect_shadow_brute_force: the same without the BVH (see intersect_closest.cl). */
 
-kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
-                             const global uint *active, uint n_active, global uint *counters,
-                             const global uint *shadow_queue, const global uint *shadow_count)
+#define INTERSECT_SHADOW_PARAMS                                                                    \
+    constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \
+        uint n_active, global uint *counters, const global uint *shadow_queue,                     \
+        const global uint *shadow_count
+
+/* The work-group's share of either kernel; brute_force is a constant in each. */
+PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView *scene,
+                                      PATH_STATE_PARAMS const global uint *active, uint n_active,
+                                      global uint *counters, const global uint *shadow_queue,
+                                      const global uint *shadow_count, local uint *group_rays,
+                                      bool brute_force)
 {
-    local uint group_rays;
     if (get_local_id(0) == 0)
-        group_rays = 0;
+        *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
     bool queue = (p->flags & RENDER_SHADOW_QUEUE) != 0u;
@@ -22,14 +30,15 @@ kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_P
         uint slot = queue ? shadow_queue[i] : active[i];
         float4 contribution = shadow_contribution[slot];
         if (contribution.w != 0.0f) {
-            atomic_inc(&group_rays);
+            atomic_inc(group_rays);
             float4 origin = shadow_origin[slot];
             float3 d = xyz(shadow_direction[slot]);
             bool occluded =
-                (p->flags & RENDER_BRUTE_FORCE)
-                    ? trace_brute_force(bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f, origin.w,
-                                        true).prim != HIT_NONE
-                    : trace_any(bvh_nodes, bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f, origin.w);
+                brute_force
+                    ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f,
+                                        origin.w, true).prim != HIT_NONE
+                    : trace_any(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, xyz(origin), d,
+                                0.0f, origin.w);
             if (!occluded)
                 radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
             shadow_contribution[slot] = (float4)(0.0f);
@@ -37,6 +46,22 @@ kernel void intersect_shadow(constant RenderParams *p, SCENE_PARAMS PATH_STATE_P
     }
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0 && group_rays > 0)
-        atomic_add(&counters[COUNTER_SHADOW_RAYS], group_rays);
+    if (get_local_id(0) == 0 && *group_rays > 0)
+        atomic_add(&counters[COUNTER_SHADOW_RAYS], *group_rays);
+}
+
+kernel void intersect_shadow(INTERSECT_SHADOW_PARAMS)
+{
+    local uint group_rays;
+    SceneView scene = SCENE_VIEW;
+    intersect_shadow_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, shadow_queue,
+                           shadow_count, &group_rays, false);
+}
+
+kernel void intersect_shadow_brute_force(INTERSECT_SHADOW_PARAMS)
+{
+    local uint group_rays;
+    SceneView scene = SCENE_VIEW;
+    intersect_shadow_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, shadow_queue,
+                           shadow_count, &group_rays, true);
 }

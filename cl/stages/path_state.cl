@@ -11,18 +11,15 @@
 #define PATH_STATE_ARG(type, name) name,
 /* The same buffers as arguments of a call, each followed by a comma. */
 #define PATH_STATE_ARGS PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)
-#define SCENE_ARGS                                                                                 \
-    bvh_nodes, bvh_tris, positions, normals, uvs, triangles, material_ids, materials, texels,      \
-        textures, lights,
 
-/* The scene's read-only buffers, in the order host/render/wavefront.c sets them; ends with a comma. */
-#define SCENE_PARAMS                                                                               \
-    const global TraversalNode *restrict bvh_nodes, const global TraversalPrim *restrict bvh_tris, \
-        const global float4 *restrict positions, const global float4 *restrict normals,            \
-        const global float2 *restrict uvs, const global Triangle *restrict triangles,              \
-        const global uint *restrict material_ids, const global Material *restrict materials,       \
-        const global uint *restrict texels, const global TextureInfo *restrict textures,           \
-        const global LightEntry *restrict lights,
+/* Every SCENE_BUFFERS buffer (shared.h), in the order host/render/wavefront.c binds them, each
+ * followed by a comma. */
+#define SCENE_PARAM(type, name) const global type *restrict name,
+#define SCENE_PARAMS SCENE_BUFFERS(SCENE_PARAM)
+
+/* Initialiser of the SceneView over a kernel's SCENE_PARAMS: SceneView scene = SCENE_VIEW; */
+#define SCENE_VIEW_INIT(type, name) name,
+#define SCENE_VIEW {SCENE_BUFFERS(SCENE_VIEW_INIT)}
 
 /* The pixel and sample index of window sample k (see PATH_STATE_FIELDS in shared.h). */
 inline uint window_pixel(constant RenderParams *p, uint k)

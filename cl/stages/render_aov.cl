@@ -4,30 +4,20 @@
  * (rgb, w = 1). Misses give 0. Not part of the wavefront: a single pass for denoisers and
  * compositors. */
 
-kernel void render_aov(constant RenderParams *p, const global TraversalNode *nodes,
-                       const global TraversalPrim *bvh_tris, const global float4 *positions,
-                       const global float4 *normals, const global float2 *uvs,
-                       const global Triangle *triangles, const global uint *material_ids,
-                       const global Material *materials, const global uint *texels,
-                       const global TextureInfo *textures, uint spp, global float4 *film)
+kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global float4 *film)
 {
+    SceneView scene = SCENE_VIEW;
     uint pixel = get_global_id(0);
     if (pixel >= p->width * p->height)
         return;
-    uint x = pixel % p->width, y = pixel / p->width;
     float3 sum = (float3)(0.0f);
     for (uint s = 0; s < spp; s++) {
-        uint sample = p->sample_index + s;
-        float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
-                                 rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
-        float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
-                               rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
         float3 origin, dir;
-        camera_ray(p, x, y, jitter, lens, &origin, &dir);
-        Hit hit = trace_closest(nodes, bvh_tris, p->num_bvh_prims, origin, dir, 0.0f, INFINITY);
+        camera_sample(p, pixel, p->sample_index + s, &origin, &dir);
+        Hit hit = trace_closest(bvh_nodes, bvh_tris, p->num_bvh_prims, origin, dir, 0.0f, INFINITY);
         if (hit.prim == HIT_NONE)
             continue;
-        SurfaceHit surf = surface_at(hit, positions, normals, uvs, triangles, material_ids);
+        SurfaceHit surf = surface_at(&scene, hit);
         if (p->aov == AOV_NORMAL) {
             sum += surf.shading_normal;
         } else if (p->aov == AOV_DEPTH) {
@@ -38,7 +28,7 @@ kernel void render_aov(constant RenderParams *p, const global TraversalNode *nod
                             : m.type == MATERIAL_DIELECTRIC ? xyz(m.tf)
                                                             : xyz(m.kd);
             if (m.map_kd != NO_TEXTURE)
-                albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
+                albedo *= xyz(texture_sample(&scene, m.map_kd, surf.uv));
             sum += albedo;
         }
     }

@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* shade_surface: one path vertex. Adds emission (MIS-weighted against light sampling), queues a
  * next-event shadow ray for diffuse surfaces, samples the BSDF for the next segment and applies
- * Russian roulette. depth = alive[slot] = segments traced so far (1 after the camera ray); paths
+ * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
- * Reads: hit, ray_*, throughput, alive, sample_id, scene. Writes: radiance[sample_id], throughput,
- * ray_* (next segment), shadow_* (w = 1 when queued), alive (depth + 1, or 0 when the path ends).
+ * Reads: hit, ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
+ * ray_* (next segment), shadow_* (w = 1 when queued), path_depth (depth + 1, or 0 when the path ends).
  * Next: intersect_shadow, then compaction. */
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
@@ -32,9 +32,9 @@ inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
-inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint slot)
+inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
-    uint depth = alive[slot];
+    uint depth = path_depth[slot];
     if (depth == 0u)
         return false;
     uint k = sample_id[slot];
@@ -44,12 +44,12 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
     uint prim = as_uint(h.w);
     if (prim == HIT_NONE) {
         add_radiance(radiance, k, beta * xyz(p->background));
-        alive[slot] = 0u;
+        path_depth[slot] = 0u;
         return false;
     }
     Hit hh = {h.x, h.y, h.z, prim};
-    SurfaceHit surf = surface_at(hh, positions, normals, uvs, triangles, material_ids);
-    Material m = materials[surf.material];
+    SurfaceHit surf = surface_at(scene, hh);
+    Material m = scene->materials[surf.material];
     float3 wo = -xyz(dir4);
     float cos_o_geometric = dot(wo, surf.geometric_normal);
     bool front = cos_o_geometric > 0.0f;
@@ -69,12 +69,11 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         uint bounce = depth - 1u;
         float3 albedo = xyz(m.kd);
         if (m.map_kd != NO_TEXTURE)
-            albedo *= xyz(texture_sample(texels, textures, m.map_kd, surf.uv));
+            albedo *= xyz(texture_sample(scene, m.map_kd, surf.uv));
 
         /* Next-event estimation: diffuse surfaces only (delta lobes cannot meet a sampled light). */
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(lights, p->num_emissive, positions, triangles, material_ids,
-                                          materials, surf.position,
+            LightSample ls = light_sample(scene, p->num_emissive, surf.position,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
@@ -123,7 +122,7 @@ inline bool shade_path(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS 
         }
     }
     add_radiance(radiance, k, gathered);
-    alive[slot] = path_continues ? depth + 1u : 0u;
+    path_depth[slot] = path_continues ? depth + 1u : 0u;
     return queued;
 }
 
@@ -135,9 +134,10 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
                           global uint *shadow_count)
 {
     local uint group_count, group_base;
+    SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    bool queued = i < n_active && shade_path(p, SCENE_ARGS PATH_STATE_ARGS slot);
+    bool queued = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot);
     if (!(p->flags & RENDER_SHADOW_QUEUE))
         return; /* uniform: no barrier below is reached by anyone */
     if (get_local_id(0) == 0)

@@ -348,6 +348,13 @@ bool device_build(Device *dev, const char *extra_source, const char *extra_name,
     return true;
 }
 
+cl_uint kernel_set_args(cl_kernel kernel, cl_uint first, size_t n, const KernelArg *args)
+{
+    for (size_t j = 0; j < n; j++)
+        CL_CHECK(clSetKernelArg(kernel, first + (cl_uint)j, args[j].size, args[j].value));
+    return first + (cl_uint)n;
+}
+
 cl_kernel device_kernel(Device *dev, const char *name)
 {
     cl_int status;

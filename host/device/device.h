@@ -67,6 +67,23 @@ void device_write(Device *dev, cl_mem buf, size_t offset, size_t size, const voi
 #define KERNEL_ARG(kernel, index, value) \
     CL_CHECK(clSetKernelArg((kernel), (index), sizeof(value), &(value)))
 
+/* One kernel argument: KARG(lvalue) takes its size and address. */
+typedef struct {
+    size_t size;
+    const void *value;
+} KernelArg;
+#define KARG(value) ((KernelArg){sizeof(value), &(value)})
+/* A local-memory argument of `bytes`. */
+#define KARG_LOCAL(bytes) ((KernelArg){(bytes), NULL})
+
+/* Sets arguments first .. first + n - 1 from args[] in order; returns first + n, the index of the
+ * next argument. KERNEL_ARGS(k, first, KARG(a), KARG(b), ...) counts them itself, so no call site
+ * numbers arguments by hand. */
+cl_uint kernel_set_args(cl_kernel kernel, cl_uint first, size_t n, const KernelArg *args);
+#define KERNEL_ARGS(kernel, first, ...)                                                            \
+    kernel_set_args((kernel), (first), sizeof((KernelArg[]){__VA_ARGS__}) / sizeof(KernelArg),     \
+                    (KernelArg[]){__VA_ARGS__})
+
 /* Device time of an enqueued command in ms (from profiling events: the queue has them on); waits
  * for it and releases the event. */
 double device_event_ms(cl_event event);

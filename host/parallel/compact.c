@@ -170,13 +170,9 @@ static void scan_level(Compactor *c, const size_t *sizes, int k, int top, cl_mem
     cl_uint m = (cl_uint)sizes[k], per_item = VALUES_PER_ITEM;
     cl_mem offsets = k == top ? c->zero : c->tile_sums[k + 1];
     cl_kernel kernel = c->exclusive_values;
-    KERNEL_ARG(kernel, 0, c->tile_sums[k]);
-    KERNEL_ARG(kernel, 1, m);
-    KERNEL_ARG(kernel, 2, per_item);
-    KERNEL_ARG(kernel, 3, offsets);
-    KERNEL_ARG(kernel, 4, count_buf);
-    CL_CHECK(clSetKernelArg(kernel, 5, VALUES_PER_ITEM * local * sizeof(cl_uint), NULL));
-    CL_CHECK(clSetKernelArg(kernel, 6, 2 * local * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(kernel, 0, KARG(c->tile_sums[k]), KARG(m), KARG(per_item), KARG(offsets),
+                KARG(count_buf), KARG_LOCAL(VALUES_PER_ITEM * local * sizeof(cl_uint)),
+                KARG_LOCAL(2 * local * sizeof(cl_uint)));
     launch(c, kernel, k == top ? 1 : sizes[k + 1]);
 }
 
@@ -185,12 +181,8 @@ static void count_flags(Compactor *c, cl_mem flags, uint32_t n, size_t tiles)
 {
     size_t local = c->group_size;
     cl_uint n_arg = n;
-    KERNEL_ARG(c->count_flags, 0, flags);
-    KERNEL_ARG(c->count_flags, 1, n_arg);
-    KERNEL_ARG(c->count_flags, 2, c->mask);
-    KERNEL_ARG(c->count_flags, 3, c->tile_sums[1]);
-    CL_CHECK(clSetKernelArg(c->count_flags, 4, FLAGS_PER_ITEM / 4 * local, NULL));
-    CL_CHECK(clSetKernelArg(c->count_flags, 5, local * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(c->count_flags, 0, KARG(flags), KARG(n_arg), KARG(c->mask), KARG(c->tile_sums[1]),
+                KARG_LOCAL(FLAGS_PER_ITEM / 4 * local), KARG_LOCAL(local * sizeof(cl_uint)));
     launch(c, c->count_flags, tiles);
 }
 
@@ -198,11 +190,8 @@ static void count_flags(Compactor *c, cl_mem flags, uint32_t n, size_t tiles)
 static void reduce_level(Compactor *c, const size_t *sizes, int k)
 {
     cl_uint m = (cl_uint)sizes[k], per_item = VALUES_PER_ITEM;
-    KERNEL_ARG(c->reduce_values, 0, c->tile_sums[k]);
-    KERNEL_ARG(c->reduce_values, 1, m);
-    KERNEL_ARG(c->reduce_values, 2, per_item);
-    KERNEL_ARG(c->reduce_values, 3, c->tile_sums[k + 1]);
-    CL_CHECK(clSetKernelArg(c->reduce_values, 4, c->group_size * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(c->reduce_values, 0, KARG(c->tile_sums[k]), KARG(m), KARG(per_item),
+                KARG(c->tile_sums[k + 1]), KARG_LOCAL(c->group_size * sizeof(cl_uint)));
     launch(c, c->reduce_values, sizes[k + 1]);
 }
 
@@ -212,16 +201,10 @@ static void scatter_indices(Compactor *c, cl_mem indices, cl_mem count_buf, size
 {
     size_t local = c->group_size;
     cl_uint n_arg = n;
-    KERNEL_ARG(c->scatter_indices, 0, c->mask);
-    KERNEL_ARG(c->scatter_indices, 1, c->tile_sums[1]);
-    KERNEL_ARG(c->scatter_indices, 2, sum_counts);
-    KERNEL_ARG(c->scatter_indices, 3, count_buf);
-    KERNEL_ARG(c->scatter_indices, 4, indices);
-    KERNEL_ARG(c->scatter_indices, 5, n_arg);
-    KERNEL_ARG(c->scatter_indices, 6, complement);
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 7, FLAGS_PER_ITEM * local * sizeof(cl_ushort),
-                            NULL));
-    CL_CHECK(clSetKernelArg(c->scatter_indices, 8, 2 * local * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(c->scatter_indices, 0, KARG(c->mask), KARG(c->tile_sums[1]), KARG(sum_counts),
+                KARG(count_buf), KARG(indices), KARG(n_arg), KARG(complement),
+                KARG_LOCAL(FLAGS_PER_ITEM * local * sizeof(cl_ushort)),
+                KARG_LOCAL(2 * local * sizeof(cl_uint)));
     launch(c, c->scatter_indices, tiles);
 }
 

@@ -123,13 +123,9 @@ static void scan_level(ExclusiveScan *s, const size_t *sizes, int k, int top, do
     cl_uint per_item = k == top ? (cl_uint)div_up(sizes[k], group) : VALUES_PER_ITEM;
     cl_mem offsets = k == top ? s->zero : s->levels[k + 1];
     cl_kernel kernel = s->exclusive_values;
-    KERNEL_ARG(kernel, 0, s->levels[k]);
-    KERNEL_ARG(kernel, 1, m);
-    KERNEL_ARG(kernel, 2, per_item);
-    KERNEL_ARG(kernel, 3, offsets);
-    KERNEL_ARG(kernel, 4, s->total);
-    CL_CHECK(clSetKernelArg(kernel, 5, per_item * group * sizeof(cl_uint), NULL));
-    CL_CHECK(clSetKernelArg(kernel, 6, 2 * group * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(kernel, 0, KARG(s->levels[k]), KARG(m), KARG(per_item), KARG(offsets),
+                KARG(s->total), KARG_LOCAL(per_item * group * sizeof(cl_uint)),
+                KARG_LOCAL(2 * group * sizeof(cl_uint)));
     launch(s, kernel, k == top ? 1 : sizes[k + 1], profile_ms);
 }
 
@@ -137,11 +133,8 @@ static void scan_level(ExclusiveScan *s, const size_t *sizes, int k, int top, do
 static void reduce_level(ExclusiveScan *s, const size_t *sizes, int k, double *profile_ms)
 {
     cl_uint m = (cl_uint)sizes[k], per_item = VALUES_PER_ITEM;
-    KERNEL_ARG(s->reduce_values, 0, s->levels[k]);
-    KERNEL_ARG(s->reduce_values, 1, m);
-    KERNEL_ARG(s->reduce_values, 2, per_item);
-    KERNEL_ARG(s->reduce_values, 3, s->levels[k + 1]);
-    CL_CHECK(clSetKernelArg(s->reduce_values, 4, s->group_size * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(s->reduce_values, 0, KARG(s->levels[k]), KARG(m), KARG(per_item),
+                KARG(s->levels[k + 1]), KARG_LOCAL(s->group_size * sizeof(cl_uint)));
     launch(s, s->reduce_values, sizes[k + 1], profile_ms);
 }
 

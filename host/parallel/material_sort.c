@@ -146,17 +146,11 @@ static void count_keys(MaterialSorter *s, cl_mem hit, cl_mem material_ids, cl_me
     }
     cl_uint n_arg = n, num_materials = s->num_materials;
     cl_kernel kernel = s->local_histogram ? s->count_local : s->count_global;
-    KERNEL_ARG(kernel, 0, active_in);
-    KERNEL_ARG(kernel, 1, n_arg);
-    KERNEL_ARG(kernel, 2, hit);
-    KERNEL_ARG(kernel, 3, material_ids);
-    KERNEL_ARG(kernel, 4, num_materials);
-    KERNEL_ARG(kernel, 5, s->keys);
-    KERNEL_ARG(kernel, 6, s->counts);
-    cl_uint tile_arg = 7;
+    cl_uint i = KERNEL_ARGS(kernel, 0, KARG(active_in), KARG(n_arg), KARG(hit), KARG(material_ids),
+                            KARG(num_materials), KARG(s->keys), KARG(s->counts));
     if (s->local_histogram)
-        CL_CHECK(clSetKernelArg(kernel, tile_arg++, histogram_local_bytes(num_materials), NULL));
-    CL_CHECK(clSetKernelArg(kernel, tile_arg, tile_local_bytes(s->group_size), NULL));
+        i = KERNEL_ARGS(kernel, i, KARG_LOCAL(histogram_local_bytes(num_materials)));
+    KERNEL_ARGS(kernel, i, KARG_LOCAL(tile_local_bytes(s->group_size)));
     launch_tiles(s, kernel, tiles);
 }
 
@@ -166,14 +160,9 @@ static void scatter(MaterialSorter *s, cl_mem active_in, cl_mem active_out, uint
 {
     cl_uint n_arg = n;
     cl_kernel kernel = s->scatter;
-    KERNEL_ARG(kernel, 0, active_in);
-    KERNEL_ARG(kernel, 1, n_arg);
-    KERNEL_ARG(kernel, 2, s->keys);
-    KERNEL_ARG(kernel, 3, s->key_bits);
-    KERNEL_ARG(kernel, 4, s->counts);
-    KERNEL_ARG(kernel, 5, active_out);
-    CL_CHECK(clSetKernelArg(kernel, 6, tile_local_bytes(s->group_size), NULL));
-    CL_CHECK(clSetKernelArg(kernel, 7, 2 * s->group_size * sizeof(cl_uint), NULL));
+    KERNEL_ARGS(kernel, 0, KARG(active_in), KARG(n_arg), KARG(s->keys), KARG(s->key_bits),
+                KARG(s->counts), KARG(active_out), KARG_LOCAL(tile_local_bytes(s->group_size)),
+                KARG_LOCAL(2 * s->group_size * sizeof(cl_uint)));
     launch_tiles(s, kernel, tiles);
 }
 

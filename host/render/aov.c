@@ -25,19 +25,9 @@ void aov_render(Device *dev, const Scene *scene, const SceneBuffers *buffers, un
         die("%s", err.message);
     cl_kernel kernel = device_kernel(dev, "render_aov");
     cl_uint spp_arg = (cl_uint)spp;
-    KERNEL_ARG(kernel, 0, params_buf);
-    KERNEL_ARG(kernel, 1, buffers->bvh_nodes);
-    KERNEL_ARG(kernel, 2, buffers->bvh_tris);
-    KERNEL_ARG(kernel, 3, buffers->positions);
-    KERNEL_ARG(kernel, 4, buffers->normals);
-    KERNEL_ARG(kernel, 5, buffers->uvs);
-    KERNEL_ARG(kernel, 6, buffers->triangles);
-    KERNEL_ARG(kernel, 7, buffers->material_ids);
-    KERNEL_ARG(kernel, 8, buffers->materials);
-    KERNEL_ARG(kernel, 9, buffers->texels);
-    KERNEL_ARG(kernel, 10, buffers->textures);
-    KERNEL_ARG(kernel, 11, spp_arg);
-    KERNEL_ARG(kernel, 12, film);
+    cl_uint i = KERNEL_ARGS(kernel, 0, KARG(params_buf));
+    i = scene_buffers_set_args(buffers, kernel, i);
+    KERNEL_ARGS(kernel, i, KARG(spp_arg), KARG(film));
     device_run(dev, kernel, num_pixels, 0, NULL);
     float4 *pixels = malloc(num_pixels * sizeof *pixels);
     if (!pixels)

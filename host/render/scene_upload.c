@@ -4,14 +4,18 @@
 #include <string.h>
 
 #include "accel/bvh_wide.h"
+#include "scene/lights.h"
 
-static cl_mem upload(Device *dev, SceneBuffers *out, const char *name, size_t size, const void *data,
-                     Error *err)
+/* Where one scene buffer's contents come from. */
+typedef struct {
+    size_t size;
+    const void *data;
+    bool given; /* false: scene_buffers_upload names no source for it (a bug) */
+} BufferSource;
+
+static BufferSource source(size_t count, size_t element_size, const void *data)
 {
-    if (error_is_set(err))
-        return NULL;
-    out->bytes += size;
-    return device_buffer(dev, name, CL_MEM_READ_ONLY, size, data, err);
+    return (BufferSource){count * element_size, data, true};
 }
 
 bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, SceneBuffers *out,
@@ -19,25 +23,41 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
 {
     memset(out, 0, sizeof *out);
     size_t nv = data->num_vertices, nt = data->num_triangles;
-    out->positions = upload(dev, out, "positions", nv * sizeof(float4), data->positions, err);
-    out->normals = upload(dev, out, "normals", nv * sizeof(float4), data->normals, err);
-    out->uvs = upload(dev, out, "uvs", nv * sizeof(float2), data->uvs, err);
-    out->triangles = upload(dev, out, "triangles", nt * sizeof(Triangle), data->triangles, err);
-    out->material_ids = upload(dev, out, "material_ids", nt * sizeof(uint32_t), data->material_ids, err);
-    out->materials = upload(dev, out, "materials", data->num_materials * sizeof(Material),
-                            data->materials, err);
-    out->texels = upload(dev, out, "texels", data->textures.num_texels * sizeof(uint32_t),
-                         data->textures.texels, err);
-    out->textures = upload(dev, out, "textures", data->textures.count * sizeof(TextureInfo),
-                           data->textures.infos, err);
     BvhLayout layout;
     bvh_layout(&layout, bvh, dev->bvh_width, dev->bvh_quantized);
-    out->bvh_nodes = upload(dev, out, "bvh_nodes", layout.num_nodes * layout.node_size, layout.nodes,
-                            err);
-    out->bvh_tris = upload(dev, out, "bvh_triangles", layout.num_prims * layout.prim_size,
-                           layout.prims, err);
+    LightTable lights;
+    light_table_build(&lights, data);
+    struct {
+#define SOURCE_MEMBER(type, name) BufferSource name;
+        SCENE_BUFFERS(SOURCE_MEMBER)
+#undef SOURCE_MEMBER
+    } src = {0};
+    src.bvh_nodes = source(layout.num_nodes, layout.node_size, layout.nodes);
+    src.bvh_tris = source(layout.num_prims, layout.prim_size, layout.prims);
+    src.positions = source(nv, sizeof(float4), data->positions);
+    src.normals = source(nv, sizeof(float4), data->normals);
+    src.uvs = source(nv, sizeof(float2), data->uvs);
+    src.triangles = source(nt, sizeof(Triangle), data->triangles);
+    src.material_ids = source(nt, sizeof(uint32_t), data->material_ids);
+    src.materials = source(data->num_materials, sizeof(Material), data->materials);
+    src.texels = source(data->textures.num_texels, sizeof(uint32_t), data->textures.texels);
+    src.textures = source(data->textures.count, sizeof(TextureInfo), data->textures.infos);
+    src.lights = source(lights.count, sizeof(LightEntry), lights.entries);
     out->num_bvh_prims = layout.num_prims;
+    out->num_emissive = lights.count;
+    out->emissive_power = lights.total_power;
+
+#define UPLOAD(type, name)                                                                         \
+    if (!src.name.given)                                                                           \
+        die("scene_buffers_upload: no source for scene buffer " #name);                            \
+    if (!error_is_set(err)) {                                                                      \
+        out->name = device_buffer(dev, #name, CL_MEM_READ_ONLY, src.name.size, src.name.data, err); \
+        out->bytes += src.name.size;                                                               \
+    }
+    SCENE_BUFFERS(UPLOAD)
+#undef UPLOAD
     bvh_layout_free(&layout);
+    light_table_free(&lights);
     if (error_is_set(err)) {
         scene_buffers_release(out);
         return false;
@@ -47,10 +67,19 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
 
 void scene_buffers_release(SceneBuffers *b)
 {
-    cl_mem all[] = {b->positions, b->normals, b->uvs, b->triangles, b->material_ids,
-                    b->materials, b->texels, b->textures, b->bvh_nodes, b->bvh_tris};
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
-        if (all[i])
-            CL_CHECK(clReleaseMemObject(all[i]));
+#define RELEASE(type, name)                                                                        \
+    if (b->name)                                                                                   \
+        CL_CHECK(clReleaseMemObject(b->name));
+    SCENE_BUFFERS(RELEASE)
+#undef RELEASE
     memset(b, 0, sizeof *b);
+}
+
+cl_uint scene_buffers_set_args(const SceneBuffers *b, cl_kernel kernel, cl_uint first)
+{
+    cl_uint i = first;
+#define SET_ARG(type, name) KERNEL_ARG(kernel, i++, b->name);
+    SCENE_BUFFERS(SET_ARG)
+#undef SET_ARG
+    return i;
 }

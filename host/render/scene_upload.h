@@ -1,16 +1,20 @@
 /* SPDX-License-Identifier: MIT */
-/* scene_gpu.h: the flattened scene and its BVH as device buffers, uploaded once. */
-#ifndef PT_SCENE_GPU_H
-#define PT_SCENE_GPU_H
+/* scene_upload.h: the flattened scene, its BVH and its light table as device buffers, uploaded
+ * once. The buffers are cl/shared.h's SCENE_BUFFERS list. */
+#ifndef PT_SCENE_UPLOAD_H
+#define PT_SCENE_UPLOAD_H
 
 #include "accel/bvh.h"
 #include "device/device.h"
 #include "scene/scene_data.h"
 
 typedef struct {
-    cl_mem positions, normals, uvs, triangles, material_ids, materials, texels, textures;
-    cl_mem bvh_nodes, bvh_tris;
+#define SCENE_BUFFER_MEMBER(type, name) cl_mem name;
+    SCENE_BUFFERS(SCENE_BUFFER_MEMBER)
+#undef SCENE_BUFFER_MEMBER
     uint32_t num_bvh_prims; /* entries of bvh_tris (RenderParams.num_bvh_prims) */
+    uint32_t num_emissive;  /* entries of lights (RenderParams.num_emissive) */
+    float emissive_power;   /* the light table's total power (RenderParams.emissive_power) */
     size_t bytes; /* device memory used */
 } SceneBuffers;
 
@@ -18,5 +22,9 @@ typedef struct {
 bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, SceneBuffers *out,
                           Error *err);
 void scene_buffers_release(SceneBuffers *buffers);
+
+/* Binds every scene buffer to kernel arguments first, first + 1, ... in SCENE_BUFFERS order (the
+ * kernels' SCENE_PARAMS); returns the index of the argument after them. */
+cl_uint scene_buffers_set_args(const SceneBuffers *buffers, cl_kernel kernel, cl_uint first);
 
 #endif

@@ -12,7 +12,6 @@
 #include "render/film.h"
 #include "scene/camera.h"
 #include "parallel/compact.h"
-#include "scene/lights.h"
 #include "parallel/material_sort.h"
 
 const char *const stage_names[STAGE_COUNT] = {
@@ -31,7 +30,7 @@ struct Wavefront {
     RenderParams params;
     RenderStats *stats;
     Film film;
-    cl_mem params_buf, lights_buf, counters, active, free_slots, count_buf;
+    cl_mem params_buf, counters, active, free_slots;
     cl_mem shadow_queue, shadow_count; /* unless settings.shadow_flags */
     cl_mem sorted_active;              /* with settings.sort_materials: shade_surface's list */
     MaterialSorter *sorter;
@@ -40,6 +39,8 @@ struct Wavefront {
     SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
 #undef PATH_STATE_MEMBER
     cl_kernel kernels[STAGE_COUNT];
+    cl_uint n_active_arg[STAGE_COUNT]; /* index of the n_active argument of the traced stages */
+    cl_uint generate_counts_arg;       /* index of generate_camera_rays' n_live */
     Compactor *compactor;
     uint32_t num_pixels;
     uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
@@ -92,6 +93,17 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
     return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
 }
 
+/* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
+ * intersection kernels of its own, so that the production ones carry no branch for it. */
+static const char *stage_kernel(int stage, bool brute_force)
+{
+    if (brute_force && stage == STAGE_EXTEND)
+        return "intersect_closest_brute_force";
+    if (brute_force && stage == STAGE_CONNECT)
+        return "intersect_shadow_brute_force";
+    return stage_names[stage];
+}
+
 static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
                            const SceneBuffers *buffers, const RenderSettings *s, Error *err)
 {
@@ -107,8 +119,6 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
                           (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
-    LightTable lights;
-    light_table_build(&lights, &scene->data);
     w->params = (RenderParams){
         .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
         .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
@@ -117,23 +127,16 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .seed = s->seed,
         .max_depth = (uint)s->max_depth,
         .num_bvh_prims = buffers->num_bvh_prims,
-        .num_emissive = lights.count,
-        .emissive_power = lights.total_power,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
-                 (s->brute_force ? RENDER_BRUTE_FORCE : 0u),
+        .num_emissive = buffers->num_emissive,
+        .emissive_power = buffers->emissive_power,
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
     };
-    w->lights_buf = device_buffer(dev, "lights", CL_MEM_READ_ONLY, lights.count * sizeof(LightEntry),
-                                  lights.entries, err);
-    light_table_free(&lights);
-    if (error_is_set(err))
-        return false;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
     if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err))
         return false;
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
     w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
-    w->count_buf = state_buffer(w, "live_count", sizeof(uint32_t), err);
     w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_flags ? 1 : pool) * sizeof(uint32_t), err);
     w->shadow_count = state_buffer(w, "shadow_count", sizeof(uint32_t), err);
 #define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
@@ -146,8 +149,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         return false;
     /* Every slot starts free: compaction reads the flags of the whole pool. */
     uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->alive, &zero, sizeof zero, 0, pool * sizeof(uint32_t),
-                                 0, NULL, NULL));
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0,
+                                 pool * sizeof(uint32_t), 0, NULL, NULL));
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
@@ -159,7 +162,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     }
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT && k != STAGE_SORT)
-            w->kernels[k] = device_kernel(dev, stage_names[k]);
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force));
     set_all_args(w);
     wavefront_reset(w);
     return true;
@@ -185,56 +188,49 @@ void wavefront_set_camera(Wavefront *w, const Camera *camera)
     wavefront_reset(w);
 }
 
-/* The index of the first argument after the active list (n_active, then the counters). */
-#define ARG_AFTER_ACTIVE (1 + 11 + PATH_STATE_FIELD_COUNT + 1)
-#define PATH_STATE_COUNT_ONE(type, name) +1
-#define PATH_STATE_FIELD_COUNT (0 PATH_STATE_FIELDS(PATH_STATE_COUNT_ONE) SAMPLE_STATE_FIELDS(PATH_STATE_COUNT_ONE))
-/* generate_camera_rays: params, the state, active, free_slots, then n_live, first_sample, n_new,
- * fresh. */
-#define ARG_GENERATE_COUNTS (1 + PATH_STATE_FIELD_COUNT + 2)
-
-/* Arguments in the order of cl/stages/path_state.cl: params, [scene buffers], path state, then extras. */
+/* Arguments in the order of cl/stages/path_state.cl: params, [scene buffers], path state, then
+ * the stage's own. Returns the index of the first of the stage's own arguments. */
 static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
 {
-    cl_uint i = 0;
-    KERNEL_ARG(k, i++, w->params_buf);
-    if (with_scene) {
-        const SceneBuffers *b = w->scene;
-        cl_mem scene[] = {b->bvh_nodes, b->bvh_tris, b->positions, b->normals, b->uvs, b->triangles,
-                          b->material_ids, b->materials, b->texels, b->textures, w->lights_buf};
-        for (size_t j = 0; j < sizeof scene / sizeof scene[0]; j++)
-            KERNEL_ARG(k, i++, scene[j]);
-    }
-#define PATH_STATE_ARG(type, name) KERNEL_ARG(k, i++, w->name);
-    PATH_STATE_FIELDS(PATH_STATE_ARG)
-    SAMPLE_STATE_FIELDS(PATH_STATE_ARG)
+    cl_uint i = KERNEL_ARGS(k, 0, KARG(w->params_buf));
+    if (with_scene)
+        i = scene_buffers_set_args(w->scene, k, i);
+#define PATH_STATE_ARG(type, name) KARG(w->name),
+    KernelArg state[] = {PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)};
 #undef PATH_STATE_ARG
-    return i;
+    return kernel_set_args(k, i, sizeof state / sizeof state[0], state);
 }
 
+/* Binds every argument once; the counts that change per launch (n_active, generate's counts) are
+ * set again before each launch at the indices recorded here. */
 static void set_all_args(Wavefront *w)
 {
-    cl_uint i = set_path_args(w, w->kernels[STAGE_GENERATE], false);
-    KERNEL_ARG(w->kernels[STAGE_GENERATE], i++, w->active);
-    KERNEL_ARG(w->kernels[STAGE_GENERATE], i, w->free_slots);
-    const int traced[] = {STAGE_EXTEND, STAGE_SHADE, STAGE_CONNECT};
-    for (int j = 0; j < 3; j++) {
-        cl_kernel k = w->kernels[traced[j]];
-        i = set_path_args(w, k, true);
-        cl_mem list = traced[j] == STAGE_SHADE && w->sorted_active ? w->sorted_active : w->active;
-        KERNEL_ARG(k, i, list);
-    }
-    KERNEL_ARG(w->kernels[STAGE_EXTEND], ARG_AFTER_ACTIVE + 1, w->counters);
-    KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 1, w->shadow_queue);
-    KERNEL_ARG(w->kernels[STAGE_SHADE], ARG_AFTER_ACTIVE + 2, w->shadow_count);
-    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 1, w->counters);
-    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 2, w->shadow_queue);
-    KERNEL_ARG(w->kernels[STAGE_CONNECT], ARG_AFTER_ACTIVE + 3, w->shadow_count);
-    i = set_path_args(w, w->kernels[STAGE_ACCUMULATE], false);
-    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i++, w->film.sums);
-    KERNEL_ARG(w->kernels[STAGE_ACCUMULATE], i, w->counters);
-}
+    cl_uint zero = 0, i;
+    cl_kernel generate = w->kernels[STAGE_GENERATE];
+    i = set_path_args(w, generate, false);
+    w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
 
+    cl_kernel extend = w->kernels[STAGE_EXTEND];
+    i = set_path_args(w, extend, true);
+    w->n_active_arg[STAGE_EXTEND] = i + 1;
+    KERNEL_ARGS(extend, i, KARG(w->active), KARG(zero), KARG(w->counters));
+
+    cl_kernel shade = w->kernels[STAGE_SHADE];
+    cl_mem shade_list = w->sorted_active ? w->sorted_active : w->active;
+    i = set_path_args(w, shade, true);
+    w->n_active_arg[STAGE_SHADE] = i + 1;
+    KERNEL_ARGS(shade, i, KARG(shade_list), KARG(zero), KARG(w->shadow_queue), KARG(w->shadow_count));
+
+    cl_kernel connect = w->kernels[STAGE_CONNECT];
+    i = set_path_args(w, connect, true);
+    w->n_active_arg[STAGE_CONNECT] = i + 1;
+    KERNEL_ARGS(connect, i, KARG(w->active), KARG(zero), KARG(w->counters), KARG(w->shadow_queue),
+                KARG(w->shadow_count));
+
+    cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
+    i = set_path_args(w, accumulate, false);
+    KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
+}
 
 static void run(Wavefront *w, int stage, size_t n)
 {
@@ -247,14 +243,14 @@ static void run(Wavefront *w, int stage, size_t n)
 static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
 {
     cl_uint n = n_active;
-    KERNEL_ARG(w->kernels[stage], ARG_AFTER_ACTIVE, n);
+    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n);
     run(w, stage, n_active);
 }
 
 static uint32_t compact_paths(Wavefront *w, uint32_t pool)
 {
     double t = seconds_now();
-    uint32_t live = compactor_run(w->compactor, w->alive, w->active, pool);
+    uint32_t live = compactor_run(w->compactor, w->path_depth, w->active, pool);
     if (w->settings.profile)
         w->stats->stage_ms[STAGE_COMPACT] += 1e3 * (seconds_now() - t);
     w->stats->stage_launches[STAGE_COMPACT]++;
@@ -277,9 +273,8 @@ static void list_free_slots(Wavefront *w)
 static void generate(Wavefront *w, uint32_t n_live, uint32_t first, uint32_t n_new, bool fresh)
 {
     cl_kernel k = w->kernels[STAGE_GENERATE];
-    cl_uint args[4] = {n_live, first, n_new, fresh ? 1u : 0u};
-    for (cl_uint a = 0; a < 4; a++)
-        KERNEL_ARG(k, ARG_GENERATE_COUNTS + a, args[a]);
+    cl_uint fresh_arg = fresh ? 1u : 0u;
+    KERNEL_ARGS(k, w->generate_counts_arg, KARG(n_live), KARG(first), KARG(n_new), KARG(fresh_arg));
     run(w, STAGE_GENERATE, n_new);
 }
 
@@ -435,8 +430,8 @@ static void wavefront_release(Wavefront *w)
     if (w->sorter)
         material_sorter_destroy(w->sorter);
     film_release(&w->film);
-    cl_mem all[] = {w->params_buf, w->lights_buf, w->counters, w->active, w->free_slots,
-                    w->count_buf, w->shadow_queue, w->shadow_count, w->sorted_active,
+    cl_mem all[] = {w->params_buf, w->counters, w->active, w->free_slots,
+                    w->shadow_queue, w->shadow_count, w->sorted_active,
 #define PATH_STATE_LIST(type, name) w->name,
                     PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
 #undef PATH_STATE_LIST

@@ -1,19 +1,20 @@
 /* SPDX-License-Identifier: MIT */
-/* report_sizes: writes sizeof of every shared struct, indexed by SIZEOF_*, so the host can check
- * that both compilers lay them out alike. */
-kernel void report_sizes(global uint *out)
+/* report_layout: the device's layout of every SHARED_STRUCTS entry (cl/shared.h), in list order:
+ * per struct its size, per field its offset and size; tests/test_device.c compares the host's. */
+#define REPORT_STRUCT(type, size)                                                                  \
+    {                                                                                               \
+        out[i++] = sizeof(type);                                                                    \
+    }
+/* Offsets from a private instance: OpenCL C 1.2 has no offsetof. */
+#define REPORT_FIELD(type, field)                                                                  \
+    {                                                                                               \
+        type x;                                                                                     \
+        out[i++] = (uint)((private char *)&x.field - (private char *)&x);                           \
+        out[i++] = sizeof(x.field);                                                                 \
+    }
+
+kernel void report_layout(global uint *out)
 {
-    out[SIZEOF_TRIANGLE] = sizeof(Triangle);
-    out[SIZEOF_BVH_NODE] = sizeof(BvhNode);
-    out[SIZEOF_BVH_TRIANGLE] = sizeof(BvhTriangle);
-    out[SIZEOF_MATERIAL] = sizeof(Material);
-    out[SIZEOF_TEXTURE_INFO] = sizeof(TextureInfo);
-    out[SIZEOF_CAMERA] = sizeof(Camera);
-    out[SIZEOF_RENDER_PARAMS] = sizeof(RenderParams);
-    out[SIZEOF_LIGHT_ENTRY] = sizeof(LightEntry);
-    out[SIZEOF_BVH_NODE4] = sizeof(BvhNode4);
-    out[SIZEOF_TRIANGLE_PACK4] = sizeof(TrianglePack4);
-    out[SIZEOF_BVH_NODE8] = sizeof(BvhNode8);
-    out[SIZEOF_TRIANGLE_PACK8] = sizeof(TrianglePack8);
-    out[SIZEOF_BVH_NODE_QUANTIZED] = sizeof(BvhNodeQuantized);
+    uint i = 0;
+    SHARED_STRUCTS(REPORT_STRUCT, REPORT_FIELD)
 }

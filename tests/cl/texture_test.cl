@@ -4,7 +4,10 @@
 kernel void sample_texture_at_uvs(const global uint *texels, const global TextureInfo *textures,
                                   uint index, const global float2 *uvs, global float4 *out, uint n)
 {
+    SceneView scene = {0};
+    scene.texels = texels;
+    scene.textures = textures;
     uint i = get_global_id(0);
     if (i < n)
-        out[i] = texture_sample(texels, textures, index, uvs[i]);
+        out[i] = texture_sample(&scene, index, uvs[i]);
 }
