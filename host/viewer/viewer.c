@@ -8,6 +8,7 @@
 
 #include <libgen.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,21 @@ static void on_glfw_error(int code, const char *description)
 {
     (void)code;
     snprintf(glfw_error_text, sizeof glfw_error_text, "%s", description);
+}
+
+/* --events: a line per state change that a script may wait for (input events: input.c). */
+static void print_event(const Viewer *v, const char *format, ...) __attribute__((format(printf, 2, 3)));
+static void print_event(const Viewer *v, const char *format, ...)
+{
+    if (!v->options->print_events)
+        return;
+    va_list ap;
+    va_start(ap, format);
+    fputs("event: ", stdout);
+    vprintf(format, ap);
+    fputc('\n', stdout);
+    fflush(stdout);
+    va_end(ap);
 }
 
 /* ---- The film: a Wavefront sized to the framebuffer ---------------------------------------- */
@@ -112,8 +128,10 @@ static void apply_input(Viewer *v, double seconds)
     glfwGetWindowSize(v->window, &window_width, &window_height);
     float to_film = (float)film_height / (float)(window_height > 0 ? window_height : 1);
     bool moved = false;
-    if (in->resized)
+    if (in->resized) {
         resize_film(v);
+        print_event(v, "film %dx%d", v->session.scene.desc.width, v->session.scene.desc.height);
+    }
     if (in->orbit_dx != 0.0 || in->orbit_dy != 0.0) /* grab the scene: it turns with the cursor */
         viewer_camera_orbit(c, -0.005f * (float)in->orbit_dx, -0.005f * (float)in->orbit_dy), moved = true;
     if (in->pan_dx != 0.0 || in->pan_dy != 0.0)
@@ -122,7 +140,7 @@ static void apply_input(Viewer *v, double seconds)
         viewer_camera_dolly(c, (float)in->dolly_steps), moved = true;
     float move[3];
     bool fast;
-    if (viewer_input_fly(v->window, move, &fast)) {
+    if (viewer_input_fly(in, move, &fast)) {
         double step = fmin(seconds, 0.1) * 0.3 * v->scene_size * (fast ? 4.0 : 1.0);
         viewer_camera_fly(c, move, (float)step), moved = true;
     }
@@ -183,6 +201,8 @@ static void render_step(Viewer *v)
     v->last_sampling_seconds = seconds;
     v->film_changed = true;
     adapt_window(v);
+    if (converged(v)) /* once per film: render_step traces nothing more until it changes */
+        print_event(v, "converged %d spp", wavefront_spp_done(v->wavefront));
 }
 
 static void show_film(Viewer *v)
@@ -266,7 +286,7 @@ static void open_window(Viewer *v)
     Error err = {0};
     if (!viewer_display_create(&v->display, d->width, d->height, &err))
         die("%s", err.message);
-    viewer_input_attach(v->window, &v->input);
+    viewer_input_attach(v->window, &v->input, v->options->print_events);
 }
 
 int command_view(const ViewerDesc *o)
@@ -303,11 +323,16 @@ int command_view(const ViewerDesc *o)
     open_window(v);
     /* A first guess at the window, refined from the first frames' rate. */
     create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 20 : 1u << 14);
+    print_event(v, "ready %dx%d", d->width, d->height);
     v->title_time = seconds_now();
     run_frames(v);
 
     bool saved = true;
-    if (o->screenshot) {
+    if (o->screenshot && viewer_is_exr_name(o->screenshot)) {
+        saved = viewer_write_film_exr(v, o->screenshot, &err);
+        if (saved && !o->quiet)
+            printf("wrote %s (%d spp)\n", o->screenshot, wavefront_spp_done(v->wavefront));
+    } else if (o->screenshot) {
         show_film(v); /* the last frame again, into the back buffer that is read */
         saved = viewer_display_save_screenshot(o->screenshot, d->width, d->height, &err);
         if (saved && !o->quiet)
