@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* 'pt view' end to end: the real binary in a real window on a private Xvfb server (Mesa's
- * llvmpipe), driven by --frames/--screenshot/--camera and by xdotool. Screenshots are compared with
- * 'pt render' of the same scene, pose, size, spp and seed: equal up to 8-bit rounding, measured
- * against the difference between two seeds (the noise). Xvfb and xdotool are required, not
+ * llvmpipe), driven by xdotool, each input sent once the viewer has acknowledged the last
+ * (--events). Screenshots are compared with 'pt render' of the same scene, pose, size, spp and
+ * seed: equal up to 8-bit rounding, measured against the difference between two seeds (the
+ * noise); the film itself (--screenshot FILE.exr) is compared bit for bit. Xvfb and xdotool are required, not
  * optional: 'make test' installs them (tools/install-deps.sh), so their absence fails the tests.
  * PT_BIN names the binary (default build/pt); tests run from the repository root. */
 #define _XOPEN_SOURCE 700 /* realpath */
@@ -419,10 +420,17 @@ Test(view, screenshot_matches_pt_render_at_the_same_spp_and_seed)
 {
     require_display();
     const char *dir = test_temp_dir();
+    char root[PATH_MAX], args[PATH_MAX + 128];
+    cr_assert(getcwd(root, sizeof root));
     const char *common = "scenes/cornell-box --width 128 --height 96 --spp 8 --exposure 0.5";
-    Run view = run_pt("view %s --seed 7 --frames 400 --screenshot %s/view.png", common, dir);
-    cr_assert_eq(view.exit_code, 0, "pt view failed: %s", view.err);
-    cr_assert_eq(parse_summary(view.err).spp, 8, "the viewer stops at the target spp: %s", view.err);
+    snprintf(args, sizeof args, "'%s/scenes/cornell-box' --width 128 --height 96 --exposure 0.5 "
+             "--seed 7 --screenshot view.png", root);
+    ViewSession view;
+    int exit_code = view_until_converged(&view, dir, 8, args);
+    char err[8192];
+    slurp(view.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view failed: %s", err);
+    cr_assert_eq(parse_summary(err).spp, 8, "the viewer stops at the target spp: %s", err);
     Png shot = load_png(dir, "view.png");
     cr_expect(shot.width == 128 && shot.height == 96, "screenshot %dx%d", shot.width, shot.height);
     stbi_image_free(shot.rgb);
@@ -447,9 +455,14 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     fclose(f);
 
     const char *size = "--width 64 --height 64 --spp 4";
-    Run r = run_pt("view scenes/cornell-box %s --frames 300 -q --camera '{%s}' --screenshot %s/posed.png",
-                   size, pose, dir);
-    cr_assert_eq(r.exit_code, 0, "pt view --camera: %s", r.err);
+    char args[PATH_MAX + 512];
+    snprintf(args, sizeof args, "'%s/scenes/cornell-box' --width 64 --height 64 -q --camera '{%s}' "
+             "--screenshot posed.png", root, pose);
+    ViewSession view;
+    int exit_code = view_until_converged(&view, dir, 4, args);
+    char err[8192];
+    slurp(view.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view --camera: %s", err);
     char render_args[PATH_MAX + 64];
     snprintf(render_args, sizeof render_args, "%s %s", scene, size);
     double noise = expect_screenshot_is_the_render(dir, "posed", 0, render_args);
@@ -459,7 +472,7 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     channel_means(posed, mean);
     cr_expect(mean[0] > 2.0 * mean[1] && mean[0] > 2.0 * mean[2], "the left wall is red: %g %g %g",
               mean[0], mean[1], mean[2]);
-    r = run_pt("render scenes/cornell-box %s -q -o %s/scene-pose.png", size, dir);
+    Run r = run_pt("render scenes/cornell-box %s -q -o %s/scene-pose.png", size, dir);
     cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
     Png scene_pose = load_png(dir, "scene-pose.png");
     double moved = mean_squared_difference(posed, scene_pose);
