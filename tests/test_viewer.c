@@ -3,8 +3,8 @@
  * llvmpipe), driven by xdotool, each input sent once the viewer has acknowledged the last
  * (--events). Screenshots are compared with 'pt render' of the same scene, pose, size, spp and
  * seed: equal up to 8-bit rounding, measured against the difference between two seeds (the
- * noise); the film itself (--screenshot FILE.exr) is compared bit for bit. Xvfb and xdotool are required, not
- * optional: 'make test' installs them (tools/install-deps.sh), so their absence fails the tests.
+ * noise); the film itself (--screenshot FILE.exr) is compared bit for bit. Xvfb and xdotool are
+ * required, not optional: 'make test' installs them (tools/install-deps.sh), so their absence fails the tests.
  * PT_BIN names the binary (default build/pt); tests run from the repository root. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <criterion/criterion.h>
@@ -527,7 +527,8 @@ Test(view, keys_drag_and_resize_in_a_real_window)
     size_t orbited = at = session_wait(&s, at, "event: cursor 120 60");
     xdotool(&s, "mouseup 1");
     at = session_wait(&s, at, "event: button 0 release");
-    at = session_wait(&s, orbited, "event: converged 4 spp"); /* after the orbit, maybe before this */
+    /* converged after the orbit: perhaps already before the release */
+    at = session_wait(&s, orbited, "event: converged 4 spp");
     xdotool(&s, "key c");
     at = session_wait(&s, at, "\"camera\"");
     xdotool(&s, "key ctrl+s");
@@ -583,8 +584,8 @@ Test(view, keys_drag_and_resize_in_a_real_window)
                   read_err.message);
     }
     cr_assert(width[0] == width[1] && height[0] == height[1]);
-    cr_expect(memcmp(film[0], film[1], (size_t)width[0] * (size_t)height[0] * 3 * sizeof(float)) == 0,
-              "the film changed between the two saves; stdout: %s", out);
+    size_t film_bytes = (size_t)width[0] * (size_t)height[0] * 3 * sizeof(float);
+    cr_expect(memcmp(film[0], film[1], film_bytes) == 0, "the film changed between the two saves; stdout: %s", out);
     free(film[0]), free(film[1]);
 }
 
@@ -618,14 +619,15 @@ Test(view, film_at_n_spp_is_pt_render_bit_for_bit)
     cr_assert(image_read_exr(path, &view, &view_width, &view_height, &e), "%s", e.message);
     snprintf(path, sizeof path, "%s/render.exr", dir);
     cr_assert(image_read_exr(path, &render, &render_width, &render_height, &e), "%s", e.message);
-    cr_assert(view_width == 512 && view_height == 512 && render_width == 512 && render_height == 512,
+    cr_assert(view_width == 512 && view_height == 512 && render_width == 512 &&
+              render_height == 512,
               "view %dx%d, render %dx%d", view_width, view_height, render_width, render_height);
     size_t n = (size_t)512 * 512 * 3, differ = 0, first = n;
     for (size_t i = 0; i < n; i++)
         if (memcmp(&view[i], &render[i], sizeof(float)) != 0)
             differ++, first = first < n ? first : i;
-    cr_expect_eq(differ, 0, "%zu of %zu values differ; the first, pixel %zu channel %zu: %.9g in the "
-                 "viewer, %.9g in pt render", differ, n, first / 3, first % 3,
+    cr_expect_eq(differ, 0, "%zu of %zu values differ; the first, pixel %zu channel %zu: %.9g in "
+                 "the viewer, %.9g in pt render", differ, n, first / 3, first % 3,
                  first < n ? view[first] : 0.0f, first < n ? render[first] : 0.0f);
     free(view), free(render);
 }

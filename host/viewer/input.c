@@ -11,11 +11,7 @@ static const char *action_name(int action)
     return action == GLFW_PRESS ? "press" : action == GLFW_RELEASE ? "release" : "repeat";
 }
 
-/* --events: one line per event as it is read; its effect is applied (apply_input in viewer.c)
- * before the next event is read, so a script that waits for the line may send the next. */
-static void print_event(const ViewerInput *in, const char *format, ...)
-    __attribute__((format(printf, 2, 3)));
-static void print_event(const ViewerInput *in, const char *format, ...)
+void viewer_print_event(const ViewerInput *in, const char *format, ...)
 {
     if (!in->print_events)
         return;
@@ -29,8 +25,9 @@ static void print_event(const ViewerInput *in, const char *format, ...)
 }
 
 static const struct { int key; unsigned bit; } held_keys[] = {
-    {GLFW_KEY_D, VIEWER_HELD_RIGHT}, {GLFW_KEY_A, VIEWER_HELD_LEFT}, {GLFW_KEY_E, VIEWER_HELD_UP},
-    {GLFW_KEY_Q, VIEWER_HELD_DOWN}, {GLFW_KEY_W, VIEWER_HELD_FORWARD}, {GLFW_KEY_S, VIEWER_HELD_BACK},
+    {GLFW_KEY_D, VIEWER_HELD_RIGHT},   {GLFW_KEY_A, VIEWER_HELD_LEFT},
+    {GLFW_KEY_E, VIEWER_HELD_UP},      {GLFW_KEY_Q, VIEWER_HELD_DOWN},
+    {GLFW_KEY_W, VIEWER_HELD_FORWARD}, {GLFW_KEY_S, VIEWER_HELD_BACK},
     {GLFW_KEY_LEFT_SHIFT, VIEWER_HELD_SHIFT}, {GLFW_KEY_RIGHT_SHIFT, VIEWER_HELD_SHIFT},
     {GLFW_KEY_LEFT_CONTROL, VIEWER_HELD_CTRL}, {GLFW_KEY_RIGHT_CONTROL, VIEWER_HELD_CTRL},
 };
@@ -45,8 +42,9 @@ void viewer_input_key(ViewerInput *in, int key, int action, int mods)
             continue;
         if (action == GLFW_RELEASE)
             in->held &= ~held_keys[i].bit;
-        else if (action == GLFW_PRESS && ((held_keys[i].bit & modifiers) || !(mods & GLFW_MOD_CONTROL)))
-            in->held |= held_keys[i].bit; /* a letter pressed with Ctrl is a command, not a move */
+        else if (action == GLFW_PRESS && /* a letter pressed with Ctrl is a command, not a move */
+                 ((held_keys[i].bit & modifiers) || !(mods & GLFW_MOD_CONTROL)))
+            in->held |= held_keys[i].bit;
     }
     if (action != GLFW_PRESS)
         return;
@@ -68,7 +66,7 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
 {
     (void)scancode;
     ViewerInput *in = input_of(window);
-    print_event(in, "key %d %s mods %d", key, action_name(action), mods);
+    viewer_print_event(in, "key %d %s mods %d", key, action_name(action), mods);
     if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
         glfwSetWindowShouldClose(window, GLFW_TRUE);
     viewer_input_key(in, key, action, mods);
@@ -78,7 +76,7 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
 static void on_char(GLFWwindow *window, unsigned int codepoint)
 {
     ViewerInput *in = input_of(window);
-    print_event(in, "char %u", codepoint);
+    viewer_print_event(in, "char %u", codepoint);
     switch (codepoint) {
     case '+': case '=': in->exposure_steps++; break;
     case '-': case '_': in->exposure_steps--; break;
@@ -94,7 +92,7 @@ static void on_char(GLFWwindow *window, unsigned int codepoint)
 static void on_mouse_button(GLFWwindow *window, int button, int action, int mods)
 {
     ViewerInput *in = input_of(window);
-    print_event(in, "button %d %s mods %d", button, action_name(action), mods);
+    viewer_print_event(in, "button %d %s mods %d", button, action_name(action), mods);
     bool pressed = action == GLFW_PRESS;
     if (button == GLFW_MOUSE_BUTTON_LEFT)
         in->orbiting = pressed;
@@ -105,7 +103,7 @@ static void on_mouse_button(GLFWwindow *window, int button, int action, int mods
 static void on_cursor(GLFWwindow *window, double x, double y)
 {
     ViewerInput *in = input_of(window);
-    print_event(in, "cursor %g %g", x, y);
+    viewer_print_event(in, "cursor %g %g", x, y);
     double dx = x - in->cursor_x, dy = y - in->cursor_y;
     in->cursor_x = x, in->cursor_y = y;
     if (in->orbiting)
@@ -117,14 +115,14 @@ static void on_cursor(GLFWwindow *window, double x, double y)
 static void on_scroll(GLFWwindow *window, double x_offset, double y_offset)
 {
     ViewerInput *in = input_of(window);
-    print_event(in, "scroll %g %g", x_offset, y_offset);
+    viewer_print_event(in, "scroll %g %g", x_offset, y_offset);
     in->dolly_steps += y_offset;
 }
 
 static void on_framebuffer_size(GLFWwindow *window, int width, int height)
 {
     ViewerInput *in = input_of(window);
-    print_event(in, "framebuffer %dx%d", width, height);
+    viewer_print_event(in, "framebuffer %dx%d", width, height);
     in->resized = true;
 }
 
@@ -159,7 +157,9 @@ bool viewer_input_fly(const ViewerInput *in, float move[3], bool *fast)
     *fast = (in->held & VIEWER_HELD_SHIFT) != 0;
     move[0] = move[1] = move[2] = 0.0f;
     bool any = false;
-    for (size_t i = 0; i < sizeof fly_keys / sizeof fly_keys[0] && !(in->held & VIEWER_HELD_CTRL); i++)
+    if (in->held & VIEWER_HELD_CTRL)
+        return false;
+    for (size_t i = 0; i < sizeof fly_keys / sizeof fly_keys[0]; i++)
         if (in->held & fly_keys[i].bit) {
             move[fly_keys[i].axis] += fly_keys[i].sign;
             any = true;

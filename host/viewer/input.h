@@ -58,4 +58,10 @@ bool viewer_input_fly(const ViewerInput *input, float move[3], bool *fast);
 
 void viewer_input_print_help(FILE *out);
 
+/* --events: "event: " and the formatted text as a line on stdout, flushed, when input asks for
+ * them. Input events are printed as they are read; their effect is applied (apply_input in
+ * viewer.c) before the next is read, so a script that waits for the line may send the next. */
+void viewer_print_event(const ViewerInput *input, const char *format, ...)
+    __attribute__((format(printf, 2, 3)));
+
 #endif

@@ -8,7 +8,6 @@
 
 #include <libgen.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,21 +42,6 @@ static void on_glfw_error(int code, const char *description)
 {
     (void)code;
     snprintf(glfw_error_text, sizeof glfw_error_text, "%s", description);
-}
-
-/* --events: a line per state change that a script may wait for (input events: input.c). */
-static void print_event(const Viewer *v, const char *format, ...) __attribute__((format(printf, 2, 3)));
-static void print_event(const Viewer *v, const char *format, ...)
-{
-    if (!v->options->print_events)
-        return;
-    va_list ap;
-    va_start(ap, format);
-    fputs("event: ", stdout);
-    vprintf(format, ap);
-    fputc('\n', stdout);
-    fflush(stdout);
-    va_end(ap);
 }
 
 /* ---- The film: a Wavefront sized to the framebuffer ---------------------------------------- */
@@ -130,7 +114,8 @@ static void apply_input(Viewer *v, double seconds)
     bool moved = false;
     if (in->resized) {
         resize_film(v);
-        print_event(v, "film %dx%d", v->session.scene.desc.width, v->session.scene.desc.height);
+        const SceneDesc *d = &v->session.scene.desc;
+        viewer_print_event(in, "film %dx%d", d->width, d->height);
     }
     if (in->orbit_dx != 0.0 || in->orbit_dy != 0.0) /* grab the scene: it turns with the cursor */
         viewer_camera_orbit(c, -0.005f * (float)in->orbit_dx, -0.005f * (float)in->orbit_dy), moved = true;
@@ -202,7 +187,7 @@ static void render_step(Viewer *v)
     v->film_changed = true;
     adapt_window(v);
     if (converged(v)) /* once per film: render_step traces nothing more until it changes */
-        print_event(v, "converged %d spp", wavefront_spp_done(v->wavefront));
+        viewer_print_event(&v->input, "converged %d spp", wavefront_spp_done(v->wavefront));
 }
 
 static void show_film(Viewer *v)
@@ -323,7 +308,7 @@ int command_view(const ViewerDesc *o)
     open_window(v);
     /* A first guess at the window, refined from the first frames' rate. */
     create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 20 : 1u << 14);
-    print_event(v, "ready %dx%d", d->width, d->height);
+    viewer_print_event(&v->input, "ready %dx%d", d->width, d->height);
     v->title_time = seconds_now();
     run_frames(v);
 
