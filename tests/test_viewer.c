@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 /* 'pt view' end to end: the real binary in a real window on a private Xvfb server (Mesa's
- * llvmpipe), driven by --frames/--screenshot/--camera and by xdotool. Screenshots are compared with
- * 'pt render' of the same scene, pose, size, spp and seed: equal up to 8-bit rounding, measured
- * against the difference between two seeds (the noise). Xvfb and xdotool are required, not
- * optional: 'make test' installs them (tools/install-deps.sh), so their absence fails the tests.
+ * llvmpipe), driven by xdotool, each input sent once the viewer has acknowledged the last
+ * (--events). Screenshots are compared with 'pt render' of the same scene, pose, size, spp and
+ * seed: equal up to 8-bit rounding, measured against the difference between two seeds (the
+ * noise); the film itself (--screenshot FILE.exr) is compared bit for bit. Xvfb and xdotool are
+ * required, not optional: 'make test' installs them (tools/install-deps.sh), so their absence fails the tests.
  * PT_BIN names the binary (default build/pt); tests run from the repository root. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <criterion/criterion.h>
@@ -19,11 +20,13 @@
 #include <string.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <stb_image.h>
 
 #include "support.h"
+#include "io/image_io.h"
 #include "viewer/camera_controls.h"
 
 /* ---- A private X server per test ------------------------------------------------------------ */
@@ -249,6 +252,158 @@ static Summary parse_summary(const char *err)
     return s;
 }
 
+/* ---- A scripted session: pt view --events, driven by xdotool -------------------------------- */
+
+/* The viewer runs with --events and the test reads its stdout: each xdotool command is sent only
+ * once the viewer has printed that it read the previous event, and images are taken only after
+ * 'event: converged N spp'. Nothing waits for a time: how many frames run between events, however
+ * loaded the machine, changes nothing. The deadline only ends a session that hangs. */
+#define SESSION_DEADLINE_S 100.0
+
+typedef struct {
+    pid_t pid;
+    int out_fd;          /* the viewer's stdout */
+    char out[65536];     /* all of it so far */
+    size_t length;
+    char err_path[PATH_MAX], window[32];
+    struct timespec start;
+} ViewSession;
+
+static double session_seconds(const ViewSession *s)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)(now.tv_sec - s->start.tv_sec) + 1e-9 * (double)(now.tv_nsec - s->start.tv_nsec);
+}
+
+/* Starts `pt ARGS` (a shell word list) in dir on this test's display. */
+static void session_start(ViewSession *s, const char *dir, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+static void session_start(ViewSession *s, const char *dir, const char *format, ...)
+{
+    cr_assert(system("command -v xdotool >/dev/null 2>&1") == 0,
+              "xdotool not installed ('make test' installs it with tools/install-deps.sh)");
+    memset(s, 0, sizeof *s);
+    char args[4096], cmd[8192];
+    va_list ap;
+    va_start(ap, format);
+    vsnprintf(args, sizeof args, format, ap);
+    va_end(ap);
+    snprintf(cmd, sizeof cmd, "exec '%s' %s", pt_bin(), args);
+    snprintf(s->err_path, sizeof s->err_path, "%s/stderr", dir);
+    clock_gettime(CLOCK_MONOTONIC, &s->start);
+    int fds[2];
+    cr_assert(pipe(fds) == 0, "pipe: %s", strerror(errno));
+    s->pid = fork();
+    cr_assert(s->pid >= 0, "fork: %s", strerror(errno));
+    if (s->pid == 0) {
+        prctl(PR_SET_PDEATHSIG, SIGKILL);
+        int err = open(s->err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (chdir(dir) != 0 || err < 0)
+            _exit(127);
+        dup2(fds[1], STDOUT_FILENO), dup2(err, STDERR_FILENO);
+        close(fds[0]), close(fds[1]), close(err);
+        setenv("DISPLAY", display_name, 1);
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    close(fds[1]);
+    s->out_fd = fds[0];
+}
+
+/* Reads what the viewer printed; false at end of file. Fails the test past the deadline. */
+static bool session_read(ViewSession *s)
+{
+    char err[4096];
+    struct pollfd ready = {.fd = s->out_fd, .events = POLLIN};
+    while (poll(&ready, 1, 1000) == 0) {
+        if (session_seconds(s) > SESSION_DEADLINE_S) {
+            kill(s->pid, SIGKILL);
+            slurp(s->err_path, err, sizeof err);
+            cr_assert_fail("pt view hung; stdout: %s stderr: %s", s->out, err);
+        }
+    }
+    cr_assert(s->length < sizeof s->out - 1, "pt view printed too much: %s", s->out);
+    ssize_t n = read(s->out_fd, s->out + s->length, sizeof s->out - 1 - s->length);
+    if (n <= 0)
+        return false;
+    s->length += (size_t)n, s->out[s->length] = '\0';
+    return true;
+}
+
+/* Waits for a whole line holding needle that starts at or after offset from; returns the offset
+ * just past it (where to look for what the viewer did next). */
+static size_t session_wait(ViewSession *s, size_t from, const char *needle)
+{
+    for (;;) {
+        for (char *line = s->out + from, *end; (end = strchr(line, '\n')); line = end + 1) {
+            *end = '\0';
+            bool found = strstr(line, needle) != NULL;
+            *end = '\n';
+            if (found)
+                return (size_t)(end + 1 - s->out);
+        }
+        if (!session_read(s)) {
+            char err[4096];
+            slurp(s->err_path, err, sizeof err);
+            cr_assert_fail("pt view ended before printing '%s'; stdout: %s stderr: %s", needle,
+                           s->out, err);
+        }
+    }
+}
+
+/* Runs `xdotool ARGS` on this test's display; %W in args is the viewer's window. */
+static void xdotool(ViewSession *s, const char *args)
+{
+    char expanded[512], cmd[1024];
+    const char *w = strstr(args, "%W");
+    if (w)
+        snprintf(expanded, sizeof expanded, "%.*s%s%s", (int)(w - args), args, s->window, w + 2);
+    else
+        snprintf(expanded, sizeof expanded, "%s", args);
+    snprintf(cmd, sizeof cmd, "DISPLAY=%s xdotool %s", display_name, expanded);
+    cr_assert(system(cmd) == 0, "%s failed; pt stdout so far: %s", cmd, s->out);
+}
+
+/* After 'event: ready': the window exists (it is created before the line is printed). */
+static void session_find_window(ViewSession *s)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "DISPLAY=%s xdotool search --name '^pt view'", display_name);
+    FILE *search = popen(cmd, "r");
+    cr_assert(search, "popen %s", cmd);
+    bool found = fgets(s->window, sizeof s->window, search) != NULL;
+    pclose(search);
+    cr_assert(found && atoi(s->window) > 0, "no 'pt view' window on %s", display_name);
+    s->window[strcspn(s->window, "\n")] = '\0';
+    xdotool(s, "windowfocus --sync %W");
+}
+
+/* Escape, then the exit status once the viewer has written what it writes at exit. */
+static int session_quit(ViewSession *s)
+{
+    xdotool(s, "key Escape");
+    while (session_read(s)) {
+    }
+    close(s->out_fd);
+    int status;
+    cr_assert(waitpid(s->pid, &status, 0) == s->pid);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* pt view ARGS in dir until the film has spp samples per pixel; then Esc. Returns the exit
+ * status; *session keeps the output. */
+static int view_until_converged(ViewSession *session, const char *dir, int spp, const char *args)
+{
+    session_start(session, dir, "view %s --spp %d --events", args, spp);
+    session_wait(session, 0, "event: ready");
+    session_find_window(session);
+    char converged[64];
+    snprintf(converged, sizeof converged, "event: converged %d spp", spp);
+    session_wait(session, 0, converged);
+    return session_quit(session);
+}
+
 /* ---- Tests ---------------------------------------------------------------------------------- */
 
 Test(view_headless, no_display_points_to_pt_render)
@@ -265,10 +420,17 @@ Test(view, screenshot_matches_pt_render_at_the_same_spp_and_seed)
 {
     require_display();
     const char *dir = test_temp_dir();
+    char root[PATH_MAX], args[PATH_MAX + 128];
+    cr_assert(getcwd(root, sizeof root));
     const char *common = "scenes/cornell-box --width 128 --height 96 --spp 8 --exposure 0.5";
-    Run view = run_pt("view %s --seed 7 --frames 400 --screenshot %s/view.png", common, dir);
-    cr_assert_eq(view.exit_code, 0, "pt view failed: %s", view.err);
-    cr_assert_eq(parse_summary(view.err).spp, 8, "the viewer stops at the target spp: %s", view.err);
+    snprintf(args, sizeof args, "'%s/scenes/cornell-box' --width 128 --height 96 --exposure 0.5 "
+             "--seed 7 --screenshot view.png", root);
+    ViewSession view;
+    int exit_code = view_until_converged(&view, dir, 8, args);
+    char err[8192];
+    slurp(view.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view failed: %s", err);
+    cr_assert_eq(parse_summary(err).spp, 8, "the viewer stops at the target spp: %s", err);
     Png shot = load_png(dir, "view.png");
     cr_expect(shot.width == 128 && shot.height == 96, "screenshot %dx%d", shot.width, shot.height);
     stbi_image_free(shot.rgb);
@@ -293,9 +455,14 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     fclose(f);
 
     const char *size = "--width 64 --height 64 --spp 4";
-    Run r = run_pt("view scenes/cornell-box %s --frames 300 -q --camera '{%s}' --screenshot %s/posed.png",
-                   size, pose, dir);
-    cr_assert_eq(r.exit_code, 0, "pt view --camera: %s", r.err);
+    char args[PATH_MAX + 512];
+    snprintf(args, sizeof args, "'%s/scenes/cornell-box' --width 64 --height 64 -q --camera '{%s}' "
+             "--screenshot posed.png", root, pose);
+    ViewSession view;
+    int exit_code = view_until_converged(&view, dir, 4, args);
+    char err[8192];
+    slurp(view.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view --camera: %s", err);
     char render_args[PATH_MAX + 64];
     snprintf(render_args, sizeof render_args, "%s %s", scene, size);
     double noise = expect_screenshot_is_the_render(dir, "posed", 0, render_args);
@@ -305,7 +472,7 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     channel_means(posed, mean);
     cr_expect(mean[0] > 2.0 * mean[1] && mean[0] > 2.0 * mean[2], "the left wall is red: %g %g %g",
               mean[0], mean[1], mean[2]);
-    r = run_pt("render scenes/cornell-box %s -q -o %s/scene-pose.png", size, dir);
+    Run r = run_pt("render scenes/cornell-box %s -q -o %s/scene-pose.png", size, dir);
     cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
     Png scene_pose = load_png(dir, "scene-pose.png");
     double moved = mean_squared_difference(posed, scene_pose);
@@ -320,55 +487,60 @@ Test(view, camera_option_gives_the_render_of_that_pose)
 
 /* --frames N runs exactly N frames on PoCL and the exit summary reports the frame times it
  * measured (the pacing itself is tested without a clock in test_viewer_pacing.c; frame times are
- * measurements for the notes, not thresholds for a test). */
+ * measurements for the notes, not thresholds for a test). How many spp 40 frames reach depends on
+ * the machine's speed and load (a busy machine measured 0 at 256x256), so it is not asserted. */
 Test(view, frames_run_and_frame_times_are_reported_on_pocl)
 {
     require_display();
     Run r = run_pt("view scenes/cornell-box --device cpu --width 256 --height 256 --frames 40");
     cr_assert_eq(r.exit_code, 0, "%s", r.err);
     Summary s = parse_summary(r.err);
-    cr_expect(s.frames == 40 && s.spp >= 1, "%d frames, %d spp", s.frames, s.spp);
+    cr_expect(s.frames == 40 && s.spp >= 0, "%d frames, %d spp", s.frames, s.spp);
     cr_expect(s.median_ms > 0.0 && s.p95_ms >= s.median_ms, "median %g ms, p95 %g ms", s.median_ms,
               s.p95_ms);
 }
 
 /* A user session scripted with xdotool: shrink the window, print the camera, orbit by a drag,
- * print it again, wait for the target spp, save twice, quit. The film follows the framebuffer:
- * the screenshot is 'pt render' of the orbited pose at the new size. */
+ * wait for the target spp, print the camera again, save twice, quit. Each event is sent once the
+ * viewer has said it read the one before (--events). The film follows the framebuffer: the
+ * screenshot is 'pt render' of the orbited pose at the new size, and nothing moves between the
+ * two saves (xdotool lets Ctrl go before S: a frame between the two used to fly backwards). */
 Test(view, keys_drag_and_resize_in_a_real_window)
 {
     require_display();
-    cr_assert(system("command -v xdotool >/dev/null 2>&1") == 0,
-              "xdotool not installed ('make test' installs it with tools/install-deps.sh)");
     const char *dir = test_temp_dir();
-    char root[PATH_MAX], script[16384];
+    char root[PATH_MAX];
     cr_assert(getcwd(root, sizeof root));
-    snprintf(script, sizeof script,
-             "cd '%s'; export DISPLAY=%s; "
-             "timeout 60 '%s' view '%s/scenes/cornell-box' --width 200 --height 150 --spp 4 "
-             "--screenshot shot.png >stdout 2>stderr & pt=$!; "
-             "session() { "
-             "W=$(timeout 30 xdotool search --sync --name '^pt view.*spp') || return 3; "
-             "xdotool windowfocus --sync $W && xdotool windowsize --sync $W 160 120 && sleep 0.5 && "
-             "xdotool key c && sleep 0.3 && "
-             "xdotool mousemove --window $W 80 60 && sleep 0.2 && xdotool mousedown 1 && sleep 0.2 && "
-             "xdotool mousemove_relative 40 0 && sleep 0.2 && xdotool mouseup 1 && sleep 0.5 && "
-             "xdotool key c && timeout 30 xdotool search --sync --name ' 4 spp [(]done[)]' >/dev/null && "
-             "xdotool key ctrl+s && sleep 0.5 && xdotool key ctrl+s && sleep 0.5 && "
-             "xdotool key Escape; }; "
-             "session; r=$?; [ $r -eq 0 ] || kill $pt; wait $pt; echo $? >status; exit $r",
-             dir, display_name, pt_bin(), root);
-    int script_status = system(script);
-    char path[PATH_MAX], status[64], out[8192], err[8192];
-    snprintf(path, sizeof path, "%s/status", dir);
-    slurp(path, status, sizeof status);
-    snprintf(path, sizeof path, "%s/stdout", dir);
-    slurp(path, out, sizeof out);
-    snprintf(path, sizeof path, "%s/stderr", dir);
-    slurp(path, err, sizeof err);
-    cr_assert_eq(script_status, 0, "the xdotool script failed (%d); pt stdout: %s stderr: %s",
-                 script_status, out, err);
-    cr_assert_eq(atoi(status), 0, "pt view exit status %s, stderr: %s", status, err);
+    ViewSession s;
+    session_start(&s, dir, "view '%s/scenes/cornell-box' --width 200 --height 150 --spp 4 "
+                  "--events --screenshot shot.png", root);
+    size_t at = session_wait(&s, 0, "event: ready 200x150");
+    session_find_window(&s);
+    xdotool(&s, "windowsize --sync %W 160 120");
+    at = session_wait(&s, at, "event: film 160x120");
+    xdotool(&s, "key c");
+    at = session_wait(&s, at, "\"camera\"");
+    xdotool(&s, "mousemove --window %W 80 60");
+    at = session_wait(&s, at, "event: cursor 80 60");
+    xdotool(&s, "mousedown 1");
+    at = session_wait(&s, at, "event: button 0 press");
+    xdotool(&s, "mousemove_relative 40 0");
+    size_t orbited = at = session_wait(&s, at, "event: cursor 120 60");
+    xdotool(&s, "mouseup 1");
+    at = session_wait(&s, at, "event: button 0 release");
+    /* converged after the orbit: perhaps already before the release */
+    at = session_wait(&s, orbited, "event: converged 4 spp");
+    xdotool(&s, "key c");
+    at = session_wait(&s, at, "\"camera\"");
+    xdotool(&s, "key ctrl+s");
+    at = session_wait(&s, at, "wrote out/cornell-box-view-1.png");
+    xdotool(&s, "key ctrl+s");
+    at = session_wait(&s, at, "wrote out/cornell-box-view-2.png");
+    int exit_code = session_quit(&s);
+    char err[8192], path[PATH_MAX];
+    slurp(s.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view exit status %d, stderr: %s", exit_code, err);
+    char *out = s.out;
 
     /* C before the drag prints the scene's pose; after a drag right the eye has orbited left. */
     char *first = strstr(out, "\"camera\""), *second = first ? strstr(first + 1, "\"camera\"") : NULL;
@@ -404,4 +576,59 @@ Test(view, keys_drag_and_resize_in_a_real_window)
                   saved.height);
         stbi_image_free(saved.rgb);
     }
+    float *film[2];
+    int width[2], height[2];
+    for (int n = 0; n < 2; n++) {
+        Error read_err = {0};
+        snprintf(path, sizeof path, "%s/out/cornell-box-view-%d.exr", dir, n + 1);
+        cr_assert(image_read_exr(path, &film[n], &width[n], &height[n], &read_err), "%s",
+                  read_err.message);
+    }
+    cr_assert(width[0] == width[1] && height[0] == height[1]);
+    size_t film_bytes = (size_t)width[0] * (size_t)height[0] * 3 * sizeof(float);
+    cr_expect(memcmp(film[0], film[1], film_bytes) == 0, "the film changed between the two saves; stdout: %s", out);
+    free(film[0]), free(film[1]);
+}
+
+/* The film at N spp is 'pt render' at N spp bit for bit (--screenshot FILE.exr writes the film).
+ * 512x512 keeps both at one sample per pixel per window (the viewer's windows are at most 16384
+ * samples here, pt render's 4 x 65536 on a CPU), so the film sums samples in the same order in
+ * both: this holds whatever the viewer's windows once the film sums exactly (integer sums). */
+Test(view, film_at_n_spp_is_pt_render_bit_for_bit)
+{
+    require_display();
+    const char *dir = test_temp_dir();
+    char root[PATH_MAX];
+    cr_assert(getcwd(root, sizeof root));
+    const char *size = "--width 512 --height 512 --seed 3";
+    char args[PATH_MAX + 256];
+    snprintf(args, sizeof args, "'%s/scenes/cornell-box' %s --screenshot view.exr", root, size);
+    ViewSession s;
+    int exit_code = view_until_converged(&s, dir, 4, args);
+    char err[8192];
+    slurp(s.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view: %s", err);
+    cr_assert(strstr(s.out, "wrote view.exr (4 spp)"), "stdout: %s", s.out);
+    Run r = run_pt("render scenes/cornell-box %s --spp 4 -q -o %s/render.exr", size, dir);
+    cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
+
+    float *view, *render;
+    int view_width, view_height, render_width, render_height;
+    Error e = {0};
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/view.exr", dir);
+    cr_assert(image_read_exr(path, &view, &view_width, &view_height, &e), "%s", e.message);
+    snprintf(path, sizeof path, "%s/render.exr", dir);
+    cr_assert(image_read_exr(path, &render, &render_width, &render_height, &e), "%s", e.message);
+    cr_assert(view_width == 512 && view_height == 512 && render_width == 512 &&
+              render_height == 512,
+              "view %dx%d, render %dx%d", view_width, view_height, render_width, render_height);
+    size_t n = (size_t)512 * 512 * 3, differ = 0, first = n;
+    for (size_t i = 0; i < n; i++)
+        if (memcmp(&view[i], &render[i], sizeof(float)) != 0)
+            differ++, first = first < n ? first : i;
+    cr_expect_eq(differ, 0, "%zu of %zu values differ; the first, pixel %zu channel %zu: %.9g in "
+                 "the viewer, %.9g in pt render", differ, n, first / 3, first % 3,
+                 first < n ? view[first] : 0.0f, first < n ? render[first] : 0.0f);
+    free(view), free(render);
 }

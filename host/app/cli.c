@@ -46,7 +46,10 @@ void cli_print_help(void)
          "  --camera JSON      start pose, e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
          "                     (keys of the scene's camera; the C key prints one)\n"
          "  --frames N         quit after N frames\n"
-         "  --screenshot FILE  at exit, save the window's framebuffer as a PNG");
+         "  --screenshot FILE  at exit, save the film as FILE.exr (linear, as pt render writes it)\n"
+         "                     or else the window's framebuffer as a PNG\n"
+         "  --events           print a line on stdout per input event read and per state change\n"
+         "                     ('event: converged N spp'), for scripts and tests to wait on");
 }
 
 static bool parse_int(const char *arg, const char *value, int min, int max, int *out, Error *err)
@@ -137,6 +140,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
             else if (!strcmp(a, "--profile")) o->profile = true;
             else if (!strcmp(a, "--no-cache")) o->no_cache = true;
+            else if (!strcmp(a, "--events")) o->print_events = true;
             else if (!strcmp(a, "--help") || !strcmp(a, "-h")) o->command = CMD_HELP;
             else if (a[0] == '-' && a[1]) {
                 error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", a);
@@ -172,5 +176,6 @@ ViewerDesc cli_viewer_desc(const Options *o)
                         .no_nee = o->no_nee, .no_compaction = o->no_compaction,
                         .sort_materials = o->sort_materials, .quiet = o->quiet,
                         .frames = o->frames, .screenshot = o->screenshot,
+                        .print_events = o->print_events,
                         .camera_json = o->camera_json};
 }

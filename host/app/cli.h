@@ -27,7 +27,8 @@ typedef struct {
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     const char *csv; /* pt bench: append results to this CSV file */
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */
-    const char *screenshot;  /* pt view: PNG of the window's framebuffer at exit */
+    const char *screenshot;  /* pt view: at exit, the film (FILE.exr) or the framebuffer (PNG) */
+    bool print_events;       /* pt view --events: stdout lines for scripts to wait on */
     const char *camera_json; /* pt view: start pose, a JSON object like the scene's camera */
 } Options;
 

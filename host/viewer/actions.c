@@ -5,6 +5,8 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "render/aov.h"
@@ -68,6 +70,32 @@ void viewer_change_aperture(Viewer *v, int steps)
     printf("aperture %.4g (focus distance %.4g)\n", c->aperture, c->focus_distance);
 }
 
+bool viewer_is_exr_name(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+/* The film read back exactly as wavefront_render reads it for 'pt render'. */
+static float *read_film(Viewer *v)
+{
+    const SceneDesc *d = &v->session.scene.desc;
+    float *rgb = malloc((size_t)d->width * (size_t)d->height * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    wavefront_read_film(v->wavefront, rgb);
+    return rgb;
+}
+
+bool viewer_write_film_exr(Viewer *v, const char *path, Error *err)
+{
+    float *rgb = read_film(v);
+    const SceneDesc *d = &v->session.scene.desc;
+    bool ok = image_write_exr(path, rgb, d->width, d->height, err);
+    free(rgb);
+    return ok;
+}
+
 /* PNG + EXR of the film as out/<scene>-view-N, N the first free number. */
 void viewer_save_film(Viewer *v)
 {
@@ -81,10 +109,7 @@ void viewer_save_film(Viewer *v)
             break;
     }
     const SceneDesc *d = &v->session.scene.desc;
-    float *rgb = malloc((size_t)d->width * (size_t)d->height * 3 * sizeof *rgb);
-    if (!rgb)
-        die("out of memory for a %dx%d film", d->width, d->height);
-    wavefront_read_film(v->wavefront, rgb);
+    float *rgb = read_film(v);
     Error err = {0};
     if (image_write_exr(exr, rgb, d->width, d->height, &err) &&
         image_write_png(png, rgb, d->width, d->height, v->exposure, &err))

@@ -13,6 +13,10 @@ bool viewer_focus_under_cursor(Viewer *v);
 void viewer_change_aperture(Viewer *v, int steps);
 /* S: PNG + EXR of the film as out/<scene>-view-N, N the first free number; prints the names. */
 void viewer_save_film(Viewer *v);
+/* The linear film (the mean per pixel, as 'pt render -o FILE.exr' writes it) as an EXR. */
+bool viewer_write_film_exr(Viewer *v, const char *path, Error *err);
+/* True when path ends in .exr (any case): --screenshot then writes the film, not the window. */
+bool viewer_is_exr_name(const char *path);
 /* C: the camera as a JSON fragment for a scene file. */
 void viewer_print_camera(const Viewer *v);
 

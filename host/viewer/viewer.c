@@ -112,8 +112,11 @@ static void apply_input(Viewer *v, double seconds)
     glfwGetWindowSize(v->window, &window_width, &window_height);
     float to_film = (float)film_height / (float)(window_height > 0 ? window_height : 1);
     bool moved = false;
-    if (in->resized)
+    if (in->resized) {
         resize_film(v);
+        const SceneDesc *d = &v->session.scene.desc;
+        viewer_print_event(in, "film %dx%d", d->width, d->height);
+    }
     if (in->orbit_dx != 0.0 || in->orbit_dy != 0.0) /* grab the scene: it turns with the cursor */
         viewer_camera_orbit(c, -0.005f * (float)in->orbit_dx, -0.005f * (float)in->orbit_dy), moved = true;
     if (in->pan_dx != 0.0 || in->pan_dy != 0.0)
@@ -122,7 +125,7 @@ static void apply_input(Viewer *v, double seconds)
         viewer_camera_dolly(c, (float)in->dolly_steps), moved = true;
     float move[3];
     bool fast;
-    if (viewer_input_fly(v->window, move, &fast)) {
+    if (viewer_input_fly(in, move, &fast)) {
         double step = fmin(seconds, 0.1) * 0.3 * v->scene_size * (fast ? 4.0 : 1.0);
         viewer_camera_fly(c, move, (float)step), moved = true;
     }
@@ -183,6 +186,8 @@ static void render_step(Viewer *v)
     v->last_sampling_seconds = seconds;
     v->film_changed = true;
     adapt_window(v);
+    if (converged(v)) /* once per film: render_step traces nothing more until it changes */
+        viewer_print_event(&v->input, "converged %d spp", wavefront_spp_done(v->wavefront));
 }
 
 static void show_film(Viewer *v)
@@ -266,7 +271,7 @@ static void open_window(Viewer *v)
     Error err = {0};
     if (!viewer_display_create(&v->display, d->width, d->height, &err))
         die("%s", err.message);
-    viewer_input_attach(v->window, &v->input);
+    viewer_input_attach(v->window, &v->input, v->options->print_events);
 }
 
 int command_view(const ViewerDesc *o)
@@ -303,11 +308,16 @@ int command_view(const ViewerDesc *o)
     open_window(v);
     /* A first guess at the window, refined from the first frames' rate. */
     create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 20 : 1u << 14);
+    viewer_print_event(&v->input, "ready %dx%d", d->width, d->height);
     v->title_time = seconds_now();
     run_frames(v);
 
     bool saved = true;
-    if (o->screenshot) {
+    if (o->screenshot && viewer_is_exr_name(o->screenshot)) {
+        saved = viewer_write_film_exr(v, o->screenshot, &err);
+        if (saved && !o->quiet)
+            printf("wrote %s (%d spp)\n", o->screenshot, wavefront_spp_done(v->wavefront));
+    } else if (o->screenshot) {
         show_film(v); /* the last frame again, into the back buffer that is read */
         saved = viewer_display_save_screenshot(o->screenshot, d->width, d->height, &err);
         if (saved && !o->quiet)

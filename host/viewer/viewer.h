@@ -14,8 +14,9 @@ typedef struct {
     unsigned seed;
     float exposure;          /* stops */
     bool no_nee, no_compaction, sort_materials, quiet;
+    bool print_events;       /* --events: a stdout line per input event and state change */
     int frames;              /* quit after this many frames; 0 = run until closed */
-    const char *screenshot;  /* PNG of the window's framebuffer at exit */
+    const char *screenshot;  /* at exit: FILE.exr the linear film, else a PNG of the framebuffer */
     const char *camera_json; /* start pose, a JSON object like the scene's camera */
 } ViewerDesc;
 
