@@ -10,6 +10,7 @@
  * Every file is written to "<path>.tmp-<pid>" in the same folder, flushed to disk and renamed over
  * the target, so an interrupted or failed write never leaves a half-written file at `path`. */
 #include "io/image_io.h"
+#include "io/display_curve.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -298,19 +299,9 @@ bool image_write_exr(const char *path, const float *rgb, int width, int height, 
 
 /* ---- PNG output -------------------------------------------------------------------------- */
 
-/* The exact piecewise sRGB OETF (IEC 61966-2-1), for linear values in [0, 1]. */
-static float srgb_from_linear(float linear)
-{
-    if (linear <= 0.0031308f)
-        return 12.92f * linear;
-    return 1.055f * powf(linear, 1.0f / 2.4f) - 0.055f;
-}
-
 static unsigned char srgb8_from_linear(float linear)
 {
-    /* fmaxf maps NaN to 0; +Inf (a huge value times the exposure) clamps to 1. */
-    float clamped = fminf(fmaxf(linear, 0.0f), 1.0f);
-    return (unsigned char)lrintf(srgb_from_linear(clamped) * 255.0f);
+    return (unsigned char)lrintf(display_srgb_from_linear(linear) * 255.0f);
 }
 
 typedef struct {

@@ -11,23 +11,22 @@
 
 #include <stb_image_write.h>
 
+#include "io/display_curve.h"
+
 /* GLSL 1.10 (GL 2.0): the fixed-function quad's texture coordinates pass through. */
 static const char *const vertex_source =
     "#version 110\n"
     "varying vec2 film_uv;\n"
     "void main() { film_uv = gl_MultiTexCoord0.xy; gl_Position = gl_Vertex; }\n";
 
-/* Exposure, then the piecewise sRGB curve of image_io.c's PNG writer; the framebuffer's
- * float-to-8-bit conversion rounds to nearest like its lrintf. */
+/* Exposure, then the display curve of io/display_curve.h (the PNG writer's, the same text); the
+ * framebuffer's float-to-8-bit conversion rounds to nearest like the writer's lrintf. */
 static const char *const fragment_source =
     "#version 110\n"
     "uniform sampler2D film;\n"
     "uniform float exposure_scale;\n"
     "varying vec2 film_uv;\n"
-    "float srgb_from_linear(float linear) {\n"
-    "    float x = clamp(linear, 0.0, 1.0);\n"
-    "    return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;\n"
-    "}\n"
+    DISPLAY_CURVE_GLSL
     "void main() {\n"
     "    vec3 c = texture2D(film, film_uv).rgb * exposure_scale;\n"
     "    gl_FragColor = vec4(srgb_from_linear(c.r), srgb_from_linear(c.g), srgb_from_linear(c.b), 1.0);\n"
