@@ -9,27 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/vec3.h"
 #include "scene/camera.h"
-
-/* ---- Vector helpers ------------------------------------------------------------------------- */
-
-static float dot3(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static float length3(const float v[3]) { return sqrtf(dot3(v, v)); }
-
-static void cross3(const float a[3], const float b[3], float out[3])
-{
-    float r[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    memcpy(out, r, sizeof r);
-}
-
-static bool normalize3(float v[3])
-{
-    float len = length3(v);
-    if (!(len > 0.0f))
-        return false;
-    v[0] /= len, v[1] /= len, v[2] /= len;
-    return true;
-}
 
 /* The view's orthonormal frame, as camera_from_desc builds it (right = forward x up). */
 typedef struct {

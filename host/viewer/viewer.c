@@ -6,15 +6,15 @@
  * a GPU or on PoCL. */
 #include "viewer/viewer.h"
 
-#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "scene/camera.h"
+#include "base/clock.h"
+#include "base/fs.h"
 #include "render/session.h"
+#include "scene/camera.h"
 #include "viewer/actions.h"
 #include "viewer/camera_controls.h"
 #include "viewer/display.h"
@@ -29,13 +29,6 @@
  * fewer paths per second than 4096-slot ones in our runs at 512x512. */
 #define SMALLEST_EFFICIENT_POOL (1u << 14)
 
-
-static double seconds_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static char glfw_error_text[512] = "unknown error";
 static void on_glfw_error(int code, const char *description)
@@ -244,18 +237,6 @@ static void run_frames(Viewer *v)
 
 /* ---- Setup ---------------------------------------------------------------------------------- */
 
-static void scene_name_of(const char *path, char *out, size_t size)
-{
-    char copy[1024];
-    snprintf(copy, sizeof copy, "%s", path);
-    for (size_t n = strlen(copy); n > 1 && copy[n - 1] == '/'; n--)
-        copy[n - 1] = '\0';
-    snprintf(out, size, "%s", basename(copy));
-    char *dot = strrchr(out, '.');
-    if (dot && dot != out)
-        *dot = '\0';
-}
-
 static void open_window(Viewer *v)
 {
     SceneDesc *d = &v->session.scene.desc;
@@ -291,7 +272,7 @@ int command_view(const ViewerDesc *o)
     SceneDesc *d = &v->session.scene.desc;
     if (o->camera_json && !viewer_camera_parse(o->camera_json, &d->camera, &err))
         die("%s", err.message);
-    scene_name_of(o->render.scene, v->scene_name, sizeof v->scene_name);
+    fs_stem(o->render.scene, v->scene_name, sizeof v->scene_name);
     const float *lo = v->session.scene.data.bounds_min, *hi = v->session.scene.data.bounds_max;
     v->scene_size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
