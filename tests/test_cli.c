@@ -28,17 +28,22 @@ static const char *pt_bin(void)
     return path;
 }
 
-/* Runs pt with args (a shell fragment) in folder dir (NULL = here). */
-static Run run_pt(const char *dir, const char *args)
+/* Runs pt with args (a shell fragment) in folder dir (NULL = here), with the environment
+ * assignments env (a shell fragment such as "PT_LOCAL_SIZE=0"; NULL = none) added. */
+static Run run_pt_env(const char *dir, const char *env, const char *args)
 {
     Run r;
     memset(&r, 0, sizeof r);
-    char out_path[256], err_path[256], cmd[9000];
+    char out_path[256], err_path[256];
     snprintf(out_path, sizeof out_path, "/tmp/pt-cli-out-%d", (int)getpid());
     snprintf(err_path, sizeof err_path, "/tmp/pt-cli-err-%d", (int)getpid());
-    snprintf(cmd, sizeof cmd, "%s%s%s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
-             dir ? "' && " : "", pt_bin(), args, out_path, err_path);
+    size_t size = strlen(args) + (dir ? strlen(dir) : 0) + (env ? strlen(env) : 0) + PATH_MAX + 1100;
+    char *cmd = malloc(size);
+    cr_assert(cmd);
+    snprintf(cmd, size, "%s%s%s env %s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
+             dir ? "' && " : "", env ? env : "", pt_bin(), args, out_path, err_path);
     int status = system(cmd);
+    free(cmd);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     char *text = test_read_file(out_path, NULL);
     snprintf(r.out, sizeof r.out, "%s", text ? text : "");
@@ -49,6 +54,8 @@ static Run run_pt(const char *dir, const char *args)
     unlink(out_path), unlink(err_path);
     return r;
 }
+
+static Run run_pt(const char *dir, const char *args) { return run_pt_env(dir, NULL, args); }
 
 static void write_text(const char *path, const char *text)
 {
@@ -165,4 +172,68 @@ Test(cli, render_writes_outputs_and_never_overwrites_without_o, .timeout = 120)
     cr_assert_eq(named.exit_code, 0, "%s", named.err);
     snprintf(path, sizeof path, "%s/named.png", dir);
     cr_expect(stat(path, &st) == 0 && st.st_size > 0);
+}
+
+/* Every PT_* variable is checked: a bad value is one line naming the variable, the value and
+ * what is allowed (PT_LOCAL_SIZE=0 used to divide by zero, =abc to hang). */
+Test(cli, bad_environment_variables, .timeout = 120)
+{
+    const char *render = "render scenes/cornell-box --width 8 --height 8 --spp 1 --device cpu --quiet -o /tmp/pt-cli-env.exr";
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=0", render), "local size 0", "PT_LOCAL_SIZE='0'", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=abc", render), "local size abc", "PT_LOCAL_SIZE='abc'", "integer");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=99999999", render), "local size huge", "PT_LOCAL_SIZE='99999999'", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=-8", render), "local size negative", "PT_LOCAL_SIZE='-8'", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=3", render), "bvh width 3", "PT_BVH_WIDTH='3'", "2, 4 and 8");
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=8x", render), "bvh width 8x", "PT_BVH_WIDTH='8x'", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_QUANTIZED=yes", render), "quantized yes", "PT_BVH_QUANTIZED='yes'", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_NO_CACHE=yes", render), "no cache yes", "PT_NO_CACHE='yes'", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_CL_OPTIONS=\"$(printf 'a\\001b')\"", render), "options control character",
+                       "PT_CL_OPTIONS", "not printable");
+    char *long_options = malloc(2000);
+    cr_assert(long_options);
+    strcpy(long_options, "PT_CL_OPTIONS='");
+    for (int i = 0; i < 300; i++)
+        strcat(long_options, "-DX ");
+    strcat(long_options, "'");
+    expect_clean_error(run_pt_env(NULL, long_options, render), "options too long", "PT_CL_OPTIONS", "at most");
+    free(long_options);
+    /* Valid values still render. */
+    Run good = run_pt_env(NULL, "PT_LOCAL_SIZE=32 PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 PT_NO_CACHE=0", render);
+    cr_expect_eq(good.exit_code, 0, "%s", good.err);
+    unlink("/tmp/pt-cli-env.exr");
+}
+
+/* --device gpu on a machine without one says so and lists what there is (it used to call 'gpu'
+ * an unknown device name). */
+Test(cli, missing_gpu_is_named_as_missing, .timeout = 60)
+{
+    Run list = run_pt(NULL, "devices");
+    cr_assert_eq(list.exit_code, 0, "%s", list.err);
+    if (!strstr(list.out, "no GPU found"))
+        cr_skip_test("this machine has a GPU");
+    Run r = run_pt(NULL, "render scenes/cornell-box --device gpu --quiet");
+    expect_clean_error(r, "no GPU", "no GPU", "0:0");
+    cr_expect(!strstr(r.err, "unknown device"), "%s", r.err);
+}
+
+/* A 100 KB file name is shown as its start and end, not in full (nor cut off mid-way with the
+ * rest of the message lost). */
+Test(cli, long_file_names_are_shortened_in_messages)
+{
+    size_t n = 100 * 1024;
+    char *name = malloc(n + 32);
+    cr_assert(name);
+    strcpy(name, "/nonexistent/");
+    for (size_t i = strlen(name); i < n; i++)
+        name[i] = (i - strlen("/nonexistent/")) % 2 ? '/' : 'd';
+    strcpy(name + n, "end-of-name.json");
+    char *args = malloc(n + 64);
+    cr_assert(args);
+    snprintf(args, n + 64, "render '%s'", name);
+    Run r = run_pt(NULL, args);
+    expect_clean_error(r, "long name", "/nonexistent/d/d/", "end-of-name.json");
+    cr_expect_lt(strlen(r.err), 300, "the message is %zu bytes: %.400s", strlen(r.err), r.err);
+    cr_expect(strstr(r.err, "\xe2\x80\xa6"), "no ellipsis in: %s", r.err);
+    free(args);
+    free(name);
 }
