@@ -12,6 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "app/cli.h"
+#include "scene/scene.h"
 #include "support.h"
 
 typedef struct {
@@ -236,4 +238,43 @@ Test(cli, long_file_names_are_shortened_in_messages)
     cr_expect(strstr(r.err, "\xe2\x80\xa6"), "no ellipsis in: %s", r.err);
     free(args);
     free(name);
+}
+
+static bool parse_args(const char *a1, const char *a2, Options *o, Error *err)
+{
+    char *argv[] = {"pt", "render", "scene.json", (char *)a1, (char *)a2, NULL};
+    memset(err, 0, sizeof *err);
+    return cli_parse(5, argv, o, err);
+}
+
+/* The seed is a uint: all of 0..4294967295 (it stopped at INT_MAX), and nothing else. */
+Test(cli, seed_takes_every_unsigned_value)
+{
+    Options o;
+    Error err;
+    cr_expect(parse_args("--seed", "4294967295", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 4294967295u);
+    cr_expect(parse_args("--seed", "2147483648", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 2147483648u);
+    cr_expect(parse_args("--seed", "0", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 0u);
+    const char *bad[] = {"4294967296", "-1", " -1", "18446744073709551615", "1e3", "x"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        cr_expect_not(parse_args("--seed", bad[i], &o, &err), "--seed %s accepted", bad[i]);
+        cr_expect(strstr(err.message, "4294967295"), "%s", err.message);
+    }
+}
+
+/* --max-depth and render.max_depth share MAX_DEPTH_LIMIT; --width/--height FILM_SIZE_LIMIT. */
+Test(cli, depth_and_film_limits_are_the_scenes)
+{
+    Options o;
+    Error err;
+    char value[32];
+    snprintf(value, sizeof value, "%d", MAX_DEPTH_LIMIT);
+    cr_expect(parse_args("--max-depth", value, &o, &err), "%s", err.message);
+    snprintf(value, sizeof value, "%d", MAX_DEPTH_LIMIT + 1);
+    cr_expect_not(parse_args("--max-depth", value, &o, &err));
+    snprintf(value, sizeof value, "%d", FILM_SIZE_LIMIT + 1);
+    cr_expect_not(parse_args("--width", value, &o, &err));
 }
