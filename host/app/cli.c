@@ -43,6 +43,12 @@ void cli_print_help(void)
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
          "                     default ~/.cache/pt) holds them\n"
          "  --quiet            no progress output\n"
+         "  --progress         progress as lines on stderr, even when it is not a terminal:\n"
+         "                     \"pt: progress: D/N spp (P%), S s\" after the first window, then at\n"
+         "                     most once a second\n"
+         "\n"
+         "pt render stops early on SIGINT (Ctrl-C), SIGTERM or SIGHUP: it writes the image so far\n"
+         "and exits with 130, 143 or 129 (128 + the signal).\n"
          "\n"
          "pt view (keys: press H in the window; --spp N stops sampling at N):\n"
          "  --camera JSON      start pose, e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
@@ -149,6 +155,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             takes_value = false;
             if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) o->quiet = true;
             else if (!strcmp(a, "--preview")) o->preview = true;
+            else if (!strcmp(a, "--progress")) o->progress = true;
             else if (!strcmp(a, "--no-nee")) o->no_nee = true;
             else if (!strcmp(a, "--sort-materials")) o->sort_materials = true;
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
