@@ -278,3 +278,34 @@ Test(cli, depth_and_film_limits_are_the_scenes)
     snprintf(value, sizeof value, "%d", FILM_SIZE_LIMIT + 1);
     cr_expect_not(parse_args("--width", value, &o, &err));
 }
+
+/* Without -o, when every numbered name up to the limit (9999) exists, pt refuses instead of
+ * overwriting the last one. */
+Test(cli, numbered_outputs_never_overwrite_the_last_name, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    char cwd[PATH_MAX], args[PATH_MAX + 200], path[1024];
+    cr_assert(getcwd(cwd, sizeof cwd));
+    snprintf(path, sizeof path, "%s/out", dir);
+    cr_assert_eq(mkdir(path, 0777), 0);
+    for (int n = 1; n <= 9999; n++) {
+        if (n == 1)
+            snprintf(path, sizeof path, "%s/out/cornell-box.png", dir);
+        else
+            snprintf(path, sizeof path, "%s/out/cornell-box-%d.png", dir, n);
+        FILE *f = fopen(path, "w");
+        cr_assert(f, "cannot create %s", path);
+        fclose(f);
+    }
+    snprintf(args, sizeof args,
+             "render '%s/scenes/cornell-box' --width 8 --height 8 --spp 1 --device cpu --quiet", cwd);
+    Run r = run_pt(dir, args);
+    expect_clean_error(r, "all names taken", "cornell-box-9999", "-o");
+    struct stat st;
+    snprintf(path, sizeof path, "%s/out/cornell-box-9999.png", dir);
+    cr_expect(stat(path, &st) == 0 && st.st_size == 0, "out/cornell-box-9999.png was overwritten");
+    snprintf(path, sizeof path, "%s/out/cornell-box-9999.exr", dir);
+    cr_expect(stat(path, &st) != 0, "out/cornell-box-9999.exr was written");
+    snprintf(path, sizeof path, "%s/out/cornell-box-10000.exr", dir);
+    cr_expect(stat(path, &st) != 0, "out/cornell-box-10000.exr was written");
+}

@@ -182,6 +182,22 @@ Test(signals, second_sigint_right_after_the_first_keeps_the_image, .timeout = 30
     signal_after_first_window(SIGINT, 2, "SIGINT", 130);
 }
 
+/* The second SIGINT after pt has acted on the first (it is reading the film or writing). */
+Test(signals, sigint_while_stopping_keeps_the_image, .timeout = 300)
+{
+    Child c;
+    const char *extra[] = {"--spp", ENDLESS_SPP, "--progress", NULL};
+    start_pt(&c, NULL, 0, extra);
+    int done = wait_for_first_window(&c);
+    cr_assert_eq(kill(c.pid, SIGINT), 0);
+    char line[1024];
+    cr_assert(wait_for_line(&c, "pt: SIGINT received: stopping", line, sizeof line), "%s", c.log);
+    cr_assert_eq(kill(c.pid, SIGINT), 0);
+    cr_expect_eq(finish(&c), 130, "stderr:\n%s", c.log);
+    expect_stopped_message(&c, "SIGINT", done, atoi(ENDLESS_SPP));
+    expect_image_and_no_temporary_file(&c);
+}
+
 Test(signals, sigterm_keeps_the_image, .timeout = 300)
 {
     signal_after_first_window(SIGTERM, 1, "SIGTERM", 143);

@@ -58,6 +58,9 @@ bool render_loop_run(Session *session, const RenderSettings *settings, ProgressS
     }
     if (progress == PROGRESS_TERMINAL)
         fputc('\n', stderr);
+    if (stop_signal_received())
+        fprintf(stderr, "pt: %s received: stopping with %d spp done\n",
+                stop_signal_name(stop_signal_received()), wavefront_spp_done(w));
     wavefront_read_film(w, rgb);
     *stats = *wavefront_stats(w);
     wavefront_destroy(w);
