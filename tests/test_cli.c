@@ -181,14 +181,14 @@ Test(cli, render_writes_outputs_and_never_overwrites_without_o, .timeout = 120)
 Test(cli, bad_environment_variables, .timeout = 120)
 {
     const char *render = "render scenes/cornell-box --width 8 --height 8 --spp 1 --device cpu --quiet -o /tmp/pt-cli-env.exr";
-    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=0", render), "local size 0", "PT_LOCAL_SIZE='0'", "from 1 to");
-    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=abc", render), "local size abc", "PT_LOCAL_SIZE='abc'", "integer");
-    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=99999999", render), "local size huge", "PT_LOCAL_SIZE='99999999'", "from 1 to");
-    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=-8", render), "local size negative", "PT_LOCAL_SIZE='-8'", NULL);
-    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=3", render), "bvh width 3", "PT_BVH_WIDTH='3'", "2, 4 and 8");
-    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=8x", render), "bvh width 8x", "PT_BVH_WIDTH='8x'", NULL);
-    expect_clean_error(run_pt_env(NULL, "PT_BVH_QUANTIZED=yes", render), "quantized yes", "PT_BVH_QUANTIZED='yes'", "0 or 1");
-    expect_clean_error(run_pt_env(NULL, "PT_NO_CACHE=yes", render), "no cache yes", "PT_NO_CACHE='yes'", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=0", render), "local size 0", "PT_LOCAL_SIZE=0:", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=abc", render), "local size abc", "PT_LOCAL_SIZE=abc:", "integer");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=99999999", render), "local size huge", "PT_LOCAL_SIZE=99999999:", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=-8", render), "local size negative", "PT_LOCAL_SIZE=-8:", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=3", render), "bvh width 3", "PT_BVH_WIDTH=3:", "2, 4 and 8");
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=8x", render), "bvh width 8x", "PT_BVH_WIDTH=8x:", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_QUANTIZED=yes", render), "quantized yes", "PT_BVH_QUANTIZED=yes:", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_NO_CACHE=yes", render), "no cache yes", "PT_NO_CACHE=yes:", "0 or 1");
     expect_clean_error(run_pt_env(NULL, "PT_CL_OPTIONS=\"$(printf 'a\\001b')\"", render), "options control character",
                        "PT_CL_OPTIONS", "not printable");
     char *long_options = malloc(2000);

@@ -57,7 +57,7 @@ bool stop_signals_configure(Error *err)
         }
     }
     error_set(err, ERR_USAGE, NULL, 0,
-              "environment variable PT_TEST_RAISE='%s': expected SIGNAL@POINT with SIGNAL one of "
+              "environment variable PT_TEST_RAISE=%s: expected SIGNAL@POINT with SIGNAL one of "
               "INT, TERM, HUP and POINT one of render, write", value);
     return false;
 }

@@ -25,7 +25,7 @@ bool env_int(const char *name, long min, long max, long fallback, long *out, Err
     long v = strtol(value, &end, 10);
     if (errno || end == value || *end || v < min || v > max) {
         error_set(err, ERR_USAGE, NULL, 0,
-                  "environment variable %s='%s': expected an integer from %ld to %ld", name, value,
+                  "environment variable %s=%s: expected an integer from %ld to %ld", name, value,
                   min, max);
         return false;
     }
@@ -41,7 +41,7 @@ bool env_flag(const char *name, bool fallback, bool *out, Error *err)
         return true;
     }
     if (strcmp(value, "0") && strcmp(value, "1")) {
-        error_set(err, ERR_USAGE, NULL, 0, "environment variable %s='%s': expected 0 or 1", name,
+        error_set(err, ERR_USAGE, NULL, 0, "environment variable %s=%s: expected 0 or 1", name,
                   value);
         return false;
     }

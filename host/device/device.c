@@ -234,7 +234,7 @@ static bool choose_bvh_width(Device *dev, Error *err)
         return false;
     if (width != 2 && width != 4 && width != 8) {
         error_set(err, ERR_USAGE, NULL, 0,
-                  "environment variable PT_BVH_WIDTH='%ld': the BVH layouts are 2, 4 and 8 wide",
+                  "environment variable PT_BVH_WIDTH=%ld: the BVH layouts are 2, 4 and 8 wide",
                   width);
         return false;
     }
