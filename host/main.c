@@ -148,9 +148,8 @@ static ProgressStyle progress_style(const Options *o)
     return !o->quiet && isatty(STDERR_FILENO) ? PROGRESS_TERMINAL : PROGRESS_NONE;
 }
 
-static void report_render(const Options *o, const RenderStats *stats, int spp)
+static void report_render(const Options *o, const RenderStats *stats)
 {
-    (void)spp;
     if (stats->nonfinite)
         fprintf(stderr, "pt: warning: %u samples were NaN or Inf and were counted as black\n",
                 stats->nonfinite);
@@ -223,11 +222,13 @@ static int command_render(const Options *o)
         RenderStats stats;
         if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
             die("%s", err.message);
-        report_render(o, &stats, desc->spp);
+        report_render(o, &stats);
         spp_done = stats.spp_done;
         if (stats.paths == 0) {
             fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
                     stop_signal_name(stop_signal_received()));
+            free(rgb);
+            session_close(&session);
             return stop_exit_status();
         }
     }

@@ -229,13 +229,19 @@ Test(cli, long_file_names_are_shortened_in_messages)
     for (size_t i = strlen(name); i < n; i++)
         name[i] = (i - strlen("/nonexistent/")) % 2 ? '/' : 'd';
     strcpy(name + n, "end-of-name.json");
-    char *args = malloc(n + 64);
+    char *args = malloc(n + 128);
     cr_assert(args);
-    snprintf(args, n + 64, "render '%s'", name);
+    snprintf(args, n + 128, "render '%s'", name);
     Run r = run_pt(NULL, args);
     expect_clean_error(r, "long name", "/nonexistent/d/d/", "end-of-name.json");
     cr_expect_lt(strlen(r.err), 300, "the message is %zu bytes: %.400s", strlen(r.err), r.err);
     cr_expect(strstr(r.err, "\xe2\x80\xa6"), "no ellipsis in: %s", r.err);
+    /* An output name too long for pt is refused as such (it used to be cut to 1099 bytes). */
+    strcpy(name + n, "end-of-name.exr");
+    snprintf(args, n + 128, "render scenes/cornell-box --device cpu --quiet -o '%s'", name);
+    r = run_pt(NULL, args);
+    expect_clean_error(r, "long output", "too long", "end-of-name.exr");
+    cr_expect_lt(strlen(r.err), 300, "the message is %zu bytes: %.400s", strlen(r.err), r.err);
     free(args);
     free(name);
 }
