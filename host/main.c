@@ -20,14 +20,19 @@
 #include "render/scene_upload.h"
 #include "render/wavefront.h"
 #include "app/bench.h"
+#include "app/render_loop.h"
+#include "app/stop_signals.h"
 #include "render/session.h"
 #include "viewer/viewer.h"
-#include <signal.h>
 
 typedef struct {
     char exr[1100];
     char png[1100];
 } OutputPaths;
+
+/* Without -o: out/<name>.exr, then <name>-2 ... <name>-MAX_NUMBERED_OUTPUTS; past that, an error
+ * (never an overwrite). */
+#define MAX_NUMBERED_OUTPUTS 9999
 
 
 static bool has_suffix(const char *s, const char *suffix)
@@ -63,6 +68,11 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
 {
     memset(paths, 0, sizeof *paths);
     if (o->output) {
+        if (strlen(o->output) + 4 >= sizeof paths->exr) {
+            error_set(err, ERR_OUTPUT, o->output, 0, "-o %s: the output path is too long (%zu bytes)",
+                      o->output, strlen(o->output));
+            return false;
+        }
         if (has_suffix(o->output, ".exr")) {
             snprintf(paths->exr, sizeof paths->exr, "%s", o->output);
             if (o->preview)
@@ -81,7 +91,8 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
             error_set(err, ERR_OUTPUT, "out", 0, "cannot create the output folder 'out'");
             return false;
         }
-        for (int n = 1; n < 10000; n++) {
+        bool found = false;
+        for (int n = 1; n <= MAX_NUMBERED_OUTPUTS && !found; n++) {
             char stem[600];
             if (n == 1)
                 snprintf(stem, sizeof stem, "out/%s%s", name, suffix);
@@ -89,8 +100,13 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
                 snprintf(stem, sizeof stem, "out/%s%s-%d", name, suffix, n);
             snprintf(paths->exr, sizeof paths->exr, "%s.exr", stem);
             snprintf(paths->png, sizeof paths->png, "%s.png", stem);
-            if (!exists(paths->exr) && !exists(paths->png))
-                break;
+            found = !exists(paths->exr) && !exists(paths->png);
+        }
+        if (!found) {
+            error_set(err, ERR_OUTPUT, "out", 0,
+                      "out/%s%s.exr to out/%s%s-%d.exr (or .png) all exist: move some away or name "
+                      "the output with -o", name, suffix, name, suffix, MAX_NUMBERED_OUTPUTS);
+            return false;
         }
     }
     if (paths->exr[0] && !image_check_writable(paths->exr, err))
@@ -122,16 +138,18 @@ static void aov_png_remap(unsigned aov, float *rgb, size_t n)
     }
 }
 
-static void on_interrupt(int signal_number)
+/* PT_TEST_RAISE=SIGNAL@write raises its signal between a temporary file and its rename. */
+static void raise_at_write_point(void) { stop_signals_test_point("write"); }
+
+static ProgressStyle progress_style(const Options *o)
 {
-    (void)signal_number;
-    wavefront_request_stop();
+    if (o->progress)
+        return PROGRESS_LINES;
+    return !o->quiet && isatty(STDERR_FILENO) ? PROGRESS_TERMINAL : PROGRESS_NONE;
 }
 
-static void report_render(const Options *o, const RenderStats *stats, int spp)
+static void report_render(const Options *o, const RenderStats *stats)
 {
-    if (stats->spp_done < spp)
-        fprintf(stderr, "pt: interrupted: the image holds %d of %d spp\n", stats->spp_done, spp);
     if (stats->nonfinite)
         fprintf(stderr, "pt: warning: %u samples were NaN or Inf and were counted as black\n",
                 stats->nonfinite);
@@ -164,7 +182,7 @@ static int command_render(const Options *o)
     Error err = {0};
     Session session;
     RenderDesc render = cli_render_desc(o);
-    if (!session_open(&session, &render, &err))
+    if (!stop_signals_configure(&err) || !session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
     char suffix[32] = "";
@@ -182,8 +200,13 @@ static int command_render(const Options *o)
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     unsigned aov = AOV_ALBEDO;
+    int spp = desc->spp, spp_done = spp;
+    /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
+    stop_signals_install();
+    image_set_before_rename_hook(raise_at_write_point);
     if (o->aov) {
         aov = aov_from_name(o->aov);
+        stop_signals_test_point("render");
         aov_render(&session.dev, &session.scene, &session.buffers, aov, desc->spp, seed, rgb);
     } else {
         RenderSettings settings = {
@@ -197,11 +220,17 @@ static int command_render(const Options *o)
             .profile = o->profile,
         };
         RenderStats stats;
-        signal(SIGINT, on_interrupt);
-        if (!wavefront_render(&session.dev, &session.scene, &session.buffers, &settings, rgb, &stats, &err))
+        if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
             die("%s", err.message);
-        signal(SIGINT, SIG_DFL);
-        report_render(o, &stats, desc->spp);
+        report_render(o, &stats);
+        spp_done = stats.spp_done;
+        if (stats.paths == 0) {
+            fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
+                    stop_signal_name(stop_signal_received()));
+            free(rgb);
+            session_close(&session);
+            return stop_exit_status();
+        }
     }
 
     if (out.exr[0]) {
@@ -218,7 +247,10 @@ static int command_render(const Options *o)
     }
     free(rgb);
     session_close(&session);
-    return 0;
+    if (stop_signal_received())
+        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",
+                stop_signal_name(stop_signal_received()), spp_done, spp);
+    return stop_exit_status();
 }
 
 int main(int argc, char **argv)

@@ -12,6 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "app/cli.h"
+#include "scene/scene.h"
 #include "support.h"
 
 typedef struct {
@@ -28,17 +30,22 @@ static const char *pt_bin(void)
     return path;
 }
 
-/* Runs pt with args (a shell fragment) in folder dir (NULL = here). */
-static Run run_pt(const char *dir, const char *args)
+/* Runs pt with args (a shell fragment) in folder dir (NULL = here), with the environment
+ * assignments env (a shell fragment such as "PT_LOCAL_SIZE=0"; NULL = none) added. */
+static Run run_pt_env(const char *dir, const char *env, const char *args)
 {
     Run r;
     memset(&r, 0, sizeof r);
-    char out_path[256], err_path[256], cmd[9000];
+    char out_path[256], err_path[256];
     snprintf(out_path, sizeof out_path, "/tmp/pt-cli-out-%d", (int)getpid());
     snprintf(err_path, sizeof err_path, "/tmp/pt-cli-err-%d", (int)getpid());
-    snprintf(cmd, sizeof cmd, "%s%s%s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
-             dir ? "' && " : "", pt_bin(), args, out_path, err_path);
+    size_t size = strlen(args) + (dir ? strlen(dir) : 0) + (env ? strlen(env) : 0) + PATH_MAX + 1100;
+    char *cmd = malloc(size);
+    cr_assert(cmd);
+    snprintf(cmd, size, "%s%s%s env %s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
+             dir ? "' && " : "", env ? env : "", pt_bin(), args, out_path, err_path);
     int status = system(cmd);
+    free(cmd);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     char *text = test_read_file(out_path, NULL);
     snprintf(r.out, sizeof r.out, "%s", text ? text : "");
@@ -49,6 +56,8 @@ static Run run_pt(const char *dir, const char *args)
     unlink(out_path), unlink(err_path);
     return r;
 }
+
+static Run run_pt(const char *dir, const char *args) { return run_pt_env(dir, NULL, args); }
 
 /* One clear line: exit 1, stderr is a single "pt: ..." line containing every needle. */
 static void expect_clean_error(Run r, const char *what, const char *needle1, const char *needle2)
@@ -154,4 +163,144 @@ Test(cli, render_writes_outputs_and_never_overwrites_without_o, .timeout = 120)
     cr_assert_eq(named.exit_code, 0, "%s", named.err);
     snprintf(path, sizeof path, "%s/named.png", dir);
     cr_expect(stat(path, &st) == 0 && st.st_size > 0);
+}
+
+/* Every PT_* variable is checked: a bad value is one line naming the variable, the value and
+ * what is allowed (PT_LOCAL_SIZE=0 used to divide by zero, =abc to hang). */
+Test(cli, bad_environment_variables, .timeout = 120)
+{
+    const char *render = "render scenes/cornell-box --width 8 --height 8 --spp 1 --device cpu --quiet -o /tmp/pt-cli-env.exr";
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=0", render), "local size 0", "PT_LOCAL_SIZE=0:", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=abc", render), "local size abc", "PT_LOCAL_SIZE=abc:", "integer");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=99999999", render), "local size huge", "PT_LOCAL_SIZE=99999999:", "from 1 to");
+    expect_clean_error(run_pt_env(NULL, "PT_LOCAL_SIZE=-8", render), "local size negative", "PT_LOCAL_SIZE=-8:", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=3", render), "bvh width 3", "PT_BVH_WIDTH=3:", "2, 4 and 8");
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_WIDTH=8x", render), "bvh width 8x", "PT_BVH_WIDTH=8x:", NULL);
+    expect_clean_error(run_pt_env(NULL, "PT_BVH_QUANTIZED=yes", render), "quantized yes", "PT_BVH_QUANTIZED=yes:", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_NO_CACHE=yes", render), "no cache yes", "PT_NO_CACHE=yes:", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_CL_OPTIONS=\"$(printf 'a\\001b')\"", render), "options control character",
+                       "PT_CL_OPTIONS", "not printable");
+    char *long_options = malloc(2000);
+    cr_assert(long_options);
+    strcpy(long_options, "PT_CL_OPTIONS='");
+    for (int i = 0; i < 300; i++)
+        strcat(long_options, "-DX ");
+    strcat(long_options, "'");
+    expect_clean_error(run_pt_env(NULL, long_options, render), "options too long", "PT_CL_OPTIONS", "at most");
+    free(long_options);
+    /* Valid values still render. */
+    Run good = run_pt_env(NULL, "PT_LOCAL_SIZE=32 PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 PT_NO_CACHE=0", render);
+    cr_expect_eq(good.exit_code, 0, "%s", good.err);
+    unlink("/tmp/pt-cli-env.exr");
+}
+
+/* --device gpu on a machine without one says so and lists what there is (it used to call 'gpu'
+ * an unknown device name). */
+Test(cli, missing_gpu_is_named_as_missing, .timeout = 60)
+{
+    Run list = run_pt(NULL, "devices");
+    cr_assert_eq(list.exit_code, 0, "%s", list.err);
+    if (!strstr(list.out, "no GPU found"))
+        cr_skip_test("this machine has a GPU");
+    Run r = run_pt(NULL, "render scenes/cornell-box --device gpu --quiet");
+    expect_clean_error(r, "no GPU", "no GPU", "0:0");
+    cr_expect(!strstr(r.err, "unknown device"), "%s", r.err);
+}
+
+/* A 100 KB file name is shown as its start and end, not in full (nor cut off mid-way with the
+ * rest of the message lost). */
+Test(cli, long_file_names_are_shortened_in_messages)
+{
+    size_t n = 100 * 1024;
+    char *name = malloc(n + 32);
+    cr_assert(name);
+    strcpy(name, "/nonexistent/");
+    for (size_t i = strlen(name); i < n; i++)
+        name[i] = (i - strlen("/nonexistent/")) % 2 ? '/' : 'd';
+    strcpy(name + n, "end-of-name.json");
+    char *args = malloc(n + 128);
+    cr_assert(args);
+    snprintf(args, n + 128, "render '%s'", name);
+    Run r = run_pt(NULL, args);
+    expect_clean_error(r, "long name", "/nonexistent/d/d/", "end-of-name.json");
+    cr_expect_lt(strlen(r.err), 300, "the message is %zu bytes: %.400s", strlen(r.err), r.err);
+    cr_expect(strstr(r.err, "\xe2\x80\xa6"), "no ellipsis in: %s", r.err);
+    /* An output name too long for pt is refused as such (it used to be cut to 1099 bytes). */
+    strcpy(name + n, "end-of-name.exr");
+    snprintf(args, n + 128, "render scenes/cornell-box --device cpu --quiet -o '%s'", name);
+    r = run_pt(NULL, args);
+    expect_clean_error(r, "long output", "too long", "end-of-name.exr");
+    cr_expect_lt(strlen(r.err), 300, "the message is %zu bytes: %.400s", strlen(r.err), r.err);
+    free(args);
+    free(name);
+}
+
+static bool parse_args(const char *a1, const char *a2, Options *o, Error *err)
+{
+    char *argv[] = {"pt", "render", "scene.json", (char *)a1, (char *)a2, NULL};
+    memset(err, 0, sizeof *err);
+    return cli_parse(5, argv, o, err);
+}
+
+/* The seed is a uint: all of 0..4294967295 (it stopped at INT_MAX), and nothing else. */
+Test(cli, seed_takes_every_unsigned_value)
+{
+    Options o;
+    Error err;
+    cr_expect(parse_args("--seed", "4294967295", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 4294967295u);
+    cr_expect(parse_args("--seed", "2147483648", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 2147483648u);
+    cr_expect(parse_args("--seed", "0", &o, &err), "%s", err.message);
+    cr_expect_eq(o.seed, 0u);
+    const char *bad[] = {"4294967296", "-1", " -1", "18446744073709551615", "1e3", "x"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        cr_expect_not(parse_args("--seed", bad[i], &o, &err), "--seed %s accepted", bad[i]);
+        cr_expect(strstr(err.message, "4294967295"), "%s", err.message);
+    }
+}
+
+/* --max-depth and render.max_depth share MAX_DEPTH_LIMIT; --width/--height FILM_SIZE_LIMIT. */
+Test(cli, depth_and_film_limits_are_the_scenes)
+{
+    Options o;
+    Error err;
+    char value[32];
+    snprintf(value, sizeof value, "%d", MAX_DEPTH_LIMIT);
+    cr_expect(parse_args("--max-depth", value, &o, &err), "%s", err.message);
+    snprintf(value, sizeof value, "%d", MAX_DEPTH_LIMIT + 1);
+    cr_expect_not(parse_args("--max-depth", value, &o, &err));
+    snprintf(value, sizeof value, "%d", FILM_SIZE_LIMIT + 1);
+    cr_expect_not(parse_args("--width", value, &o, &err));
+}
+
+/* Without -o, when every numbered name up to the limit (9999) exists, pt refuses instead of
+ * overwriting the last one. */
+Test(cli, numbered_outputs_never_overwrite_the_last_name, .timeout = 120)
+{
+    const char *dir = test_temp_dir();
+    char cwd[PATH_MAX], args[PATH_MAX + 200], path[1024];
+    cr_assert(getcwd(cwd, sizeof cwd));
+    snprintf(path, sizeof path, "%s/out", dir);
+    cr_assert_eq(mkdir(path, 0777), 0);
+    for (int n = 1; n <= 9999; n++) {
+        if (n == 1)
+            snprintf(path, sizeof path, "%s/out/cornell-box.png", dir);
+        else
+            snprintf(path, sizeof path, "%s/out/cornell-box-%d.png", dir, n);
+        FILE *f = fopen(path, "w");
+        cr_assert(f, "cannot create %s", path);
+        fclose(f);
+    }
+    snprintf(args, sizeof args,
+             "render '%s/scenes/cornell-box' --width 8 --height 8 --spp 1 --device cpu --quiet", cwd);
+    Run r = run_pt(dir, args);
+    expect_clean_error(r, "all names taken", "cornell-box-9999", "-o");
+    struct stat st;
+    snprintf(path, sizeof path, "%s/out/cornell-box-9999.png", dir);
+    cr_expect(stat(path, &st) == 0 && st.st_size == 0, "out/cornell-box-9999.png was overwritten");
+    snprintf(path, sizeof path, "%s/out/cornell-box-9999.exr", dir);
+    cr_expect(stat(path, &st) != 0, "out/cornell-box-9999.exr was written");
+    snprintf(path, sizeof path, "%s/out/cornell-box-10000.exr", dir);
+    cr_expect(stat(path, &st) != 0, "out/cornell-box-10000.exr was written");
 }

@@ -300,3 +300,41 @@ Test(scene, every_public_obj_imports, .timeout = 60)
     cr_expect_eq(imported, found, "imported %d of %d OBJs", imported, found);
     cr_expect_geq(found, 19, "the assets hold 19 OBJs");
 }
+
+/* A camera far out (1e30) is named as too far out, not as "up is parallel to the view direction"
+ * (the float view direction overflowed); "parallel" is kept for an up that is parallel. */
+Test(scene, absurd_camera_coordinates_name_key_and_value)
+{
+    Error err = expect_error("{" OBJECTS ", \"camera\": {\"eye\": [0, 1, 1e30], \"target\": [0, 1, 0]}}",
+                             ERR_JSON_VALUE, "camera.eye");
+    cr_expect(strstr(err.message, "1e+30") && strstr(err.message, "too large"), "%s", err.message);
+    cr_expect(!strstr(err.message, "parallel"), "%s", err.message);
+    err = expect_error("{" OBJECTS ", \"camera\": {\"eye\": [0, 1, 4], \"target\": [-2e16, 1, 0]}}",
+                       ERR_JSON_VALUE, "camera.target");
+    cr_expect(strstr(err.message, "too large"), "%s", err.message);
+    err = expect_error("{" OBJECTS ", \"camera\": {\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"up\": [0, 1e20, 0]}}",
+                       ERR_JSON_VALUE, "camera.up");
+    cr_expect(strstr(err.message, "too large"), "%s", err.message);
+    /* Large but within the limit, and not parallel: accepted. */
+    const char *path = write_file("far.json", "{" OBJECTS ", \"camera\": {\"eye\": [0, 1, 1e14], \"target\": [0, 1, 0]}}");
+    write_file("box.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    SceneDesc desc;
+    Error ok_err = {0};
+    cr_expect(scene_desc_load(path, &desc, &ok_err), "%s", ok_err.message);
+    if (!error_is_set(&ok_err))
+        scene_desc_free(&desc);
+    /* Parallel is still parallel. */
+    err = expect_error("{" OBJECTS ", \"camera\": {\"eye\": [0, 1e14, 0], \"target\": [0, 1, 0]}}",
+                       ERR_JSON_VALUE, "camera.up");
+    cr_expect(strstr(err.message, "parallel"), "%s", err.message);
+}
+
+/* One depth limit for the scene file and the command line (the file took up to INT_MAX). */
+Test(scene, max_depth_has_the_command_lines_limit)
+{
+    char json[256];
+    snprintf(json, sizeof json, "{" OBJECTS ", \"render\": {\"max_depth\": %d}}", MAX_DEPTH_LIMIT + 1);
+    expect_error(json, ERR_JSON_VALUE, "render.max_depth");
+    expect_error("{" OBJECTS ", \"render\": {\"max_depth\": 2147483647}}", ERR_JSON_VALUE, "render.max_depth");
+    cr_expect_eq(MAX_DEPTH_LIMIT, 1024);
+}

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "app/cli.h"
 
+#include "scene/scene.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -41,6 +43,12 @@ void cli_print_help(void)
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
          "                     default ~/.cache/pt) holds them\n"
          "  --quiet            no progress output\n"
+         "  --progress         progress as lines on stderr, even when it is not a terminal:\n"
+         "                     \"pt: progress: D/N spp (P%), S s\" after the first window, then at\n"
+         "                     most once a second\n"
+         "\n"
+         "pt render stops early on SIGINT (Ctrl-C), SIGTERM or SIGHUP: it writes the image so far\n"
+         "and exits with 130, 143 or 129 (128 + the signal).\n"
          "\n"
          "pt view (keys: press H in the window; --spp N stops sampling at N):\n"
          "  --camera JSON      start pose, e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
@@ -67,6 +75,25 @@ static bool parse_int(const char *arg, const char *value, int min, int max, int 
         return false;
     }
     *out = (int)v;
+    return true;
+}
+
+/* The seed is a 32-bit unsigned: 0 to 4294967295 (strtoul alone would take "-1" as ULONG_MAX). */
+static bool parse_seed(const char *arg, const char *value, unsigned *out, Error *err)
+{
+    if (!value) {
+        error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", arg);
+        return false;
+    }
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(value, &end, 10);
+    if (errno || end == value || *end || value[strspn(value, " \t")] == '-' || v > UINT_MAX) {
+        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not an integer in [0, %u]", arg, value,
+                  UINT_MAX);
+        return false;
+    }
+    *out = (unsigned)v;
     return true;
 }
 
@@ -110,14 +137,10 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         bool ok = true, takes_value = true;
         if (!strcmp(a, "--spp")) ok = parse_int(a, v, 1, INT_MAX, &o->spp, err);
-        else if (!strcmp(a, "--max-depth")) ok = parse_int(a, v, 1, 1024, &o->max_depth, err);
-        else if (!strcmp(a, "--width")) ok = parse_int(a, v, 1, 65536, &o->width, err);
-        else if (!strcmp(a, "--height")) ok = parse_int(a, v, 1, 65536, &o->height, err);
-        else if (!strcmp(a, "--seed")) {
-            int s;
-            ok = parse_int(a, v, 0, INT_MAX, &s, err);
-            o->seed = (unsigned)s, o->seed_given = true;
-        } else if (!strcmp(a, "--device")) ok = need_value(a, v, err), o->device = v;
+        else if (!strcmp(a, "--max-depth")) ok = parse_int(a, v, 1, MAX_DEPTH_LIMIT, &o->max_depth, err);
+        else if (!strcmp(a, "--width")) ok = parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->width, err);
+        else if (!strcmp(a, "--height")) ok = parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->height, err);
+        else if (!strcmp(a, "--seed")) ok = parse_seed(a, v, &o->seed, err), o->seed_given = true; else if (!strcmp(a, "--device")) ok = need_value(a, v, err), o->device = v;
         else if (!strcmp(a, "-o") || !strcmp(a, "--output")) ok = need_value(a, v, err), o->output = v;
         else if (!strcmp(a, "--csv")) ok = need_value(a, v, err), o->csv = v;
         else if (!strcmp(a, "--frames")) ok = parse_int(a, v, 1, INT_MAX, &o->frames, err);
@@ -135,6 +158,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             takes_value = false;
             if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) o->quiet = true;
             else if (!strcmp(a, "--preview")) o->preview = true;
+            else if (!strcmp(a, "--progress")) o->progress = true;
             else if (!strcmp(a, "--no-nee")) o->no_nee = true;
             else if (!strcmp(a, "--sort-materials")) o->sort_materials = true;
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;

@@ -22,6 +22,7 @@ typedef struct {
     bool seed_given;
     float exposure; /* stops, PNG only */
     bool quiet;
+    bool progress;  /* progress as lines on stderr, even when it is not a terminal */
     bool preview;   /* with -o X.exr, also write X.png */
     bool no_nee, no_compaction, profile, sort_materials;
     bool no_cache;   /* compile the kernels even if the kernel cache has them */

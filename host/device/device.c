@@ -2,6 +2,7 @@
 #include "device/device.h"
 
 #include "device/kernel_cache.h"
+#include "base/env.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,10 @@ extern const size_t pt_kernel_source_length;
 
 #define MAX_PLATFORMS 16
 #define MAX_DEVICES 32
+/* Room in Device.build_options for PT_CL_OPTIONS next to the options pt always adds. */
+#define MAX_CL_OPTIONS_LENGTH 160
+/* The wavefront kernels' work-group size unless PT_LOCAL_SIZE says otherwise. */
+#define DEFAULT_LOCAL_SIZE 64
 
 static const char no_platform_help[] =
     "no OpenCL platform found. The ICD loader finds drivers through the files in "
@@ -155,24 +160,66 @@ static bool find_device(const char *spec, cl_platform_id *platforms, cl_uint num
     return false;
 }
 
+/* "0:0 NAME (CPU), 1:0 NAME (GPU)": every device, for messages about a device that is not there. */
+static void describe_devices(cl_platform_id *platforms, cl_uint num_platforms, char *out,
+                             size_t size)
+{
+    size_t used = 0;
+    out[0] = '\0';
+    for (cl_uint p = 0; p < num_platforms; p++) {
+        cl_device_id devices[MAX_DEVICES];
+        cl_uint num_devices = get_devices(platforms[p], devices);
+        for (cl_uint d = 0; d < num_devices && used < size; d++) {
+            char name[256];
+            cl_device_type type;
+            device_string(devices[d], CL_DEVICE_NAME, name, sizeof name);
+            CL_CHECK(clGetDeviceInfo(devices[d], CL_DEVICE_TYPE, sizeof type, &type, NULL));
+            int n = snprintf(out + used, size - used, "%s%u:%u %s (%s)", used ? ", " : "", p, d,
+                             name, type_name(type));
+            used += n > 0 ? (size_t)n : 0;
+        }
+    }
+    if (used == 0)
+        snprintf(out, size, "none");
+}
+
+/* Why find_device found nothing: a kind of device the machine lacks, or a spec that names none. */
+static void report_missing_device(const char *spec, cl_platform_id *platforms,
+                                  cl_uint num_platforms, Error *err)
+{
+    char devices[512];
+    describe_devices(platforms, num_platforms, devices, sizeof devices);
+    bool gpu = spec && !strcmp(spec, "gpu"), cpu = spec && !strcmp(spec, "cpu");
+    if (gpu || cpu || !spec || !*spec)
+        error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
+                  "--device %s: there is no %s OpenCL device; the devices are: %s (see 'pt devices')",
+                  spec && *spec ? spec : "(default)", gpu ? "GPU" : cpu ? "CPU" : "GPU or CPU",
+                  devices);
+    else
+        error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
+                  "--device %s: no such device; use gpu, cpu or P:D, one of: %s (see 'pt devices')",
+                  spec, devices);
+}
+
 /* The program's build options for this device. Conservative maths: no fast-relaxed-math, which
  * would let the compiler drop the Inf/NaN handling that the traversal and the film guard depend
  * on. Correctly rounded division where the device offers it: NVIDIA's default division is off by
  * up to 2 ulp, enough to flip watertight edge tests against the host's (and PoCL's) results and
  * so to make images differ across devices; measured on the H100, it costs no traversal speed.
  * PT_CL_OPTIONS replaces the maths options (for experiments; the vendor switch stays). */
-static void choose_build_options(Device *dev)
+static bool choose_build_options(Device *dev, Error *err)
 {
     cl_device_fp_config fp = 0;
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
-    const char *maths = getenv("PT_CL_OPTIONS");
-    if (!maths)
-        maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
-                    ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
-                    : "-cl-mad-enable -cl-no-signed-zeros";
+    const char *maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
+                            ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
+                            : "-cl-mad-enable -cl-no-signed-zeros";
+    if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))
+        return false;
     snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s",
              maths, dev->bvh_width, dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",
              dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+    return true;
 }
 
 /* The BVH layout (bvh_wide.h). A GPU runs each work item as one SIMD lane, so the 2-wide tree
@@ -182,30 +229,24 @@ static void choose_build_options(Device *dev)
  * measured 9-10% slower on the H100 (bench/README.md) but halves the nodes' memory. */
 static bool choose_bvh_width(Device *dev, Error *err)
 {
-    const char *env = getenv("PT_BVH_WIDTH");
-    if (env && *env) {
-        if (strcmp(env, "2") && strcmp(env, "4") && strcmp(env, "8")) {
-            error_set(err, ERR_USAGE, NULL, 0, "PT_BVH_WIDTH=%s: the BVH layouts are 2, 4 and 8 wide",
-                      env);
-            return false;
-        }
-        dev->bvh_width = atoi(env);
-    } else {
-        dev->bvh_width = (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2;
+    long width;
+    if (!env_int("PT_BVH_WIDTH", 2, 8, (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2, &width, err))
+        return false;
+    if (width != 2 && width != 4 && width != 8) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "environment variable PT_BVH_WIDTH=%ld: the BVH layouts are 2, 4 and 8 wide",
+                  width);
+        return false;
     }
-    const char *quantized = getenv("PT_BVH_QUANTIZED");
-    if (quantized && *quantized) {
-        if (strcmp(quantized, "0") && strcmp(quantized, "1")) {
-            error_set(err, ERR_USAGE, NULL, 0, "PT_BVH_QUANTIZED=%s: use 0 or 1", quantized);
-            return false;
-        }
-        dev->bvh_quantized = quantized[0] == '1';
-        if (dev->bvh_quantized && dev->bvh_width != 2) {
-            error_set(err, ERR_USAGE, NULL, 0,
-                      "PT_BVH_QUANTIZED=1: quantised nodes are a 2-wide layout, and this device "
-                      "walks the %d-wide one (PT_BVH_WIDTH=2 selects it)", dev->bvh_width);
-            return false;
-        }
+    dev->bvh_width = (int)width;
+    if (!env_flag("PT_BVH_QUANTIZED", false, &dev->bvh_quantized, err))
+        return false;
+    if (dev->bvh_quantized && dev->bvh_width != 2) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "environment variable PT_BVH_QUANTIZED=1: quantised nodes are a 2-wide layout, "
+                  "and this device walks the %d-wide one (PT_BVH_WIDTH=2 selects it)",
+                  dev->bvh_width);
+        return false;
     }
     return true;
 }
@@ -221,9 +262,7 @@ bool device_open(Device *dev, const char *spec, Error *err)
     }
     if (!find_device(spec, platforms, num_platforms, &dev->platform_index, &dev->device_index,
                      &dev->device)) {
-        error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
-                  "unknown device '%s': use gpu, cpu or P:D as listed by 'pt devices'",
-                  spec ? spec : "");
+        report_missing_device(spec, platforms, num_platforms, err);
         return false;
     }
     dev->platform = platforms[dev->platform_index];
@@ -241,11 +280,15 @@ bool device_open(Device *dev, const char *spec, Error *err)
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof dev->compute_units,
                              &dev->compute_units, NULL));
     dev->is_nvidia = strstr(dev->platform_name, "NVIDIA") != NULL;
-    if (!choose_bvh_width(dev, err))
+    if (!choose_bvh_width(dev, err) || !choose_build_options(dev, err))
         return false;
-    choose_build_options(dev);
-    const char *no_cache = getenv("PT_NO_CACHE");
-    dev->use_cache = !(no_cache && *no_cache && strcmp(no_cache, "0") != 0);
+    bool no_cache;
+    long local_size;
+    if (!env_flag("PT_NO_CACHE", false, &no_cache, err) ||
+        !env_int("PT_LOCAL_SIZE", 1, (long)dev->max_work_group, DEFAULT_LOCAL_SIZE, &local_size, err))
+        return false;
+    dev->use_cache = !no_cache;
+    dev->local_size = (size_t)local_size;
 
     cl_int status;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)dev->platform, 0};
@@ -415,13 +458,21 @@ void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *p
             *profile_ms = 0.0;
         return;
     }
+    /* A kernel may allow less than the device (CL_KERNEL_WORK_GROUP_SIZE: registers, local
+     * memory). The default size (PT_LOCAL_SIZE, checked against the device in device_open) is a
+     * tuning choice and shrinks to fit; a size a caller asks for is one its local memory depends
+     * on, so a kernel that cannot take it is a device the program does not support. */
+    size_t kernel_max = 0;
+    CL_CHECK(clGetKernelWorkGroupInfo(kernel, dev->device, CL_KERNEL_WORK_GROUP_SIZE,
+                                      sizeof kernel_max, &kernel_max, NULL));
     if (local == 0) {
-        /* PT_LOCAL_SIZE: the work-group size of the wavefront kernels, for tuning experiments. */
-        const char *env = getenv("PT_LOCAL_SIZE");
-        local = env ? (size_t)atoi(env) : 64;
+        local = dev->local_size ? dev->local_size : DEFAULT_LOCAL_SIZE;
+        if (local > kernel_max)
+            local = kernel_max;
+    } else if (local > kernel_max) {
+        die("a kernel needs work-groups of %zu, but %s allows at most %zu for it", local, dev->name,
+            kernel_max);
     }
-    if (local > dev->max_work_group)
-        local = dev->max_work_group;
     size_t global = (n + local - 1) / local * local;
     cl_event event;
     CL_CHECK(clEnqueueNDRangeKernel(dev->queue, kernel, 1, NULL, &global, &local, 0, NULL,

@@ -25,6 +25,7 @@ typedef struct {
     int bvh_width;       /* BVH layout the kernels walk (bvh_wide.h): 2 on GPUs, 8 on CPUs, or
                           * PT_BVH_WIDTH */
     bool bvh_quantized;  /* 2-wide: 32-byte nodes (bvh_quantized.h); PT_BVH_QUANTIZED=0/1 */
+    size_t local_size;   /* work-group size of launches that name none: 64, or PT_LOCAL_SIZE */
     char build_options[256]; /* see device_build_options */
     int platform_index, device_index;
     char name[256];

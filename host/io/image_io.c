@@ -150,9 +150,14 @@ static bool commit_temp_file(const char *temp, const char *path, Error *err)
     return true;
 }
 
+static void (*g_before_rename)(void);
+void image_set_before_rename_hook(void (*hook)(void)) { g_before_rename = hook; }
+
 /* Ends an atomic write: commit the temporary file when writing it worked, remove it otherwise. */
 static bool finish_atomic_write(const char *temp, const char *path, bool written, Error *err)
 {
+    if (written && g_before_rename)
+        g_before_rename();
     if (written && commit_temp_file(temp, path, err))
         return true;
     unlink(temp);

@@ -14,6 +14,9 @@ bool image_write_png(const char *path, const float *rgb, int width, int height, 
                      Error *err);
 /* Reads an RGB(A) EXR written by us or another tool; *rgb is malloc'ed. */
 bool image_read_exr(const char *path, float **rgb, int *width, int *height, Error *err);
+/* Called once a file's temporary copy is complete, just before it is renamed into place (pt's
+ * signal tests raise a signal there: the rename must still happen). NULL = none. */
+void image_set_before_rename_hook(void (*hook)(void));
 /* Checks before rendering that path can be created (folder exists and is writable). */
 bool image_check_writable(const char *path, Error *err);
 

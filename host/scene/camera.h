@@ -12,6 +12,11 @@ typedef struct {
     float focus_distance; /* 0 = distance from eye to target */
 } CameraDesc;
 
+/* Camera coordinates (eye, target, up) must lie within +-CAMERA_COORDINATE_LIMIT: farther out, a
+ * float ray origin no longer resolves a scene of any sensible size, and squared distances
+ * approach float overflow (1e30 made the view direction infinite). */
+#define CAMERA_COORDINATE_LIMIT 1e15
+
 Camera camera_from_desc(const CameraDesc *desc, int width, int height);
 /* A camera looking at the box [min, max] from the front (+z), fitting it in a 40-degree view. */
 CameraDesc camera_frame_bounds(const float min[3], const float max[3]);

@@ -16,7 +16,6 @@
 #include "scene/camera.h"
 
 #define SCENE_FILE_LIMIT ((long)64 << 20) /* a scene description is small; refuse anything huge */
-#define FILM_SIZE_LIMIT 65536
 
 /* What every check needs to report an error: the file, its text (to find a key's line) and err. */
 typedef struct {
@@ -165,19 +164,41 @@ static const cJSON *member(const cJSON *object, const char *name)
 
 /* ---- Sections ------------------------------------------------------------------------------- */
 
-static float length3(const float v[3]) { return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+/* Camera coordinates within +-CAMERA_COORDINATE_LIMIT (read_vec3 has already rejected non-finite
+ * ones). */
+static bool check_camera_coordinates(Parser *p, const float v[3], const char *key)
+{
+    for (int i = 0; i < 3; i++)
+        if (fabs(v[i]) > CAMERA_COORDINATE_LIMIT)
+            return fail(p, ERR_JSON_VALUE, key, "element %d (%g) is too large: camera coordinates "
+                        "must lie within +-%g", i, v[i], CAMERA_COORDINATE_LIMIT);
+    return true;
+}
 
-/* The camera must define a view: eye != target, and up not along the view direction. */
+/* The camera must define a view: eye != target, and up not along the view direction. In double:
+ * within the coordinate limit, no product below overflows. */
 static bool check_camera_frame(Parser *p, const CameraDesc *c)
 {
-    float dir[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]};
-    float dist = length3(dir), up_len = length3(c->up);
-    if (!(dist > 0.0f))
+    if (!check_camera_coordinates(p, c->eye, "camera.eye") ||
+        !check_camera_coordinates(p, c->target, "camera.target") ||
+        !check_camera_coordinates(p, c->up, "camera.up"))
+        return false;
+    double dir[3], up[3];
+    for (int i = 0; i < 3; i++)
+        dir[i] = (double)c->target[i] - (double)c->eye[i], up[i] = c->up[i];
+    double dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    double up_len = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    if (!(dist > 0.0))
         return fail(p, ERR_JSON_VALUE, "camera.target", "[%g, %g, %g] is the same point as camera.eye",
                     c->target[0], c->target[1], c->target[2]);
-    float cross[3] = {dir[1] * c->up[2] - dir[2] * c->up[1], dir[2] * c->up[0] - dir[0] * c->up[2],
-                      dir[0] * c->up[1] - dir[1] * c->up[0]};
-    if (!(up_len > 0.0f) || !(length3(cross) > 1e-6f * dist * up_len))
+    if (!(up_len > 0.0))
+        return fail(p, ERR_JSON_VALUE, "camera.up", "[%g, %g, %g] has no direction", c->up[0],
+                    c->up[1], c->up[2]);
+    double cross[3] = {dir[1] * up[2] - dir[2] * up[1], dir[2] * up[0] - dir[0] * up[2],
+                       dir[0] * up[1] - dir[1] * up[0]};
+    double sine = sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) /
+                  (dist * up_len);
+    if (!(sine > 1e-6))
         return fail(p, ERR_JSON_VALUE, "camera.up", "[%g, %g, %g] is parallel to the view direction",
                     c->up[0], c->up[1], c->up[2]);
     return true;
@@ -241,7 +262,8 @@ static bool parse_render(Parser *p, const cJSON *obj, SceneDesc *d)
     static const char *const keys[] = {"spp", "max_depth", NULL};
     return check_object(p, obj, "render", keys) &&
            parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) &&
-           parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, INT_MAX, &d->max_depth);
+           parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
+                              &d->max_depth);
 }
 
 /* Joins a path from the scene file onto the scene file's folder (absolute paths stay as they are). */

@@ -10,6 +10,10 @@
 #include "scene/camera.h"
 #include "scene/scene_data.h"
 
+/* The limits of the film and of path depth, for the scene file and the command line alike. */
+#define FILM_SIZE_LIMIT 65536
+#define MAX_DEPTH_LIMIT 1024
+
 typedef struct {
     char path[1024];    /* the scene file (.json or .obj) */
     bool camera_given;  /* false: frame the camera on the scene's bounds (bare .obj) */
