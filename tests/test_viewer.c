@@ -482,7 +482,7 @@ Test(view, camera_option_gives_the_render_of_that_pose)
 
     Run bad = run_pt("view scenes/cornell-box --frames 1 --camera '{\"eye\": [0, 1]}'");
     cr_expect_eq(bad.exit_code, 1, "bad --camera: exit %d", bad.exit_code);
-    cr_expect(strstr(bad.err, "'eye'") && one_line(bad.err), "one line naming the key: %s", bad.err);
+    cr_expect(strstr(bad.err, "camera.eye") && one_line(bad.err), "one line naming the key: %s", bad.err);
 }
 
 /* --frames N runs exactly N frames on PoCL and the exit summary reports the frame times it

@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "scene/camera.h"
+#include "scene/scene.h"
+#include "support.h"
 #include "viewer/camera_controls.h"
 
 #define PI 3.14159265f
@@ -139,13 +141,13 @@ Test(viewer_camera, json_errors_name_the_key_and_change_nothing)
         ErrorCode code;
         const char *needle;
     } cases[] = {
-        {"{\"eye\": [0, 1]}", ERR_JSON_TYPE, "'eye'"},
-        {"{\"aperture\": \"wide\"}", ERR_JSON_TYPE, "'aperture'"},
-        {"{\"fov_y\": 200}", ERR_JSON_VALUE, "'fov_y'"},
-        {"{\"focus_distance\": -1}", ERR_JSON_VALUE, "'focus_distance'"},
-        {"{\"zoom\": 2}", ERR_JSON_UNKNOWN_KEY, "'zoom'"},
-        {"{\"eye\": [0, 1, 0]}", ERR_JSON_VALUE, "'target'"}, /* eye == target */
-        {"{\"up\": [0, 0, -2]}", ERR_JSON_VALUE, "'up'"},    /* up along the view */
+        {"{\"eye\": [0, 1]}", ERR_JSON_TYPE, "camera.eye"},
+        {"{\"aperture\": \"wide\"}", ERR_JSON_TYPE, "camera.aperture"},
+        {"{\"fov_y\": 200}", ERR_JSON_VALUE, "camera.fov_y"},
+        {"{\"focus_distance\": -1}", ERR_JSON_VALUE, "camera.focus_distance"},
+        {"{\"zoom\": 2}", ERR_JSON_UNKNOWN_KEY, "camera.zoom"},
+        {"{\"eye\": [0, 1, 0]}", ERR_JSON_VALUE, "camera.target"}, /* eye == target */
+        {"{\"up\": [0, 0, -2]}", ERR_JSON_VALUE, "camera.up"},    /* up along the view */
         {"{\"eye\": [0, 1, 3.9],", ERR_JSON_SYNTAX, "malformed"},
         {"[0, 1, 3.9]", ERR_JSON_TYPE, "object"},
     };
@@ -179,4 +181,47 @@ Test(viewer_camera, printed_camera_reads_back_exactly)
     Error err = {0};
     cr_assert(viewer_camera_parse(json, &back, &err), "%s", err.message);
     cr_expect(memcmp(&back, &c, sizeof c) == 0, "not the same floats: %s", json);
+}
+
+/* A camera refused in a scene file is refused by --camera with the same error: one reader
+ * (scene/camera_json.c) behind both, so the code and the message after the input's name
+ * ("file:line: " or "--camera: ") are identical. */
+Test(viewer_camera, bad_cameras_get_the_scenes_error)
+{
+    static const char *const cameras[] = {
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"fov_y\": 0}",
+        "{\"eye\": [0, 1, 1e30], \"target\": [0, 1, 0]}",
+        "{\"eye\": [0, 1, 1e40], \"target\": [0, 1, 0]}",
+        "{\"eye\": [1, 2, 3], \"target\": [1, 2, 3]}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"up\": [0, 0, -2]}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"up\": [0, 1e20, 0]}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"aperture\": -0.5}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"focus_distance\": -1}",
+        "{\"eye\": [0, 1], \"target\": [0, 1, 0]}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"fov_y\": \"40\"}",
+        "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"zoom\": 2}",
+    };
+    const char *dir = test_temp_dir();
+    for (size_t i = 0; i < sizeof cameras / sizeof cameras[0]; i++) {
+        char scene[512];
+        snprintf(scene, sizeof scene, "{\"objects\": [{\"obj\": \"box.obj\"}], \"camera\": %s}",
+                 cameras[i]);
+        SceneDesc desc;
+        Error scene_err = {0}, view_err = {0};
+        bool scene_ok = scene_desc_load(test_write_file(dir, "camera.json", scene), &desc, &scene_err);
+        if (scene_ok)
+            scene_desc_free(&desc);
+        CameraDesc c = box_camera();
+        bool view_ok = viewer_camera_parse(cameras[i], &c, &view_err);
+        cr_expect(!scene_ok && !view_ok, "%s: accepted by the scene (%d) or --camera (%d)",
+                  cameras[i], scene_ok, view_ok);
+        cr_expect_eq(scene_err.code, view_err.code, "%s: %s vs %s", cameras[i],
+                     error_code_name(scene_err.code), error_code_name(view_err.code));
+        const char *scene_says = strstr(scene_err.message, ": camera.");
+        const char *view_says = strstr(view_err.message, ": camera.");
+        cr_expect(scene_says && view_says && strcmp(scene_says, view_says) == 0,
+                  "%s: different messages:\n  %s\n  %s", cameras[i], scene_err.message,
+                  view_err.message);
+        cr_expect(strncmp(view_err.message, "--camera: camera.", 17) == 0, "%s", view_err.message);
+    }
 }

@@ -3,26 +3,15 @@
 
 #include <math.h>
 
-static void normalize3(float v[3])
-{
-    float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (len > 0.0f)
-        v[0] /= len, v[1] /= len, v[2] /= len;
-}
-
-static void cross3(const float a[3], const float b[3], float out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
+#include "base/vec3.h"
 
 Camera camera_from_desc(const CameraDesc *desc, int width, int height)
 {
     float forward[3] = {desc->target[0] - desc->eye[0], desc->target[1] - desc->eye[1],
                         desc->target[2] - desc->eye[2]};
-    float target_distance = sqrtf(forward[0] * forward[0] + forward[1] * forward[1] +
-                                  forward[2] * forward[2]);
+    float target_distance = length3(forward);
+    /* A described camera is checked (camera_json.c): eye != target, up not along the view, all
+     * within CAMERA_COORDINATE_LIMIT, so these lengths are finite and not zero. */
     normalize3(forward);
     float right[3], up[3];
     cross3(forward, desc->up, right); /* right-handed: right = forward x up */

@@ -1,9 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "viewer/camera_controls.h"
 
-#include <cjson/cJSON.h>
 #include <ctype.h>
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +9,7 @@
 
 #include "base/vec3.h"
 #include "scene/camera.h"
+#include "scene/camera_json.h"
 
 /* The view's orthonormal frame, as camera_from_desc builds it (right = forward x up). */
 typedef struct {
@@ -122,76 +121,6 @@ float viewer_camera_axis_distance(const CameraDesc *c, const float dir[3], float
 
 /* ---- JSON ----------------------------------------------------------------------------------- */
 
-static bool read_number(const cJSON *item, const char *key, float *out, Error *err)
-{
-    if (!cJSON_IsNumber(item)) {
-        error_set(err, ERR_JSON_TYPE, NULL, 0, "--camera: key '%s': expected a number", key);
-        return false;
-    }
-    if (!isfinite(item->valuedouble) || fabs(item->valuedouble) > FLT_MAX) {
-        error_set(err, ERR_JSON_VALUE, NULL, 0, "--camera: key '%s': %g is not a finite number", key,
-                  item->valuedouble);
-        return false;
-    }
-    *out = (float)item->valuedouble;
-    return true;
-}
-
-static bool read_vector(const cJSON *item, const char *key, float out[3], Error *err)
-{
-    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 3) {
-        error_set(err, ERR_JSON_TYPE, NULL, 0, "--camera: key '%s': expected an array of 3 numbers",
-                  key);
-        return false;
-    }
-    for (int i = 0; i < 3; i++)
-        if (!read_number(cJSON_GetArrayItem(item, i), key, &out[i], err))
-            return false;
-    return true;
-}
-
-/* One key of the camera object into c. */
-static bool read_camera_key(const cJSON *item, CameraDesc *c, Error *err)
-{
-    const char *key = item->string;
-    if (!strcmp(key, "eye")) return read_vector(item, key, c->eye, err);
-    if (!strcmp(key, "target")) return read_vector(item, key, c->target, err);
-    if (!strcmp(key, "up")) return read_vector(item, key, c->up, err);
-    float *scalar = !strcmp(key, "fov_y")            ? &c->fov_y
-                    : !strcmp(key, "aperture")       ? &c->aperture
-                    : !strcmp(key, "focus_distance") ? &c->focus_distance
-                                                     : NULL;
-    if (!scalar) {
-        error_set(err, ERR_JSON_UNKNOWN_KEY, NULL, 0,
-                  "--camera: unknown key '%s' (known: eye, target, up, fov_y, aperture, "
-                  "focus_distance)", key);
-        return false;
-    }
-    return read_number(item, key, scalar, err);
-}
-
-/* The values together must define a view (the scene loader's rules). */
-static bool check_camera(const CameraDesc *c, Error *err)
-{
-    float dir[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]};
-    float across[3];
-    cross3(dir, c->up, across);
-    const char *key = NULL, *why = NULL;
-    if (!(length3(dir) > 0.0f))
-        key = "target", why = "is the same point as eye";
-    else if (!(length3(across) > 1e-6f * length3(dir) * length3(c->up)))
-        key = "up", why = "is parallel to the view direction (or zero)";
-    else if (!(c->fov_y > 0.0f && c->fov_y < 180.0f))
-        key = "fov_y", why = "is out of range (0, 180)";
-    else if (c->aperture < 0.0f)
-        key = "aperture", why = "is negative";
-    else if (c->focus_distance < 0.0f)
-        key = "focus_distance", why = "is negative";
-    if (key)
-        error_set(err, ERR_JSON_VALUE, NULL, 0, "--camera: key '%s' %s", key, why);
-    return key == NULL;
-}
-
 /* Parses text; the fragment `"camera": {...}` (what 'C' prints) is read as {"camera": {...}}. */
 static cJSON *parse_text(const char *json, Error *err)
 {
@@ -229,12 +158,10 @@ bool viewer_camera_parse(const char *json, CameraDesc *c, Error *err)
         error_set(err, ERR_JSON_TYPE, NULL, 0,
                   "--camera: expected a JSON object like the scene's camera, e.g. "
                   "{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}");
-    CameraDesc next = *c;
-    for (const cJSON *item = ok ? object->child : NULL; item && ok; item = item->next)
-        ok = read_camera_key(item, &next, err);
-    ok = ok && check_camera(&next, err);
-    if (ok)
-        *c = next;
+    /* The scene's camera reader: keys present replace the values, and the same checks with the
+     * same messages, named "--camera: camera.<key>: ...". */
+    JsonParser p = {.file = "--camera", .text = NULL, .err = err};
+    ok = ok && camera_desc_from_json(&p, object, "camera", false, c);
     cJSON_Delete(root);
     return ok;
 }

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include "scene/camera_json.h"
+
+#include <math.h>
+#include <stdio.h>
+
+/* Camera coordinates within +-CAMERA_COORDINATE_LIMIT (json_read_vec3 has already rejected
+ * non-finite ones). */
+static bool check_coordinates(JsonParser *p, const float v[3], const char *key)
+{
+    for (int i = 0; i < 3; i++)
+        if (fabs(v[i]) > CAMERA_COORDINATE_LIMIT)
+            return json_fail(p, ERR_JSON_VALUE, key, "element %d (%g) is too large: camera "
+                             "coordinates must lie within +-%g", i, v[i], CAMERA_COORDINATE_LIMIT);
+    return true;
+}
+
+/* The camera must define a view: eye != target, and up not along the view direction. In double:
+ * within the coordinate limit, no product below overflows. */
+static bool check_frame(JsonParser *p, const CameraDesc *c, const char *path)
+{
+    char eye[64], target[64], up_key[64];
+    snprintf(eye, sizeof eye, "%s.eye", path);
+    snprintf(target, sizeof target, "%s.target", path);
+    snprintf(up_key, sizeof up_key, "%s.up", path);
+    if (!check_coordinates(p, c->eye, eye) || !check_coordinates(p, c->target, target) ||
+        !check_coordinates(p, c->up, up_key))
+        return false;
+    double dir[3], up[3];
+    for (int i = 0; i < 3; i++)
+        dir[i] = (double)c->target[i] - (double)c->eye[i], up[i] = c->up[i];
+    double dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    double up_len = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    if (!(dist > 0.0))
+        return json_fail(p, ERR_JSON_VALUE, target, "[%g, %g, %g] is the same point as %s",
+                         c->target[0], c->target[1], c->target[2], eye);
+    if (!(up_len > 0.0))
+        return json_fail(p, ERR_JSON_VALUE, up_key, "[%g, %g, %g] has no direction", c->up[0],
+                         c->up[1], c->up[2]);
+    double cross[3] = {dir[1] * up[2] - dir[2] * up[1], dir[2] * up[0] - dir[0] * up[2],
+                       dir[0] * up[1] - dir[1] * up[0]};
+    double sine = sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) /
+                  (dist * up_len);
+    if (!(sine > 1e-6))
+        return json_fail(p, ERR_JSON_VALUE, up_key, "[%g, %g, %g] is parallel to the view direction",
+                         c->up[0], c->up[1], c->up[2]);
+    return true;
+}
+
+/* Reads the scalar `name` of obj when present, then checks the value: an angle (fov_y) in
+ * (0, 180), a length not negative. */
+static bool read_scalar(JsonParser *p, const cJSON *obj, const char *path, const char *name,
+                        bool is_angle, float *value)
+{
+    char key[64];
+    snprintf(key, sizeof key, "%s.%s", path, name);
+    const cJSON *item = json_member(obj, name);
+    if (item && !json_read_float(p, item, key, value))
+        return false;
+    if (is_angle && !(*value > 0.0f && *value < 180.0f))
+        return json_fail(p, ERR_JSON_VALUE, key, "%g is out of range (0, 180)", *value);
+    if (!is_angle && *value < 0.0f)
+        return json_fail(p, ERR_JSON_VALUE, key, "%g is negative", *value);
+    return true;
+}
+
+static bool read_vector(JsonParser *p, const cJSON *obj, const char *path, const char *name,
+                        float value[3])
+{
+    char key[64];
+    snprintf(key, sizeof key, "%s.%s", path, name);
+    const cJSON *item = json_member(obj, name);
+    return !item || json_read_vec3(p, item, key, value);
+}
+
+bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
+                           bool require_eye_target, CameraDesc *inout)
+{
+    static const char *const keys[] = {"eye", "target", "up", "fov_y", "aperture", "focus_distance",
+                                       NULL};
+    if (!json_check_object(p, obj, path, keys))
+        return false;
+    static const char *const required[] = {"eye", "target"};
+    for (int i = 0; i < 2 && require_eye_target; i++)
+        if (!json_member(obj, required[i])) {
+            char key[64];
+            snprintf(key, sizeof key, "%s.%s", path, required[i]);
+            return json_fail(p, ERR_JSON_VALUE, key, "missing");
+        }
+    CameraDesc c = *inout;
+    bool ok = read_vector(p, obj, path, "eye", c.eye) &&
+              read_vector(p, obj, path, "target", c.target) &&
+              read_vector(p, obj, path, "up", c.up) &&
+              read_scalar(p, obj, path, "fov_y", true, &c.fov_y) &&
+              read_scalar(p, obj, path, "aperture", false, &c.aperture) &&
+              read_scalar(p, obj, path, "focus_distance", false, &c.focus_distance) &&
+              check_frame(p, &c, path);
+    if (!ok)
+        return false;
+    *inout = c;
+    return true;
+}

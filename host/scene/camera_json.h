@@ -1,0 +1,20 @@
+/* SPDX-License-Identifier: MIT */
+/* camera_json.h: the one reader of a camera object, for the scene's "camera" section and the
+ * viewer's --camera alike, so both accept and refuse the same cameras with the same messages. */
+#ifndef PT_CAMERA_JSON_H
+#define PT_CAMERA_JSON_H
+
+#include <stdbool.h>
+
+#include "scene/camera.h"
+#include "scene/json.h"
+
+/* Reads the camera object obj (at key path `path`, e.g. "camera") over *inout: keys present
+ * replace the values, the others are kept. With require_eye_target (a scene file) eye and target
+ * must be present. The result must define a view: fov_y in (0, 180), aperture and
+ * focus_distance >= 0, coordinates within +-CAMERA_COORDINATE_LIMIT, eye != target, up not along
+ * the view direction. *inout is unchanged on error. */
+bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
+                           bool require_eye_target, CameraDesc *inout);
+
+#endif

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: MIT
+/* scene_json.c: the sections of scene format v1 (shared/DESIGN.md). Each section checks its keys,
+ * reads them with json.h's typed readers and checks the values' ranges. */
+#include "scene/scene_json.h"
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/camera_json.h"
+
+static bool parse_positive_int(JsonParser *p, const cJSON *obj, const char *name, const char *key,
+                               int min, int max, int *out)
+{
+    const cJSON *item = json_member(obj, name);
+    if (!item)
+        return true;
+    if (!json_read_int(p, item, key, out))
+        return false;
+    if (*out < min || *out > max)
+        return json_fail(p, ERR_JSON_VALUE, key, "%d is out of range [%d, %d]", *out, min, max);
+    return true;
+}
+
+static bool parse_film(JsonParser *p, const cJSON *obj, SceneDesc *d)
+{
+    static const char *const keys[] = {"width", "height", NULL};
+    return json_check_object(p, obj, "film", keys) &&
+           parse_positive_int(p, obj, "width", "film.width", 1, FILM_SIZE_LIMIT, &d->width) &&
+           parse_positive_int(p, obj, "height", "film.height", 1, FILM_SIZE_LIMIT, &d->height);
+}
+
+static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
+{
+    static const char *const keys[] = {"spp", "max_depth", NULL};
+    return json_check_object(p, obj, "render", keys) &&
+           parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) &&
+           parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
+                              &d->max_depth);
+}
+
+/* Joins a path from the scene file onto the scene file's folder (absolute paths stay as they are). */
+static bool resolve_path(JsonParser *p, const char *key, const char *relative, char out[1024])
+{
+    const char *slash = strrchr(p->file, '/');
+    int folder_len = relative[0] == '/' || !slash ? 0 : (int)(slash - p->file) + 1;
+    int n = snprintf(out, 1024, "%.*s%s", folder_len, p->file, relative);
+    if (n < 0 || n >= 1024)
+        return json_fail(p, ERR_JSON_VALUE, key, "path \"%s\" is too long", relative);
+    return true;
+}
+
+static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
+{
+    static const char *const keys[] = {"obj", NULL};
+    if (!array)
+        return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
+    if (!cJSON_IsArray(array))
+        return json_fail(p, ERR_JSON_TYPE, "objects", "expected an array of objects");
+    int count = cJSON_GetArraySize(array);
+    if (count == 0)
+        return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
+    d->objects = calloc((size_t)count, sizeof *d->objects);
+    if (!d->objects)
+        return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
+    int i = 0;
+    for (const cJSON *e = array->child; e; e = e->next, i++) {
+        char key[64];
+        snprintf(key, sizeof key, "objects[%d]", i);
+        if (!json_check_object(p, e, key, keys))
+            return false;
+        snprintf(key, sizeof key, "objects[%d].obj", i);
+        const cJSON *obj = json_member(e, "obj");
+        if (!obj)
+            return json_fail(p, ERR_JSON_VALUE, key, "missing");
+        if (!cJSON_IsString(obj))
+            return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
+        if (!obj->valuestring[0])
+            return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
+        if (!resolve_path(p, key, obj->valuestring, d->objects[i]))
+            return false;
+        d->num_objects = i + 1;
+    }
+    return true;
+}
+
+static bool parse_background(JsonParser *p, const cJSON *item, float background[3])
+{
+    if (!json_read_vec3(p, item, "background", background))
+        return false;
+    for (int i = 0; i < 3; i++)
+        if (background[i] < 0.0f)
+            return json_fail(p, ERR_JSON_VALUE, "background", "[%g, %g, %g] has a negative radiance",
+                             background[0], background[1], background[2]);
+    return true;
+}
+
+bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
+{
+    static const char *const keys[] = {"camera", "film", "render", "objects", "background", NULL};
+    if (!json_check_object(p, root, "", keys))
+        return false;
+    const cJSON *item;
+    d->camera_given = (item = json_member(root, "camera")) != NULL;
+    if (item && !camera_desc_from_json(p, item, "camera", true, &d->camera))
+        return false;
+    if ((item = json_member(root, "film")) && !parse_film(p, item, d))
+        return false;
+    if ((item = json_member(root, "render")) && !parse_render(p, item, d))
+        return false;
+    if ((item = json_member(root, "background")) && !parse_background(p, item, d->background))
+        return false;
+    return parse_objects(p, json_member(root, "objects"), d);
+}
