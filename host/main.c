@@ -15,6 +15,7 @@
 #include "scene/camera.h"
 #include "app/cli.h"
 #include "device/device.h"
+#include "base/fs.h"
 #include "io/image_io.h"
 #include "scene/scene.h"
 #include "render/scene_upload.h"
@@ -109,9 +110,9 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
             return false;
         }
     }
-    if (paths->exr[0] && !image_check_writable(paths->exr, err))
+    if (paths->exr[0] && !fs_check_writable(paths->exr, err))
         return false;
-    if (paths->png[0] && !image_check_writable(paths->png, err))
+    if (paths->png[0] && !fs_check_writable(paths->png, err))
         return false;
     return true;
 }
@@ -203,7 +204,7 @@ static int command_render(const Options *o)
     int spp = desc->spp, spp_done = spp;
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
-    image_set_before_rename_hook(raise_at_write_point);
+    fs_set_before_rename_hook(raise_at_write_point);
     if (o->aov) {
         aov = aov_from_name(o->aov);
         stop_signals_test_point("render");

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 /* host/base: the file-system and vector helpers every layer uses. */
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -69,4 +71,63 @@ Test(base, vectors)
     cr_expect_not(normalize3(zero));
     cr_expect_not(normalize3(nan3));
     cr_expect_not(normalize3(inf3));
+}
+
+/* ---- Atomic writes (base/fs.h) ---------------------------------------------------------------- */
+
+static char g_hook_target[512];
+static char g_hook_seen[64];
+
+/* What the target holds at the moment the hook runs: the old content (the rename comes after). */
+static void read_target_in_hook(void)
+{
+    FILE *f = fopen(g_hook_target, "rb");
+    size_t n = f ? fread(g_hook_seen, 1, sizeof g_hook_seen - 1, f) : 0;
+    g_hook_seen[n] = '\0';
+    if (f)
+        fclose(f);
+}
+
+static int files_in(const char *folder)
+{
+    DIR *d = opendir(folder);
+    int n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += e->d_name[0] != '.';
+    if (d)
+        closedir(d);
+    return n;
+}
+
+Test(base, atomic_write_replaces_the_file_after_the_hook_and_leaves_no_temporary)
+{
+    char folder[64];
+    snprintf(folder, sizeof folder, "%s", test_temp_dir());
+    snprintf(g_hook_target, sizeof g_hook_target, "%s/out.txt", folder);
+    Error err = {0};
+    cr_assert(fs_write_atomic(g_hook_target, "old", 3, &err), "%s", err.message);
+    fs_set_before_rename_hook(read_target_in_hook);
+    cr_assert(fs_write_atomic(g_hook_target, "new", 3, &err), "%s", err.message);
+    fs_set_before_rename_hook(NULL);
+    cr_expect_str_eq(g_hook_seen, "old", "the hook runs before the rename");
+    size_t size = 0;
+    char *text = test_read_file(g_hook_target, &size);
+    cr_expect(text && size == 3 && memcmp(text, "new", 3) == 0);
+    free(text);
+    cr_expect_eq(files_in(folder), 1, "only out.txt: no temporary file left");
+}
+
+Test(base, atomic_write_refuses_bad_targets_with_one_line)
+{
+    char folder[64], path[600];
+    snprintf(folder, sizeof folder, "%s", test_temp_dir());
+    static const char *const bad[] = {"", "/missing/folder/x.exr", "%s/", "%s"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(path, sizeof path, bad[i], folder);
+        Error err = {0};
+        cr_expect_not(fs_write_atomic(path, "x", 1, &err), "accepted '%s'", path);
+        cr_expect_eq(err.code, ERR_OUTPUT, "'%s': %s", path, err.message);
+        cr_expect(strchr(err.message, '\n') == NULL, "one line: %s", err.message);
+    }
+    cr_expect_eq(files_in(folder), 0, "nothing written");
 }

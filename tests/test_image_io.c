@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/fs.h"
 #include "io/image_io.h"
 #include "support.h"
 
@@ -383,11 +384,11 @@ Test(output, check_writable_accepts_a_new_file_and_creates_nothing)
 {
     const char *folder = test_temp_dir();
     Error err = {0};
-    cr_assert(image_check_writable(join(folder, "new.exr"), &err), "%s", err.message);
+    cr_assert(fs_check_writable(join(folder, "new.exr"), &err), "%s", err.message);
     cr_assert_eq(folder_entry_count(folder), 0);
     /* A name without a folder part means the current folder (each test is its own process). */
     cr_assert_eq(chdir(folder), 0);
-    cr_assert(image_check_writable("relative-name.png", &err), "%s", err.message);
+    cr_assert(fs_check_writable("relative-name.png", &err), "%s", err.message);
     cr_assert_eq(folder_entry_count("."), 0);
 }
 
@@ -395,7 +396,7 @@ Test(output, missing_folder_is_an_output_error)
 {
     const char *path = join(test_temp_dir(), "missing/out.exr");
     Error check = {0}, exr = {0}, png = {0};
-    cr_assert_not(image_check_writable(path, &check));
+    cr_assert_not(fs_check_writable(path, &check));
     cr_assert_eq(check.code, ERR_OUTPUT);
     cr_assert(strstr(check.message, path), "message does not name the path: %s", check.message);
     cr_assert(strstr(check.message, "does not exist"), "message does not say why: %s",
@@ -415,7 +416,7 @@ Test(output, path_that_is_a_directory_is_refused)
     const char *subfolder = join(folder, "image.exr");
     cr_assert_eq(mkdir(subfolder, 0755), 0);
     Error check = {0}, write = {0}, slash = {0};
-    cr_assert_not(image_check_writable(subfolder, &check));
+    cr_assert_not(fs_check_writable(subfolder, &check));
     cr_assert_eq(check.code, ERR_OUTPUT);
     cr_assert(strstr(check.message, "directory"), "%s", check.message);
     float rgb[3] = {1, 2, 3};
@@ -423,7 +424,7 @@ Test(output, path_that_is_a_directory_is_refused)
     cr_assert_eq(write.code, ERR_OUTPUT);
     struct stat info;
     cr_assert(stat(subfolder, &info) == 0 && S_ISDIR(info.st_mode), "the directory was replaced");
-    cr_assert_not(image_check_writable(join(folder, "new/"), &slash));
+    cr_assert_not(fs_check_writable(join(folder, "new/"), &slash));
     cr_assert_eq(folder_entry_count(subfolder), 0);
 }
 
@@ -435,7 +436,7 @@ Test(output, read_only_folder_is_refused)
     cr_assert_eq(chmod(locked, 0555), 0);
     const char *path = join(locked, "out.exr");
     Error check = {0}, write = {0};
-    bool checked = image_check_writable(path, &check);
+    bool checked = fs_check_writable(path, &check);
     float rgb[3] = {1, 2, 3};
     bool written = image_write_exr(path, rgb, 1, 1, &write);
     if (geteuid() == 0 && (checked || written))

@@ -2,10 +2,13 @@
 #include "base/fs.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 bool fs_exists(const char *path)
 {
@@ -66,4 +69,116 @@ void fs_stem(const char *path, char *out, size_t size)
     if (dot)
         len = (size_t)(dot - (path + start));
     snprintf(out, size, "%.*s", (int)len, path + start);
+}
+
+/* ---- Atomic writes -------------------------------------------------------------------------- */
+
+/* Splits off the folder of `path` ("." when it has none). */
+static bool folder_of(const char *path, char *folder, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return snprintf(folder, size, ".") < (int)size;
+    size_t length = slash == path ? 1 : (size_t)(slash - path);
+    if (length >= size)
+        return false;
+    memcpy(folder, path, length);
+    folder[length] = '\0';
+    return true;
+}
+
+bool fs_check_writable(const char *path, Error *err)
+{
+    if (!path || !path[0]) {
+        error_set(err, ERR_OUTPUT, "", 0, "output path is empty");
+        return false;
+    }
+    char folder[PATH_MAX];
+    /* Room for the ".tmp-<pid>" suffix of the temporary file. */
+    if (strlen(path) + 32 >= sizeof folder || !folder_of(path, folder, sizeof folder)) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: output path is too long", path);
+        return false;
+    }
+    struct stat info;
+    size_t length = strlen(path);
+    if (path[length - 1] == '/' || (stat(path, &info) == 0 && S_ISDIR(info.st_mode))) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: output path is a directory", path);
+        return false;
+    }
+    if (stat(folder, &info) != 0) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: folder %s does not exist (%s)", path, folder,
+                  strerror(errno));
+        return false;
+    }
+    if (!S_ISDIR(info.st_mode)) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: %s is not a folder", path, folder);
+        return false;
+    }
+    if (access(folder, W_OK | X_OK) != 0) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: folder %s is not writable (%s)", path, folder,
+                  strerror(errno));
+        return false;
+    }
+    return true;
+}
+
+void fs_temp_path(const char *path, char *temp, size_t size)
+{
+    snprintf(temp, size, "%s.tmp-%ld", path, (long)getpid());
+}
+
+/* Flushes the finished temporary file to disk, then renames it over the target: rename() is
+ * atomic, and the flush keeps a crash from leaving a renamed but empty file. */
+static bool commit_temp_file(const char *temp, const char *path, Error *err)
+{
+    int fd = open(temp, O_RDONLY);
+    if (fd < 0 || fsync(fd) != 0) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot flush %s (%s)", path, temp,
+                  strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return false;
+    }
+    close(fd);
+    if (rename(temp, path) != 0) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot rename %s over it (%s)", path, temp,
+                  strerror(errno));
+        return false;
+    }
+    return true;
+}
+
+static void (*g_before_rename)(void);
+void fs_set_before_rename_hook(void (*hook)(void)) { g_before_rename = hook; }
+
+bool fs_finish_atomic_write(const char *temp, const char *path, bool written, Error *err)
+{
+    if (written && g_before_rename)
+        g_before_rename();
+    if (written && commit_temp_file(temp, path, err))
+        return true;
+    unlink(temp);
+    return false;
+}
+
+bool fs_write_atomic(const char *path, const void *data, size_t size, Error *err)
+{
+    if (!fs_check_writable(path, err))
+        return false;
+    char temp[PATH_MAX];
+    fs_temp_path(path, temp, sizeof temp);
+    FILE *f = fopen(temp, "wb");
+    if (!f) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot create %s (%s)", path, temp,
+                  strerror(errno));
+        return false;
+    }
+    bool written = fwrite(data, 1, size, f) == size;
+    int saved_errno = errno;
+    if (fclose(f) != 0 && written)
+        written = false, saved_errno = errno;
+    if (!written)
+        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot write %s (%s)", path, temp,
+                  strerror(saved_errno));
+    return fs_finish_atomic_write(temp, path, written, err);
 }

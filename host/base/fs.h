@@ -1,10 +1,14 @@
 /* SPDX-License-Identifier: MIT */
-/* fs.h: small file-system helpers shared by commands, caches and tools. */
+/* fs.h: small file-system helpers shared by commands, caches and tools, and the atomic write:
+ * a file is written to "<path>.tmp-<pid>" in the same folder, flushed to disk and renamed over
+ * path, so an interrupted or failed write never leaves a half-written file at path. */
 #ifndef PT_FS_H
 #define PT_FS_H
 
 #include <stdbool.h>
 #include <stddef.h>
+
+#include "base/error.h"
 
 /* True when something (file, folder, ...) exists at path. */
 bool fs_exists(const char *path);
@@ -17,5 +21,23 @@ bool fs_has_suffix(const char *name, const char *suffix);
 /* The name of a scene or file without folders and without its last extension
  * ("scenes/cornell-box/" -> "cornell-box", "a/b.json" -> "b"), into out[size]. */
 void fs_stem(const char *path, char *out, size_t size);
+
+
+/* Checks before a long computation that a file can be created at path: not empty, not a folder,
+ * its folder exists and is writable, and room for the temporary name. ERR_OUTPUT otherwise. */
+bool fs_check_writable(const char *path, Error *err);
+
+/* An atomic write in three steps: fs_check_writable(path), write everything to the file named by
+ * fs_temp_path(path), then fs_finish_atomic_write. */
+void fs_temp_path(const char *path, char *temp, size_t size);
+/* written: the temporary file is complete. Then it is flushed and renamed over path; otherwise, or
+ * when that fails (err set), it is removed. */
+bool fs_finish_atomic_write(const char *temp, const char *path, bool written, Error *err);
+/* Called once a temporary file is complete, just before it is renamed into place (pt's signal
+ * tests raise a signal there: the rename must still happen). NULL = none. */
+void fs_set_before_rename_hook(void (*hook)(void));
+
+/* The three steps for data already in memory (caches, CSVs). */
+bool fs_write_atomic(const char *path, const void *data, size_t size, Error *err);
 
 #endif
