@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+/* render_cmd.c: `pt render`: open the session, plan the outputs (never overwriting without -o),
+ * render (path tracing or an AOV), write EXR and/or PNG, and report; SIGINT, SIGTERM and SIGHUP
+ * stop the render and keep the image. */
+#include "app/render_cmd.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "app/render_loop.h"
+#include "app/stop_signals.h"
+#include "base/fs.h"
+#include "io/image_io.h"
+#include "render/aov.h"
+#include "render/session.h"
+#include "render/wavefront.h"
+
+typedef struct {
+    char exr[1100];
+    char png[1100];
+} OutputPaths;
+
+/* Without -o: out/<name>.exr, then <name>-2 ... <name>-MAX_NUMBERED_OUTPUTS; past that, an error
+ * (never an overwrite). */
+#define MAX_NUMBERED_OUTPUTS 9999
+
+/* -o names the output (and may overwrite it: the user asked). Without -o, out/<name>.exr + .png,
+ * numbered (<name>-2, -3, ...) so that nothing already there is overwritten. */
+static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *paths, Error *err)
+{
+    memset(paths, 0, sizeof *paths);
+    if (o->output) {
+        if (strlen(o->output) + 4 >= sizeof paths->exr) {
+            error_set(err, ERR_OUTPUT, o->output, 0, "-o %s: the output path is too long (%zu bytes)",
+                      o->output, strlen(o->output));
+            return false;
+        }
+        if (fs_has_suffix(o->output, ".exr")) {
+            snprintf(paths->exr, sizeof paths->exr, "%s", o->output);
+            if (o->preview)
+                snprintf(paths->png, sizeof paths->png, "%.*s.png", (int)strlen(o->output) - 4,
+                         o->output);
+        } else if (fs_has_suffix(o->output, ".png")) {
+            snprintf(paths->png, sizeof paths->png, "%s", o->output);
+        } else {
+            error_set(err, ERR_USAGE, NULL, 0, "-o %s: the output must end in .exr or .png", o->output);
+            return false;
+        }
+    } else {
+        char name[512];
+        fs_stem(o->scene, name, sizeof name);
+        if (!fs_exists("out") && mkdir("out", 0777) != 0) {
+            error_set(err, ERR_OUTPUT, "out", 0, "cannot create the output folder 'out'");
+            return false;
+        }
+        bool found = false;
+        for (int n = 1; n <= MAX_NUMBERED_OUTPUTS && !found; n++) {
+            char stem[600];
+            if (n == 1)
+                snprintf(stem, sizeof stem, "out/%s%s", name, suffix);
+            else
+                snprintf(stem, sizeof stem, "out/%s%s-%d", name, suffix, n);
+            snprintf(paths->exr, sizeof paths->exr, "%s.exr", stem);
+            snprintf(paths->png, sizeof paths->png, "%s.png", stem);
+            found = !fs_exists(paths->exr) && !fs_exists(paths->png);
+        }
+        if (!found) {
+            error_set(err, ERR_OUTPUT, "out", 0,
+                      "out/%s%s.exr to out/%s%s-%d.exr (or .png) all exist: move some away or name "
+                      "the output with -o", name, suffix, name, suffix, MAX_NUMBERED_OUTPUTS);
+            return false;
+        }
+    }
+    if (paths->exr[0] && !fs_check_writable(paths->exr, err))
+        return false;
+    if (paths->png[0] && !fs_check_writable(paths->png, err))
+        return false;
+    return true;
+}
+
+static unsigned aov_from_name(const char *name)
+{
+    if (!strcmp(name, "normal")) return AOV_NORMAL;
+    if (!strcmp(name, "depth")) return AOV_DEPTH;
+    return AOV_ALBEDO;
+}
+
+/* PNG previews of AOVs: normals mapped from [-1, 1] to [0, 1], depth scaled by its maximum. */
+static void aov_png_remap(unsigned aov, float *rgb, size_t n)
+{
+    if (aov == AOV_NORMAL) {
+        for (size_t i = 0; i < 3 * n; i++)
+            rgb[i] = 0.5f * rgb[i] + 0.5f;
+    } else if (aov == AOV_DEPTH) {
+        float max_depth = 0.0f;
+        for (size_t i = 0; i < 3 * n; i++)
+            max_depth = rgb[i] > max_depth ? rgb[i] : max_depth;
+        for (size_t i = 0; i < 3 * n && max_depth > 0.0f; i++)
+            rgb[i] /= max_depth;
+    }
+}
+
+/* PT_TEST_RAISE=SIGNAL@write raises its signal between a temporary file and its rename. */
+static void raise_at_write_point(void) { stop_signals_test_point("write"); }
+
+static ProgressStyle progress_style(const Options *o)
+{
+    if (o->progress)
+        return PROGRESS_LINES;
+    return !o->quiet && isatty(STDERR_FILENO) ? PROGRESS_TERMINAL : PROGRESS_NONE;
+}
+
+static void report_render(const Options *o, const RenderStats *stats)
+{
+    if (stats->nonfinite)
+        fprintf(stderr, "pt: warning: %u samples were NaN or Inf and were counted as black\n",
+                stats->nonfinite);
+    if (!o->quiet)
+        fprintf(stderr,
+                "pt: %d spp in %.2f s: %.2f Mpaths/s, %.2f Mrays/s (%.2f extension + %.2f shadow); "
+                "pool %u paths, %u windows of %u samples\n",
+                stats->spp_done, stats->seconds, stats->paths / stats->seconds * 1e-6,
+                (stats->extension_rays + stats->shadow_rays) / stats->seconds * 1e-6,
+                stats->extension_rays / stats->seconds * 1e-6,
+                stats->shadow_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches,
+                stats->window_size);
+    if (o->profile) {
+        double total = 0.0;
+        for (int k = 0; k < STAGE_COUNT; k++)
+            total += stats->stage_ms[k];
+        fprintf(stderr, "%-22s %9s %11s %7s\n", "stage", "launches", "total ms", "share");
+        for (int k = 0; k < STAGE_COUNT; k++)
+            fprintf(stderr, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
+                    stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
+        fprintf(stderr, "live paths per step (all windows):");
+        for (int b = 0; b < 64 && stats->live_per_step[b]; b++)
+            fprintf(stderr, " %llu", (unsigned long long)stats->live_per_step[b]);
+        fputc('\n', stderr);
+    }
+}
+
+int command_render(const Options *o)
+{
+    Error err = {0};
+    Session session;
+    RenderDesc render = cli_render_desc(o);
+    if (!stop_signals_configure(&err) || !session_open(&session, &render, &err))
+        die("%s", err.message);
+    OutputPaths out;
+    char suffix[32] = "";
+    if (o->aov)
+        snprintf(suffix, sizeof suffix, "-%s", o->aov);
+    if (!plan_outputs(o, suffix, &out, &err))
+        die("%s", err.message);
+    if (!o->quiet)
+        session_print_summary(&session);
+
+    const SceneDesc *desc = &session.scene.desc;
+    size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
+    float *rgb = malloc(num_pixels * 3 * sizeof *rgb);
+    if (!rgb)
+        die("out of memory for a %dx%d film", desc->width, desc->height);
+    unsigned seed = o->seed_given ? o->seed : 0u;
+    unsigned aov = AOV_ALBEDO;
+    int spp = desc->spp, spp_done = spp;
+    /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
+    stop_signals_install();
+    fs_set_before_rename_hook(raise_at_write_point);
+    if (o->aov) {
+        aov = aov_from_name(o->aov);
+        stop_signals_test_point("render");
+        aov_render(&session.dev, &session.scene, &session.buffers, aov, desc->spp, seed, rgb);
+    } else {
+        RenderSettings settings = {
+            .spp = desc->spp,
+            .max_depth = desc->max_depth,
+            .seed = seed,
+            .no_nee = o->no_nee,
+            .sort_materials = o->sort_materials,
+            .no_compaction = o->no_compaction,
+            .quiet = o->quiet,
+            .profile = o->profile,
+        };
+        RenderStats stats;
+        if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
+            die("%s", err.message);
+        report_render(o, &stats);
+        spp_done = stats.spp_done;
+        if (stats.paths == 0) {
+            fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
+                    stop_signal_name(stop_signal_received()));
+            free(rgb);
+            session_close(&session);
+            return stop_exit_status();
+        }
+    }
+
+    if (out.exr[0]) {
+        if (!image_write_exr(out.exr, rgb, desc->width, desc->height, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out.exr);
+    }
+    if (out.png[0]) {
+        if (o->aov)
+            aov_png_remap(aov, rgb, num_pixels);
+        if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out.png);
+    }
+    free(rgb);
+    session_close(&session);
+    if (stop_signal_received())
+        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",
+                stop_signal_name(stop_signal_received()), spp_done, spp);
+    return stop_exit_status();
+}
