@@ -11,6 +11,7 @@
 
 #include <stb_image_write.h>
 
+#include "base/clock.h"
 #include "scene/scene.h"
 #include "scene/scene_data.h"
 #include "support.h"
@@ -352,13 +353,6 @@ Test(flatten, obj_without_faces_has_no_triangles)
     Error err2 = {0};
     cr_expect_not(scene_load(empty, &scene, &err2));
     cr_expect_eq(err2.code, ERR_NO_TRIANGLES, "%s", error_code_name(err2.code));
-}
-
-static double seconds_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* The 100k-triangle dragon unifies to one vertex per position (it has no normals or uvs). The time
