@@ -1,93 +1,21 @@
 // SPDX-License-Identifier: MIT
 /* test_image_io.c: EXR round trips (bit-exact, checked again with OpenEXR directly), PNG encoding
- * against the sRGB formula, atomic writes that leave nothing behind on failure, output-path checks,
- * non-finite pixels, and reading the tiled half-float asset EXRs. */
+ * against the sRGB formula, non-finite pixels, and reading the tiled half-float asset EXRs. Output
+ * paths and atomic writes: test_image_io_output.c. */
 #include <criterion/criterion.h>
-#include <dirent.h>
 #include <math.h>
 #include <openexr.h>
-#include <signal.h>
 #include <stb_image.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
-#include "base/fs.h"
+#include "image_io_fixtures.h"
 #include "io/image_io.h"
 #include "support.h"
 
 /* ---- helpers ----------------------------------------------------------------------------- */
-
-static uint32_t rng_state = 0x9e3779b9u;
-
-static uint32_t next_random(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return rng_state;
-}
-
-/* Finite floats over the whole range: ordinary values, huge ones, tiny normals, denormals and
- * signed zeros, so any lossy step (half conversion, rounding) shows up as a bit difference. */
-static float random_finite_float(void)
-{
-    switch (next_random() % 6) {
-    case 0:
-        return (float)(next_random() % 100000) / 1000.0f;
-    case 1:
-        return ldexpf((float)(next_random() % 1000 + 1), 100 + (int)(next_random() % 17));
-    case 2:
-        return ldexpf((float)(next_random() % 1000 + 1), -130 + (int)(next_random() % 20));
-    case 3:
-        return next_random() % 2 ? 0.0f : -0.0f;
-    default: {
-        uint32_t bits = next_random();
-        float value;
-        memcpy(&value, &bits, sizeof value);
-        return isfinite(value) ? value : 1.0f;
-    }
-    }
-}
-
-static float *random_image(int width, int height)
-{
-    size_t count = (size_t)width * (size_t)height * 3;
-    float *rgb = malloc(count * sizeof *rgb);
-    cr_assert_not_null(rgb);
-    for (size_t i = 0; i < count; i++)
-        rgb[i] = random_finite_float();
-    return rgb;
-}
-
-/* "folder/name" in one of 8 rotating buffers, so a result can be joined again. */
-static const char *join(const char *folder, const char *name)
-{
-    static char paths[8][512];
-    static int slot;
-    char joined[512];
-    snprintf(joined, sizeof joined, "%s/%s", folder, name);
-    slot = (slot + 1) % 8;
-    memcpy(paths[slot], joined, sizeof joined);
-    return paths[slot];
-}
-
-static int folder_entry_count(const char *folder)
-{
-    DIR *dir = opendir(folder);
-    cr_assert_not_null(dir, "cannot open %s", folder);
-    int count = 0;
-    struct dirent *entry;
-    while ((entry = readdir(dir)))
-        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
-            count++;
-    closedir(dir);
-    return count;
-}
 
 /* The sRGB OETF in double precision, as the standard states it. */
 static double srgb_from_linear(double linear)
@@ -376,123 +304,4 @@ Test(png, non_finite_pixels_are_written_as_zero_and_large_ones_clamp)
               pixels[7], pixels[8]);
     cr_assert_eq(pixels[10], 0);
     stbi_image_free(pixels);
-}
-
-/* ---- output paths and atomic writes ------------------------------------------------------ */
-
-Test(output, check_writable_accepts_a_new_file_and_creates_nothing)
-{
-    const char *folder = test_temp_dir();
-    Error err = {0};
-    cr_assert(fs_check_writable(join(folder, "new.exr"), &err), "%s", err.message);
-    cr_assert_eq(folder_entry_count(folder), 0);
-    /* A name without a folder part means the current folder (each test is its own process). */
-    cr_assert_eq(chdir(folder), 0);
-    cr_assert(fs_check_writable("relative-name.png", &err), "%s", err.message);
-    cr_assert_eq(folder_entry_count("."), 0);
-}
-
-Test(output, missing_folder_is_an_output_error)
-{
-    const char *path = join(test_temp_dir(), "missing/out.exr");
-    Error check = {0}, exr = {0}, png = {0};
-    cr_assert_not(fs_check_writable(path, &check));
-    cr_assert_eq(check.code, ERR_OUTPUT);
-    cr_assert(strstr(check.message, path), "message does not name the path: %s", check.message);
-    cr_assert(strstr(check.message, "does not exist"), "message does not say why: %s",
-              check.message);
-
-    float rgb[3] = {1, 2, 3};
-    cr_assert_not(image_write_exr(path, rgb, 1, 1, &exr));
-    cr_assert_eq(exr.code, ERR_OUTPUT, "%s", exr.message);
-    cr_assert(strstr(exr.message, path), "%s", exr.message);
-    cr_assert_not(image_write_png(path, rgb, 1, 1, 0.0f, &png));
-    cr_assert_eq(png.code, ERR_OUTPUT, "%s", png.message);
-}
-
-Test(output, path_that_is_a_directory_is_refused)
-{
-    const char *folder = test_temp_dir();
-    const char *subfolder = join(folder, "image.exr");
-    cr_assert_eq(mkdir(subfolder, 0755), 0);
-    Error check = {0}, write = {0}, slash = {0};
-    cr_assert_not(fs_check_writable(subfolder, &check));
-    cr_assert_eq(check.code, ERR_OUTPUT);
-    cr_assert(strstr(check.message, "directory"), "%s", check.message);
-    float rgb[3] = {1, 2, 3};
-    cr_assert_not(image_write_exr(subfolder, rgb, 1, 1, &write));
-    cr_assert_eq(write.code, ERR_OUTPUT);
-    struct stat info;
-    cr_assert(stat(subfolder, &info) == 0 && S_ISDIR(info.st_mode), "the directory was replaced");
-    cr_assert_not(fs_check_writable(join(folder, "new/"), &slash));
-    cr_assert_eq(folder_entry_count(subfolder), 0);
-}
-
-Test(output, read_only_folder_is_refused)
-{
-    const char *folder = test_temp_dir();
-    const char *locked = join(folder, "locked");
-    cr_assert_eq(mkdir(locked, 0555), 0);
-    cr_assert_eq(chmod(locked, 0555), 0);
-    const char *path = join(locked, "out.exr");
-    Error check = {0}, write = {0};
-    bool checked = fs_check_writable(path, &check);
-    float rgb[3] = {1, 2, 3};
-    bool written = image_write_exr(path, rgb, 1, 1, &write);
-    if (geteuid() == 0 && (checked || written))
-        cr_skip_test("running as root, which ignores folder permissions");
-    cr_assert_not(checked);
-    cr_assert_eq(check.code, ERR_OUTPUT);
-    cr_assert(strstr(check.message, "not writable"), "%s", check.message);
-    cr_assert_not(written);
-    cr_assert_eq(write.code, ERR_OUTPUT);
-    cr_assert_eq(folder_entry_count(locked), 0);
-}
-
-/* A file-size limit makes the disk "fill up" part-way through the write; the failed write must
- * report ERR_OUTPUT, remove its temporary file and leave the previous image untouched. */
-static void check_failed_write_leaves_previous_file(bool exr)
-{
-    const char *folder = test_temp_dir();
-    const char *path = join(folder, exr ? "out.exr" : "out.png");
-    float small[3 * 4] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f, 0.0f, 0.5f};
-    Error err = {0};
-    bool ok = exr ? image_write_exr(path, small, 2, 2, &err)
-                  : image_write_png(path, small, 2, 2, 0.0f, &err);
-    cr_assert(ok, "%s", err.message);
-    size_t before_size = 0;
-    char *before = test_read_file(path, &before_size);
-    cr_assert_not_null(before);
-
-    signal(SIGXFSZ, SIG_IGN);
-    struct rlimit limit = {.rlim_cur = 4096, .rlim_max = RLIM_INFINITY};
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &limit), 0);
-    float *noise = random_image(257, 129); /* random bits: compresses to far more than 4 KiB */
-    Error failed = {0};
-    ok = exr ? image_write_exr(path, noise, 257, 129, &failed)
-             : image_write_png(path, noise, 257, 129, 0.0f, &failed);
-    limit.rlim_cur = RLIM_INFINITY;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &limit), 0);
-
-    cr_assert_not(ok, "the write should fail under a 4 KiB file-size limit");
-    cr_assert_eq(failed.code, ERR_OUTPUT, "%s", failed.message);
-    cr_assert(strstr(failed.message, path), "%s", failed.message);
-    cr_assert_eq(folder_entry_count(folder), 1, "a temporary file was left behind");
-    size_t after_size = 0;
-    char *after = test_read_file(path, &after_size);
-    cr_assert(after && after_size == before_size && memcmp(before, after, before_size) == 0,
-              "the previous file was changed by a failed write");
-    free(before);
-    free(after);
-    free(noise);
-}
-
-Test(output, failed_exr_write_leaves_no_temp_file_and_keeps_the_old_image)
-{
-    check_failed_write_leaves_previous_file(true);
-}
-
-Test(output, failed_png_write_leaves_no_temp_file_and_keeps_the_old_image)
-{
-    check_failed_write_leaves_previous_file(false);
 }

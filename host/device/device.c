@@ -501,3 +501,10 @@ void device_close(Device *dev)
         clReleaseContext(dev->context);
     memset(dev, 0, sizeof *dev);
 }
+
+cl_ulong device_local_mem_bytes(const Device *dev)
+{
+    cl_ulong bytes = 0;
+    CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_LOCAL_MEM_SIZE, sizeof bytes, &bytes, NULL));
+    return bytes;
+}

@@ -96,4 +96,7 @@ void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *p
 
 void device_close(Device *dev);
 
+/* CL_DEVICE_LOCAL_MEM_SIZE: the local memory a work-group may use, in bytes. */
+cl_ulong device_local_mem_bytes(const Device *dev);
+
 #endif

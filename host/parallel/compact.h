@@ -5,8 +5,8 @@
  *     uint32_t live = compactor_run(compactor, alive_flags, active_indices, num_slots);
  *
  * flags: n uints, nonzero = alive. indices: receives the i with flags[i] != 0, in increasing order.
- * A Compactor owns its kernels and scratch buffers (a bit mask and the tile sums of every scan
- * level, sized for max_n), so it serves any n <= max_n, as often as wanted, on the device's queue.
+ * A Compactor owns its kernels and scratch buffers (a bit mask, the tile sums and an ExclusiveScan
+ * for them, sized for max_n), so it serves any n <= max_n, as often as wanted, on the device's queue.
  * It is not safe to use one Compactor from two threads at once. */
 #ifndef PT_COMPACT_H
 #define PT_COMPACT_H
@@ -48,7 +48,7 @@ void compactor_set_profile(Compactor *c, double *ms_accumulator);
 size_t compactor_group_size(const Compactor *c);
 
 /* Kernel launches the compaction of n flags takes: 2 up to 256 group_size^2 flags (2^24 for 256),
- * then 5, and 2 more per further scan level. */
+ * then 2 plus those of the exclusive scan of the n / (32 group_size) tile counts. */
 int compactor_launches(const Compactor *c, uint32_t n);
 
 void compactor_destroy(Compactor *c);

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define VALUES_PER_ITEM 8   /* per work item on the levels below the top (as in host/parallel/compact.c) */
+#define VALUES_PER_ITEM 8   /* per work item on the levels below the top (the compactor's tile sums too) */
 #define TOP_MAX_PER_ITEM 32 /* the top level's tile: 32 x 256 values = 32 KiB of local memory */
 #define MAX_LEVELS 16       /* enough for 2^32 values even with one work item per group */
 #define GROUP_SIZE 256
@@ -21,7 +21,7 @@ struct ExclusiveScan {
     cl_kernel reduce_values, exclusive_values;
     cl_mem levels[MAX_LEVELS]; /* [0]: the caller's array, set per call; [k]: level k's values */
     cl_mem zero;               /* {0}: the top level's offset */
-    cl_mem total;              /* the grand total the kernel writes (unused here) */
+    cl_mem total;              /* the grand total, when the caller wants none */
 };
 
 static size_t div_up(size_t a, size_t b) { return (a + b - 1) / b; }
@@ -56,7 +56,7 @@ static int level_sizes(const ExclusiveScan *s, size_t m, size_t sizes[MAX_LEVELS
     return top;
 }
 
-ExclusiveScan *exclusive_scan_create(Device *dev, size_t max_m, Error *err)
+ExclusiveScan *exclusive_scan_create_sized(Device *dev, size_t max_m, size_t group_size, Error *err)
 {
     if (max_m > UINT32_MAX) {
         error_set(err, ERR_TOO_LARGE, NULL, 0, "exclusive scan: %zu values, at most %u", max_m,
@@ -71,12 +71,10 @@ ExclusiveScan *exclusive_scan_create(Device *dev, size_t max_m, Error *err)
     s->reduce_values = device_kernel(dev, "scan_reduce_values");
     s->exclusive_values = device_kernel(dev, "scan_exclusive_values");
     cl_kernel kernels[] = {s->reduce_values, s->exclusive_values};
-    s->group_size = pow2_group_size(dev, kernels, 2, GROUP_SIZE);
+    s->group_size = pow2_group_size(dev, kernels, 2, group_size ? group_size : GROUP_SIZE);
 
     /* The top level's tile and the scan scratch (2 uints per item) must fit local memory. */
-    cl_ulong local_bytes = 0;
-    CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_LOCAL_MEM_SIZE, sizeof local_bytes,
-                             &local_bytes, NULL));
+    cl_ulong local_bytes = device_local_mem_bytes(dev);
     size_t per_item = local_bytes / (sizeof(cl_uint) * s->group_size);
     per_item = per_item > 2 ? per_item - 2 : 1;
     s->top_max_per_item = per_item < TOP_MAX_PER_ITEM ? per_item : TOP_MAX_PER_ITEM;
@@ -105,6 +103,11 @@ ExclusiveScan *exclusive_scan_create(Device *dev, size_t max_m, Error *err)
     return s;
 }
 
+ExclusiveScan *exclusive_scan_create(Device *dev, size_t max_m, Error *err)
+{
+    return exclusive_scan_create_sized(dev, max_m, 0, err);
+}
+
 /* Launches groups work-groups; adds the device time when profiling. */
 static void launch(ExclusiveScan *s, cl_kernel kernel, size_t groups, double *profile_ms)
 {
@@ -115,8 +118,10 @@ static void launch(ExclusiveScan *s, cl_kernel kernel, size_t groups, double *pr
 }
 
 /* Exclusive scan of level k in tiles of per_item x group values, plus the offsets of level k + 1
- * (already scanned), or {0} at the top (one work-group). */
-static void scan_level(ExclusiveScan *s, const size_t *sizes, int k, int top, double *profile_ms)
+ * (already scanned), or {0} at the top (one work-group). Every level's last tile writes the same
+ * grand total into total[0]. */
+static void scan_level(ExclusiveScan *s, const size_t *sizes, int k, int top, cl_mem total,
+                       double *profile_ms)
 {
     size_t group = s->group_size;
     cl_uint m = (cl_uint)sizes[k];
@@ -124,7 +129,7 @@ static void scan_level(ExclusiveScan *s, const size_t *sizes, int k, int top, do
     cl_mem offsets = k == top ? s->zero : s->levels[k + 1];
     cl_kernel kernel = s->exclusive_values;
     KERNEL_ARGS(kernel, 0, KARG(s->levels[k]), KARG(m), KARG(per_item), KARG(offsets),
-                KARG(s->total), KARG_LOCAL(per_item * group * sizeof(cl_uint)),
+                KARG(total), KARG_LOCAL(per_item * group * sizeof(cl_uint)),
                 KARG_LOCAL(2 * group * sizeof(cl_uint)));
     launch(s, kernel, k == top ? 1 : sizes[k + 1], profile_ms);
 }
@@ -138,7 +143,8 @@ static void reduce_level(ExclusiveScan *s, const size_t *sizes, int k, double *p
     launch(s, s->reduce_values, sizes[k + 1], profile_ms);
 }
 
-void exclusive_scan_enqueue(ExclusiveScan *s, cl_mem values, uint32_t m, double *profile_ms)
+void exclusive_scan_enqueue_total(ExclusiveScan *s, cl_mem values, uint32_t m, cl_mem total,
+                                  double *profile_ms)
 {
     if (m > s->max_m)
         die("exclusive_scan: %u values, above the %zu it was created for", m, s->max_m);
@@ -150,8 +156,13 @@ void exclusive_scan_enqueue(ExclusiveScan *s, cl_mem values, uint32_t m, double 
     for (int k = 0; k < top; k++)
         reduce_level(s, sizes, k, profile_ms);
     for (int k = top; k >= 0; k--)
-        scan_level(s, sizes, k, top, profile_ms);
+        scan_level(s, sizes, k, top, total, profile_ms);
     s->levels[0] = NULL;
+}
+
+void exclusive_scan_enqueue(ExclusiveScan *s, cl_mem values, uint32_t m, double *profile_ms)
+{
+    exclusive_scan_enqueue_total(s, values, m, s->total, profile_ms);
 }
 
 int exclusive_scan_launches(const ExclusiveScan *s, uint32_t m)

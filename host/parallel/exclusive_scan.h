@@ -23,9 +23,19 @@ typedef struct ExclusiveScan ExclusiveScan;
  * (ERR_TOO_LARGE). */
 ExclusiveScan *exclusive_scan_create(Device *dev, size_t max_m, Error *err);
 
+/* The same with work-groups of at most group_size (lowered to a power of two the device and the
+ * kernels accept; 0 = 256): the compactor scans its tile counts with its own work-group size. */
+ExclusiveScan *exclusive_scan_create_sized(Device *dev, size_t max_m, size_t group_size,
+                                           Error *err);
+
 /* Enqueues the scan of values[0..m) in place, m <= max_m, without waiting unless profile_ms is not
  * NULL: then it waits for each launch and adds the launches' device time to *profile_ms. */
 void exclusive_scan_enqueue(ExclusiveScan *s, cl_mem values, uint32_t m, double *profile_ms);
+
+/* The same, and the sum of all m values into total[0] (a device buffer of at least one uint);
+ * nothing is written for m = 0. */
+void exclusive_scan_enqueue_total(ExclusiveScan *s, cl_mem values, uint32_t m, cl_mem total,
+                                  double *profile_ms);
 
 /* Kernel launches the scan of m values takes (0 for m = 0). */
 int exclusive_scan_launches(const ExclusiveScan *s, uint32_t m);

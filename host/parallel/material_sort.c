@@ -29,13 +29,6 @@ struct MaterialSorter {
 
 static size_t div_up(size_t a, size_t b) { return (a + b - 1) / b; }
 
-static cl_ulong local_memory_bytes(Device *dev)
-{
-    cl_ulong bytes = 0;
-    CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_LOCAL_MEM_SIZE, sizeof bytes, &bytes, NULL));
-    return bytes;
-}
-
 /* Local memory of count uints padded with one word per 32, as the kernels index them. */
 static size_t padded_bytes(size_t count) { return (count + count / 32) * sizeof(cl_uint); }
 
@@ -58,7 +51,7 @@ static size_t pick_group_size(MaterialSorter *s, size_t request)
         request = MAX_GROUP_SIZE;
     cl_kernel kernels[] = {s->count_local, s->count_global, s->scatter};
     size_t size = pow2_group_size(s->dev, kernels, 3, request);
-    while (size > 1 && scatter_local_bytes(size) > local_memory_bytes(s->dev))
+    while (size > 1 && scatter_local_bytes(size) > device_local_mem_bytes(s->dev))
         size /= 2;
     return size;
 }
@@ -107,7 +100,7 @@ MaterialSorter *material_sorter_create_sized(Device *dev, uint32_t capacity,
     s->group_size = pick_group_size(s, group_size);
     s->local_histogram = num_materials < LOCAL_HISTOGRAM_MAX_KEYS &&
                          histogram_local_bytes(num_materials) + tile_local_bytes(s->group_size) <=
-                             local_memory_bytes(dev);
+                             device_local_mem_bytes(dev);
     if (!allocate_buffers(s, err)) {
         material_sorter_destroy(s);
         return NULL;

@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* wavefront_internal.h: the device state of one render, shared by the frame loop
+ * (render/wavefront.c) and its setup and teardown (render/wavefront_state.c). */
+#ifndef PT_WAVEFRONT_INTERNAL_H
+#define PT_WAVEFRONT_INTERNAL_H
+
+#include "parallel/compact.h"
+#include "parallel/material_sort.h"
+#include "render/film.h"
+#include "render/wavefront.h"
+
+/* Everything one render holds on the device. */
+struct Wavefront {
+    Device *dev;
+    const SceneBuffers *scene;
+    RenderSettings settings;
+    RenderParams params;
+    RenderStats *stats;
+    Film film;
+    cl_mem params_buf, counters, active, free_slots;
+    cl_mem shadow_queue, shadow_count; /* unless settings.shadow_flags */
+    cl_mem sorted_active;              /* with settings.sort_materials: shade_surface's list */
+    MaterialSorter *sorter;
+#define PATH_STATE_MEMBER(type, name) cl_mem name;
+    PATH_STATE_FIELDS(PATH_STATE_MEMBER)
+    SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
+#undef PATH_STATE_MEMBER
+    cl_kernel kernels[STAGE_COUNT];
+    cl_uint n_active_arg[STAGE_COUNT]; /* index of the n_active argument of the traced stages */
+    cl_uint generate_counts_arg;       /* index of generate_camera_rays' n_live */
+    Compactor *compactor;
+    uint32_t num_pixels;
+    uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
+                                       * film's samples: its index is first_sample + next_sample) */
+    RenderStats own_stats;
+};
+
+#endif

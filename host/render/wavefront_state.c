@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: MIT
+/* wavefront_state.c: what a render holds on the device: the path pool and window sized to the
+ * device, the stage kernels with their arguments bound once, the compactor and material sorter;
+ * and their release. The frame loop that drives them is render/wavefront.c. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/wavefront_internal.h"
+#include "scene/camera.h"
+
+const char *const stage_names[STAGE_COUNT] = {
+    "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
+    "intersect_shadow",     "compact_paths",     "accumulate_film",
+};
+
+/* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
+ * bits per slot aside). */
+#define FIELD_BYTES(type, name) +sizeof(type)
+static const uint64_t bytes_per_slot = 2 * sizeof(uint32_t) /* active, free_slots */ PATH_STATE_FIELDS(FIELD_BYTES);
+static const uint64_t bytes_per_sample = 0 SAMPLE_STATE_FIELDS(FIELD_BYTES);
+#undef FIELD_BYTES
+
+/* Path slots and window: enough paths in flight to fill a GPU, modest on a CPU; both shrink until
+ * every buffer fits the device's max allocation and all of them half its memory. */
+static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples,
+                             uint32_t *pool_out, uint32_t *window_out)
+{
+    uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 16;
+    uint64_t window = s->window_size ? s->window_size : WINDOW_PER_POOL * pool;
+    if (s->no_compaction || window < pool)
+        window = pool; /* without compaction there are no free slots to refill */
+    while (pool > 1024 && (window * sizeof(float4) > dev->max_alloc ||
+                           pool * bytes_per_slot + window * bytes_per_sample > dev->global_mem / 2)) {
+        pool /= 2;
+        window /= 2;
+    }
+    if (window > total_samples)
+        window = total_samples;
+    if (pool > window)
+        pool = window;
+    *pool_out = (uint32_t)pool;
+    *window_out = (uint32_t)window;
+}
+
+
+static void set_all_args(Wavefront *w);
+
+static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *err)
+{
+    if (error_is_set(err))
+        return NULL;
+    return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
+}
+
+/* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
+ * intersection kernels of its own, so that the production ones carry no branch for it. */
+static const char *stage_kernel(int stage, bool brute_force)
+{
+    if (brute_force && stage == STAGE_EXTEND)
+        return "intersect_closest_brute_force";
+    if (brute_force && stage == STAGE_CONNECT)
+        return "intersect_shadow_brute_force";
+    return stage_names[stage];
+}
+
+static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
+                           const SceneBuffers *buffers, const RenderSettings *s, Error *err)
+{
+    memset(w, 0, sizeof *w);
+    RenderStats *stats = &w->own_stats;
+    w->dev = dev, w->scene = buffers, w->settings = *s, w->stats = stats;
+    const SceneDesc *desc = &scene->desc;
+    w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
+    uint32_t pool, window;
+    choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, &pool, &window);
+    stats->pool_size = pool;
+    stats->window_size = window;
+    stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
+                          (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
+
+    w->params = (RenderParams){
+        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
+        .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
+        .width = (uint)desc->width,
+        .height = (uint)desc->height,
+        .seed = s->seed,
+        .max_depth = (uint)s->max_depth,
+        .num_bvh_prims = buffers->num_bvh_prims,
+        .num_emissive = buffers->num_emissive,
+        .emissive_power = buffers->emissive_power,
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
+    };
+    w->params_buf = state_buffer(w, "params", sizeof w->params, err);
+    if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err))
+        return false;
+    w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
+    w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
+    w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
+    w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_flags ? 1 : pool) * sizeof(uint32_t), err);
+    w->shadow_count = state_buffer(w, "shadow_count", sizeof(uint32_t), err);
+#define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
+    PATH_STATE_FIELDS(PATH_STATE_ALLOC)
+#undef PATH_STATE_ALLOC
+#define SAMPLE_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, window * sizeof(type), err);
+    SAMPLE_STATE_FIELDS(SAMPLE_STATE_ALLOC)
+#undef SAMPLE_STATE_ALLOC
+    if (error_is_set(err))
+        return false;
+    /* Every slot starts free: compaction reads the flags of the whole pool. */
+    uint32_t zero = 0;
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0,
+                                 pool * sizeof(uint32_t), 0, NULL, NULL));
+    w->compactor = compactor_create(dev, pool, err);
+    if (!w->compactor)
+        return false;
+    if (s->sort_materials) {
+        w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
+        w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
+        if (!w->sorter)
+            return false;
+    }
+    for (int k = 0; k < STAGE_COUNT; k++)
+        if (k != STAGE_COMPACT && k != STAGE_SORT)
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force));
+    set_all_args(w);
+    wavefront_reset(w);
+    return true;
+}
+
+void wavefront_reset(Wavefront *w)
+{
+    uint32_t zero = 0;
+    film_clear(&w->film);
+    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
+                                 COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
+    RenderStats sizes = *w->stats;
+    memset(w->stats, 0, sizeof *w->stats);
+    w->stats->pool_size = sizes.pool_size;
+    w->stats->window_size = sizes.window_size;
+    w->stats->device_bytes = sizes.device_bytes;
+    w->next_sample = w->next_pixel = 0;
+}
+
+void wavefront_set_camera(Wavefront *w, const Camera *camera)
+{
+    w->params.camera = *camera;
+    wavefront_reset(w);
+}
+
+/* Arguments in the order of cl/stages/path_state.cl: params, [scene buffers], path state, then
+ * the stage's own. Returns the index of the first of the stage's own arguments. */
+static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
+{
+    cl_uint i = KERNEL_ARGS(k, 0, KARG(w->params_buf));
+    if (with_scene)
+        i = scene_buffers_set_args(w->scene, k, i);
+#define PATH_STATE_ARG(type, name) KARG(w->name),
+    KernelArg state[] = {PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)};
+#undef PATH_STATE_ARG
+    return kernel_set_args(k, i, sizeof state / sizeof state[0], state);
+}
+
+/* Binds every argument once; the counts that change per launch (n_active, generate's counts) are
+ * set again before each launch at the indices recorded here. */
+static void set_all_args(Wavefront *w)
+{
+    cl_uint zero = 0, i;
+    cl_kernel generate = w->kernels[STAGE_GENERATE];
+    i = set_path_args(w, generate, false);
+    w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
+
+    cl_kernel extend = w->kernels[STAGE_EXTEND];
+    i = set_path_args(w, extend, true);
+    w->n_active_arg[STAGE_EXTEND] = i + 1;
+    KERNEL_ARGS(extend, i, KARG(w->active), KARG(zero), KARG(w->counters));
+
+    cl_kernel shade = w->kernels[STAGE_SHADE];
+    cl_mem shade_list = w->sorted_active ? w->sorted_active : w->active;
+    i = set_path_args(w, shade, true);
+    w->n_active_arg[STAGE_SHADE] = i + 1;
+    KERNEL_ARGS(shade, i, KARG(shade_list), KARG(zero), KARG(w->shadow_queue), KARG(w->shadow_count));
+
+    cl_kernel connect = w->kernels[STAGE_CONNECT];
+    i = set_path_args(w, connect, true);
+    w->n_active_arg[STAGE_CONNECT] = i + 1;
+    KERNEL_ARGS(connect, i, KARG(w->active), KARG(zero), KARG(w->counters), KARG(w->shadow_queue),
+                KARG(w->shadow_count));
+
+    cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
+    i = set_path_args(w, accumulate, false);
+    KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
+}
+
+int wavefront_spp_done(const Wavefront *w) { return (int)w->next_sample; }
+Film *wavefront_film(Wavefront *w) { return &w->film; }
+RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
+
+void wavefront_read_film(Wavefront *w, float *rgb)
+{
+    film_read(&w->film, rgb);
+    uint32_t counters[COUNTER_COUNT];
+    device_read(w->dev, w->counters, 0, sizeof counters, counters);
+    w->stats->nonfinite = counters[COUNTER_NONFINITE];
+}
+
+static void wavefront_release(Wavefront *w)
+{
+    for (int k = 0; k < STAGE_COUNT; k++)
+        if (w->kernels[k])
+            CL_CHECK(clReleaseKernel(w->kernels[k]));
+    if (w->compactor)
+        compactor_destroy(w->compactor);
+    if (w->sorter)
+        material_sorter_destroy(w->sorter);
+    film_release(&w->film);
+    cl_mem all[] = {w->params_buf, w->counters, w->active, w->free_slots,
+                    w->shadow_queue, w->shadow_count, w->sorted_active,
+#define PATH_STATE_LIST(type, name) w->name,
+                    PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
+#undef PATH_STATE_LIST
+    };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (all[i])
+            CL_CHECK(clReleaseMemObject(all[i]));
+}
+
+Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                            const RenderSettings *settings, Error *err)
+{
+    Wavefront *w = calloc(1, sizeof *w);
+    if (!w)
+        die("out of memory");
+    if (!wavefront_init(w, dev, scene, buffers, settings, err)) {
+        wavefront_release(w);
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void wavefront_destroy(Wavefront *w)
+{
+    wavefront_release(w);
+    free(w);
+}
+
