@@ -179,19 +179,23 @@ inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint coun
                            WatertightRay ray, float tmin, bool any_hit, Hit *hit)
 {
     bool found = false;
+    float limit = hit_tie_limit(*hit);
     for (uint i = first; i < first + count; i++) {
         COUNT_STEPS(*hit, 0u, 1u);
         float t, u, v;
-        uint prim = as_uint(tris[i].v0.w);
         if (intersect_triangle_watertight(ray, xyz(tris[i].v0), xyz(tris[i].v1), xyz(tris[i].v2),
-                                          tmin, hit_tie_limit(*hit, prim), &t, &u, &v)) {
-            hit->t = t;
-            hit->u = u;
-            hit->v = v;
-            hit->prim = prim;
-            found = true;
-            if (any_hit)
-                break;
+                                          tmin, limit, &t, &u, &v)) {
+            uint prim = as_uint(tris[i].v0.w);
+            if (t < hit->t || prim < hit->prim) { /* t <= hit->t here: a tie needs the lower index */
+                hit->t = t;
+                hit->u = u;
+                hit->v = v;
+                hit->prim = prim;
+                limit = hit_tie_limit(*hit);
+                found = true;
+                if (any_hit)
+                    break;
+            }
         }
     }
     return found;

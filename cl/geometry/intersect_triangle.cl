@@ -13,12 +13,14 @@ typedef struct {
 #endif
 } Hit;
 
-/* The exclusive upper bound on t for triangle `prim` against the closest hit so far: a tie at
- * exactly hit.t goes to the lower original index, so every layout and tree reports the same
- * triangle. Before any hit, hit.t is the ray's tmax, which stays excluded. */
-inline float hit_tie_limit(Hit hit, uint prim)
+/* The exclusive upper bound on t for the next triangle against the closest hit so far: the hit's
+ * own distance is included (the next float up: the bits plus one, hit.t being positive and finite
+ * once there is a hit), so that a tie can go to the lower original index, which the caller checks
+ * on the rare hit. Every layout and tree then reports the same triangle. Before any hit, hit.t is
+ * the ray's tmax, which stays excluded. */
+inline float hit_tie_limit(Hit hit)
 {
-    return hit.prim != HIT_NONE && prim < hit.prim ? nextafter(hit.t, INFINITY) : hit.t;
+    return hit.prim != HIT_NONE ? as_float(as_uint(hit.t) + 1u) : hit.t;
 }
 
 /* Work counters for bench_bvh --count-steps, compiled out otherwise. */
