@@ -275,3 +275,30 @@ Test(bad_input, texture_declaring_a_huge_size_is_refused, .timeout = 20)
     cr_expect(strstr(err2.message, "/dev/zero: is a character device"), "%s", err2.message);
     texture_set_free(&set);
 }
+
+/* libFuzzer (fuzz_texture) finding: a JPEG Huffman table of more than 256 codes made stb_image
+ * write past its tables (UBSan: index 257 out of bounds for type 'stbi_uc[257]'). */
+Test(bad_input, jpeg_huffman_table_over_256_codes_is_an_error)
+{
+    unsigned char jpeg[700];
+    size_t n = 0;
+    static const unsigned char start[] = {0xff, 0xd8, 0xff, 0xc4, 0x01, 0xa3, 0x01};
+    memcpy(jpeg + n, start, sizeof start); /* DHT of 2 + 1 + 16 + 400 = 419 bytes, DC table 1 */
+    n += sizeof start;
+    memset(jpeg + n, 0, 14);
+    n += 14;
+    jpeg[n++] = 200;
+    jpeg[n++] = 200;
+    memset(jpeg + n, 0, 400);
+    n += 400;
+    jpeg[n++] = 0xff;
+    jpeg[n++] = 0xd9;
+    const char *dir = test_temp_dir();
+    const char *path = write_bytes(dir, "codes.jpg", jpeg, n);
+    TextureSet set = {0};
+    Error err = {0};
+    cr_expect_eq(texture_set_add(&set, path, &err), NO_TEXTURE);
+    cr_expect(strstr(err.message, "codes.jpg: corrupt JPEG texture: Huffman table with more than "
+                                  "256 codes"), "%s", err.message);
+    texture_set_free(&set);
+}

@@ -2,6 +2,7 @@
 #include "device/kernel_cache.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,9 +90,14 @@ bool kernel_cache_load(uint64_t key, unsigned char **data, size_t *size)
         return false;
     char path[1100];
     entry_path(key, path, sizeof path);
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    /* O_NONBLOCK: a FIFO in place of the entry must not block the open; fstat refuses it. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return false; /* no entry: the usual first run */
+    }
     struct stat st;
     unsigned char *bytes = NULL;
     size_t got = 0;

@@ -9,6 +9,7 @@
 
 #include <stb_image.h>
 
+#include "io/image_checks.h"
 #include "io/input_file.h"
 
 /* Every offset and texel index is a uint in the kernel (and RGBA32F indices are multiplied by 4),
@@ -36,65 +37,6 @@ typedef struct {
     float *rgba32f;
 } DecodedImage;
 
-/* Bytes of a Radiance .hdr file that stb_image would read, checked before it does: stb loops
- * forever on a truncated RLE scanline (a zero-length dump read at the end of the file) and reads
- * zeros past the end of a flat one. NULL when the data holds every scanline it declares. */
-static const char *hdr_problem(const unsigned char *data, size_t size, int width, int height)
-{
-    /* The header ends at the resolution line "-Y H +X W" after an empty line. */
-    size_t at = 0;
-    bool resolution = false;
-    while (at < size && !resolution) {
-        const unsigned char *nl = memchr(data + at, '\n', size - at);
-        if (!nl)
-            return "truncated header";
-        size_t line_length = (size_t)(nl - (data + at));
-        resolution = line_length >= 2 && (data[at] == '-' || data[at] == '+') &&
-                     (data[at + 1] == 'Y' || data[at + 1] == 'X');
-        at += line_length + 1;
-    }
-    if (!resolution)
-        return "truncated header";
-    size_t left = size - at;
-    const unsigned char *p = data + at;
-    size_t flat_bytes = 4 * (size_t)width * (size_t)height;
-    if (width < 8 || width >= 32768)
-        return left < flat_bytes ? "truncated pixel data" : NULL;
-    for (int y = 0; y < height; y++) {
-        if (left < 4)
-            return "truncated scanline";
-        if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80)) /* flat from here on, as stb reads it */
-            return left < flat_bytes - 4 * (size_t)width * (size_t)y ? "truncated pixel data" : NULL;
-        if (((int)p[2] << 8 | p[3]) != width)
-            return NULL; /* stb reports this one itself */
-        p += 4, left -= 4;
-        for (int channel = 0; channel < 4; channel++) {
-            for (int x = 0; x < width;) {
-                if (left < 1)
-                    return "truncated RLE scanline";
-                int count = *p++;
-                left--;
-                if (count > 128) {
-                    count -= 128;
-                    if (left < 1)
-                        return "truncated RLE scanline";
-                    p++, left--;
-                } else {
-                    if (count == 0)
-                        return "zero-length RLE run";
-                    if ((size_t)count > left)
-                        return "truncated RLE scanline";
-                    p += count, left -= (size_t)count;
-                }
-                if (count > width - x)
-                    return NULL; /* stb reports "bad RLE data" itself */
-                x += count;
-            }
-        }
-    }
-    return NULL;
-}
-
 static bool decode_image(const char *path, DecodedImage *img, Error *err)
 {
     memset(img, 0, sizeof *img);
@@ -111,7 +53,10 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
     int length = size > INT_MAX ? INT_MAX : (int)size, channels = 0;
     bool ok = false;
     const char *problem = NULL;
-    if (!stbi_info_from_memory(bytes, length, &img->width, &img->height, &channels)) {
+    /* Before stbi_info, which already builds a JPEG's Huffman tables. */
+    if ((problem = image_check_jpeg(bytes, (size_t)length))) {
+        error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt JPEG texture: %s", path, problem);
+    } else if (!stbi_info_from_memory(bytes, length, &img->width, &img->height, &channels)) {
         error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
                   stbi_failure_reason());
     } else if (img->width <= 0 || img->height <= 0 ||
@@ -120,7 +65,7 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
                   "%s: declared size %dx%d is over the limit of %llu texels per texture", path,
                   img->width, img->height, (unsigned long long)TEXTURE_MAX_TEXELS);
     } else if (stbi_is_hdr_from_memory(bytes, length) &&
-               (problem = hdr_problem(bytes, (size_t)length, img->width, img->height))) {
+               (problem = image_check_hdr(bytes, (size_t)length, img->width, img->height))) {
         error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt HDR texture: %s", path, problem);
     } else {
         if (stbi_is_hdr_from_memory(bytes, length))

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+#include "io/image_checks.h"
+
+#include <stdbool.h>
+#include <string.h>
+
+/* stb loops forever on a truncated RLE scanline (a zero-length dump read at the end of the file)
+ * and reads zeros past the end of a flat one: walk the scanlines as stb will. */
+const char *image_check_hdr(const unsigned char *data, size_t size, int width, int height)
+{
+    /* The header ends at the resolution line "-Y H +X W" after an empty line. */
+    size_t at = 0;
+    bool resolution = false;
+    while (at < size && !resolution) {
+        const unsigned char *nl = memchr(data + at, '\n', size - at);
+        if (!nl)
+            return "truncated header";
+        size_t line_length = (size_t)(nl - (data + at));
+        resolution = line_length >= 2 && (data[at] == '-' || data[at] == '+') &&
+                     (data[at + 1] == 'Y' || data[at + 1] == 'X');
+        at += line_length + 1;
+    }
+    if (!resolution)
+        return "truncated header";
+    size_t left = size - at;
+    const unsigned char *p = data + at;
+    size_t flat_bytes = 4 * (size_t)width * (size_t)height;
+    if (width < 8 || width >= 32768)
+        return left < flat_bytes ? "truncated pixel data" : NULL;
+    for (int y = 0; y < height; y++) {
+        if (left < 4)
+            return "truncated scanline";
+        if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80)) /* flat from here on, as stb reads it */
+            return left < flat_bytes - 4 * (size_t)width * (size_t)y ? "truncated pixel data" : NULL;
+        if (((int)p[2] << 8 | p[3]) != width)
+            return NULL; /* stb reports this one itself */
+        p += 4, left -= 4;
+        for (int channel = 0; channel < 4; channel++) {
+            for (int x = 0; x < width;) {
+                if (left < 1)
+                    return "truncated RLE scanline";
+                int count = *p++;
+                left--;
+                if (count > 128) {
+                    count -= 128;
+                    if (left < 1)
+                        return "truncated RLE scanline";
+                    p++, left--;
+                } else {
+                    if (count == 0)
+                        return "zero-length RLE run";
+                    if ((size_t)count > left)
+                        return "truncated RLE scanline";
+                    p += count, left -= (size_t)count;
+                }
+                if (count > width - x)
+                    return NULL; /* stb reports "bad RLE data" itself */
+                x += count;
+            }
+        }
+    }
+    return NULL;
+}
+
+/* Segments are walked from the start of image; entropy-coded data (after SOS) is skipped up to
+ * the next marker, so a DHT between the scans of a progressive JPEG is checked too. */
+const char *image_check_jpeg(const unsigned char *data, size_t size)
+{
+    if (size < 2 || data[0] != 0xff || data[1] != 0xd8)
+        return NULL; /* not a JPEG */
+    size_t at = 2;
+    while (at + 4 <= size) {
+        if (data[at] != 0xff) {
+            at++; /* entropy-coded bytes or padding */
+            continue;
+        }
+        unsigned marker = data[at + 1];
+        if (marker == 0xff || marker == 0x00 || (marker >= 0xd0 && marker <= 0xd7) ||
+            marker == 0x01) {
+            at += marker == 0xff ? 1 : 2; /* fill byte, stuffed zero, restart: no length */
+            continue;
+        }
+        if (marker == 0xd9)
+            return NULL; /* end of image */
+        size_t length = (size_t)data[at + 2] << 8 | data[at + 3];
+        if (length < 2 || at + 2 + length > size)
+            return NULL; /* stb reports a short segment itself, reading zeros */
+        if (marker == 0xc4) {
+            const unsigned char *p = data + at + 4, *end = data + at + 2 + length;
+            while (p < end) {
+                if (end - p < 17)
+                    return "DHT segment shorter than its table";
+                size_t codes = 0;
+                for (int i = 1; i <= 16; i++)
+                    codes += p[i];
+                if (codes > 256)
+                    return "Huffman table with more than 256 codes";
+                if ((size_t)(end - p) < 17 + codes)
+                    return "DHT segment shorter than its table";
+                p += 17 + codes;
+            }
+        }
+        at += 2 + length;
+    }
+    return NULL;
+}
