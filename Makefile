@@ -97,7 +97,8 @@ fuzz:
 	        -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout=10 -max_len=65536 -print_final_stats=1 \
 	        -artifact_prefix=build-fuzz/findings/$$t- build-fuzz/corpus/$$t build-fuzz/seeds/$$t \
 	        2>&1 | grep -E '^(#[0-9]+ +DONE|Done|stat::|==[0-9]+==ERROR|SUMMARY|artifact_prefix|Test unit written)' \
-	        || true; done
+	        || true; echo "fuzz_$$t: corpus of $$(ls build-fuzz/corpus/$$t | wc -l) inputs" \
+	        "(+ $$(ls build-fuzz/seeds/$$t | wc -l) seeds)"; done
 	$(Q)ls build-fuzz/findings | sed 's/^/finding: /'; echo "fuzz: $$(ls build-fuzz/findings | wc -l) findings"
 
 build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_input.h build-fuzz/libpt.a

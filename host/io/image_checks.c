@@ -31,7 +31,8 @@ const char *image_check_hdr(const unsigned char *data, size_t size, int width, i
         if (left < 4)
             return "truncated scanline";
         if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80)) /* flat from here on, as stb reads it */
-            return left < flat_bytes - 4 * (size_t)width * (size_t)y ? "truncated pixel data" : NULL;
+            return left < flat_bytes - 4 * (size_t)width * (size_t)y ? "truncated pixel data"
+                                                                      : NULL;
         if (((int)p[2] << 8 | p[3]) != width)
             return NULL; /* stb reports this one itself */
         p += 4, left -= 4;
