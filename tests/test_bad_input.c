@@ -302,3 +302,21 @@ Test(bad_input, jpeg_huffman_table_over_256_codes_is_an_error)
                                   "256 codes"), "%s", err.message);
     texture_set_free(&set);
 }
+
+/* libFuzzer (fuzz_texture) finding: stb_image grew its buffer to a PNG chunk's declared length
+ * before reading the chunk, so 130 bytes declaring a 2 GiB IDAT allocated 2 GiB. */
+Test(bad_input, png_chunk_longer_than_the_file_is_an_error)
+{
+    static const unsigned char png[] = {
+        0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0, 0, 0, 4,
+        0, 0, 0, 4, 8, 6, 0, 0, 0, 0xa9, 0xf1, 0x9e, 0x7e, 0x7f, 0xff, 0xff, 0xf0, 'I', 'D', 'A',
+        'T', 0x78, 0x9c, 0x63, 0x60, 0, 0, 0, 0, 0, 0};
+    const char *dir = test_temp_dir();
+    const char *path = write_bytes(dir, "chunk.png", png, sizeof png);
+    TextureSet set = {0};
+    Error err = {0};
+    cr_expect_eq(texture_set_add(&set, path, &err), NO_TEXTURE);
+    cr_expect(strstr(err.message, "chunk.png: corrupt PNG texture: a chunk declares more bytes"),
+              "%s", err.message);
+    texture_set_free(&set);
+}

@@ -105,3 +105,23 @@ const char *image_check_jpeg(const unsigned char *data, size_t size)
     }
     return NULL;
 }
+
+/* stb grows its IDAT buffer to a chunk's declared length before reading the chunk: a 100-byte
+ * file declaring a 2 GiB chunk allocates 2 GiB. Every chunk must fit in the file. */
+const char *image_check_png(const unsigned char *data, size_t size)
+{
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size < 8 || memcmp(data, signature, 8) != 0)
+        return NULL; /* not a PNG */
+    size_t at = 8;
+    while (at + 8 <= size) {
+        size_t length = (size_t)data[at] << 24 | (size_t)data[at + 1] << 16 |
+                        (size_t)data[at + 2] << 8 | data[at + 3];
+        if (memcmp(data + at + 4, "IEND", 4) == 0)
+            return NULL;
+        if (length > size - at - 8)
+            return "a chunk declares more bytes than the file holds";
+        at += 12 + length; /* length, type, data, CRC */
+    }
+    return NULL;
+}

@@ -56,6 +56,8 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
     /* Before stbi_info, which already builds a JPEG's Huffman tables. */
     if ((problem = image_check_jpeg(bytes, (size_t)length))) {
         error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt JPEG texture: %s", path, problem);
+    } else if ((problem = image_check_png(bytes, (size_t)length))) {
+        error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt PNG texture: %s", path, problem);
     } else if (!stbi_info_from_memory(bytes, length, &img->width, &img->height, &channels)) {
         error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
                   stbi_failure_reason());

@@ -336,6 +336,9 @@ def texture_cases(rng):
     texture_case("hdr-zero-run", hdr(16, 1)[:-8 * 2] + b"\x00" * 16, "error", tex="t.hdr")
     # libFuzzer finding: a DHT declaring over 256 codes made stb write past its Huffman tables.
     texture_case("jpg-dht-over-256-codes", jpeg_big_dht(), "error", tex="t.jpg", needle="256 codes")
+    # libFuzzer finding: stb allocated a chunk's declared length (2 GiB) before reading it.
+    texture_case("png-chunk-past-end", good_png[:33] + struct.pack(">I", 0x7ffffff0) + b"IDAT" +
+                 good_png[41:60], "error", needle="chunk")
     texture_case("png-named-jpg", good_png, "ok", tex="t.jpg")
     texture_case("hdr-named-png", good_hdr, "ok")
     texture_case("text-named-png", b"this is not an image\n", "error")
