@@ -320,3 +320,26 @@ Test(bad_input, png_chunk_longer_than_the_file_is_an_error)
               "%s", err.message);
     texture_set_free(&set);
 }
+
+/* libFuzzer (fuzz_texture) finding: the .hdr check found the resolution line where stb does not
+ * (stb ends the header at the first empty line), so it passed a file on which stb looped forever
+ * on a zero-length RLE run. */
+Test(bad_input, hdr_header_is_read_as_stb_reads_it, .timeout = 20)
+{
+    unsigned char bytes[200];
+    size_t n = (size_t)sprintf((char *)bytes, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n-Y 1 +X 16\n\n"
+                                              "-Y 1 +X 16\n");
+    static const unsigned char zero_run[] = {2, 2, 0, 16, 0};
+    memcpy(bytes + n, zero_run, sizeof zero_run);
+    n += sizeof zero_run;
+    memset(bytes + n, 1, 60);
+    n += 60;
+    const char *dir = test_temp_dir();
+    const char *path = write_bytes(dir, "header.hdr", bytes, n);
+    TextureSet set = {0};
+    Error err = {0};
+    cr_expect_eq(texture_set_add(&set, path, &err), NO_TEXTURE);
+    cr_expect(strstr(err.message, "header.hdr: corrupt HDR texture: zero-length RLE run"), "%s",
+              err.message);
+    texture_set_free(&set);
+}

@@ -6,22 +6,37 @@
 
 /* stb loops forever on a truncated RLE scanline (a zero-length dump read at the end of the file)
  * and reads zeros past the end of a flat one: walk the scanlines as stb will. */
+/* stbi__hdr_gettoken over memory: a line up to '\n' (at most 1023 bytes kept, the rest skipped);
+ * reading past the end gives 0 and the last byte of the file is dropped, as stb does. Returns
+ * the token's first byte, 0 for an empty token (stb's end of the header). */
+static int hdr_token(const unsigned char *data, size_t size, size_t *at, char *token, size_t cap)
+{
+    size_t length = 0;
+    int c = *at < size ? data[(*at)++] : 0;
+    while (*at < size && c != '\n') {
+        if (length + 1 < cap)
+            token[length] = (char)c;
+        length++;
+        if (length == 1023) {
+            while (*at < size && data[(*at)++] != '\n')
+                ;
+            break;
+        }
+        c = *at < size ? data[(*at)++] : 0;
+    }
+    token[length + 1 < cap ? length : cap - 1] = '\0';
+    return length ? (unsigned char)token[0] : 0;
+}
+
 const char *image_check_hdr(const unsigned char *data, size_t size, int width, int height)
 {
-    /* The header ends at the resolution line "-Y H +X W" after an empty line. */
+    /* Header as stb reads it: the identifier, lines up to an empty one, the resolution line. */
+    char token[16];
     size_t at = 0;
-    bool resolution = false;
-    while (at < size && !resolution) {
-        const unsigned char *nl = memchr(data + at, '\n', size - at);
-        if (!nl)
-            return "truncated header";
-        size_t line_length = (size_t)(nl - (data + at));
-        resolution = line_length >= 2 && (data[at] == '-' || data[at] == '+') &&
-                     (data[at + 1] == 'Y' || data[at + 1] == 'X');
-        at += line_length + 1;
-    }
-    if (!resolution)
-        return "truncated header";
+    hdr_token(data, size, &at, token, sizeof token);
+    while (hdr_token(data, size, &at, token, sizeof token) != 0)
+        ;
+    hdr_token(data, size, &at, token, sizeof token);
     size_t left = size - at;
     const unsigned char *p = data + at;
     size_t flat_bytes = 4 * (size_t)width * (size_t)height;
@@ -30,9 +45,8 @@ const char *image_check_hdr(const unsigned char *data, size_t size, int width, i
     for (int y = 0; y < height; y++) {
         if (left < 4)
             return "truncated scanline";
-        if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80)) /* flat from here on, as stb reads it */
-            return left < flat_bytes - 4 * (size_t)width * (size_t)y ? "truncated pixel data"
-                                                                      : NULL;
+        if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80)) /* stb restarts flat from pixel 0 here */
+            return left < flat_bytes ? "truncated pixel data" : NULL;
         if (((int)p[2] << 8 | p[3]) != width)
             return NULL; /* stb reports this one itself */
         p += 4, left -= 4;
@@ -84,23 +98,22 @@ const char *image_check_jpeg(const unsigned char *data, size_t size)
         if (marker == 0xd9)
             return NULL; /* end of image */
         size_t length = (size_t)data[at + 2] << 8 | data[at + 3];
-        if (length < 2 || at + 2 + length > size)
-            return NULL; /* stb reports a short segment itself, reading zeros */
         if (marker == 0xc4) {
-            const unsigned char *p = data + at + 4, *end = data + at + 2 + length;
-            while (p < end) {
-                if (end - p < 17)
-                    return "DHT segment shorter than its table";
+            /* As stb reads it: by the declared length, with zeros past the end of the file. */
+            size_t p = at + 4;
+            long left = (long)length - 2;
+            while (left > 0) {
                 size_t codes = 0;
-                for (int i = 1; i <= 16; i++)
-                    codes += p[i];
+                for (size_t i = 1; i <= 16; i++)
+                    codes += p + i < size ? data[p + i] : 0;
                 if (codes > 256)
                     return "Huffman table with more than 256 codes";
-                if ((size_t)(end - p) < 17 + codes)
-                    return "DHT segment shorter than its table";
                 p += 17 + codes;
+                left -= 17 + (long)codes;
             }
         }
+        if (length < 2)
+            return NULL; /* stb reports a bad length itself */
         at += 2 + length;
     }
     return NULL;

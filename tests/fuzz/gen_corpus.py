@@ -13,7 +13,8 @@ Each case folder holds its input files and case.json:
   needle  optional text the error line must contain (the file or value it names).
   setup   optional shell run in the case folder before pt ($PT_FUZZ_CACHE: a warm kernel cache).
   known   a known failure owned elsewhere (reported, not counted as failed): remove once fixed.
-  timeout seconds, when the case needs more than the replay's default (a cold kernel compile).
+  timeout seconds instead of the replay's default (more for a cold kernel compile, less for a
+          known hang).
 Deterministic: the same corpus every run (seeded), so a failure names a case that stays put.
 """
 import json
@@ -172,6 +173,9 @@ def json_cases(rng):
                           files={"tri.obj": TRIANGLE, "scene.json": json.dumps(scene)},
                           args=["render", "scene.json"] + TINY, expect="error", env={},
                           needle=None, setup=setup, known=None, timeout=None))
+    case("json-scene-is-fifo", {}, ["render", "scene.json"] + TINY, "error", setup="mkfifo scene.json",
+         timeout=5, known="scene.c's read_text opens a FIFO and waits for a writer (scene.c's owner)")
+    case("json-scene-is-dev-zero", {}, ["render", "/dev/zero"] + TINY, "error")
     case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
          setup="truncate -s 70M scene.json")
 
@@ -339,6 +343,13 @@ def texture_cases(rng):
     # libFuzzer finding: stb allocated a chunk's declared length (2 GiB) before reading it.
     texture_case("png-chunk-past-end", good_png[:33] + struct.pack(">I", 0x7ffffff0) + b"IDAT" +
                  good_png[41:60], "error", needle="chunk")
+    # libFuzzer findings: stb ends an .hdr header at the first empty line (a zero-length RLE run
+    # past a second resolution line looped forever); a DHT running past the end of the file.
+    texture_case("hdr-second-resolution-line", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n-Y 1 +X 16\n\n"
+                 b"-Y 1 +X 16\n" + bytes((2, 2, 0, 16, 0)) + b"\1" * 60, "error", tex="t.hdr",
+                 needle="zero-length")
+    texture_case("jpg-dht-past-end", jpeg(8, 8)[:-30] + b"\xff\xc4\x00\x14\x00\x01" + bytes(10) +
+                 b"\x01\x00\xff\x29\xd9", "error", tex="t.jpg", needle="256 codes")
     texture_case("png-named-jpg", good_png, "ok", tex="t.jpg")
     texture_case("hdr-named-png", good_hdr, "ok")
     texture_case("text-named-png", b"this is not an image\n", "error")

@@ -78,7 +78,7 @@ def run_case(pt, repo, cache, folder, timeout):
         start = time.monotonic()
         try:
             proc = subprocess.run([pt] + args, cwd=work, env=env,
-                                  timeout=max(timeout, meta.get("timeout") or 0),
+                                  timeout=meta.get("timeout") or timeout,
                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                   stderr=subprocess.PIPE)
             rc, err = proc.returncode, proc.stderr.decode("utf-8", "replace")
@@ -118,6 +118,7 @@ def main():
     shutil.rmtree(warm, ignore_errors=True)
     passed = failed = 0
     durations = []
+    started = time.monotonic()
     with ThreadPoolExecutor(max_workers=a.j) as pool:
         results = pool.map(lambda f: (f, run_case(pt, repo, cache, f, a.timeout)), folders)
         for folder, (problem, err, known, seconds) in results:
@@ -136,7 +137,8 @@ def main():
                 print("  " + "\n  ".join(err.splitlines()[-15:]))
             sys.stdout.flush()
     durations.sort(reverse=True)
-    print("fuzz-replay: slowest: " + ", ".join("%s %.1f s" % (n, t) for t, n in durations[:4]))
+    print("fuzz-replay: %d cases in %.0f s, slowest: " % (len(folders), time.monotonic() - started)
+          + ", ".join("%s %.1f s" % (n, t) for t, n in durations[:4]))
     print("fuzz-replay: %d passed, %d failed" % (passed, failed))
     return 1 if failed else 0
 
