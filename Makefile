@@ -3,6 +3,8 @@
 #   make          build build/pt              make run    install deps, build, render the default scene
 #   make test     build and run every test    make asan   build with address+undefined sanitizers
 #   make bench    run the benchmark suites    make clean
+#   make fuzz-replay  replay the malformed-input corpus under ASan+UBSan (part of make test)
+#   make fuzz FUZZ_SECONDS=N   coverage-guided fuzzing with libFuzzer (needs clang), N s per target
 # Variables: OPT (optimisation flags), V=1 (show commands), SCENE, DEVICE.
 
 CC      ?= cc
@@ -48,7 +50,7 @@ TEST_SUPPORT := $(BUILD)/tests/support.o
 SCENE   ?= scenes/cornell-box
 DEVICE  ?=
 
-.PHONY: all run test asan bench clean deps references bundle
+.PHONY: all run test asan bench clean deps references bundle fuzz fuzz-replay
 all: $(BUILD)/pt
 
 deps:
@@ -65,10 +67,45 @@ test: deps
 	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
 	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
 	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties
+	$(Q)$(MAKE) --no-print-directory fuzz-replay
 
 asan:
 	$(Q)$(MAKE) --no-print-directory BUILD=build-asan OPT="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
 	    LDFLAGS="-fsanitize=address,undefined" all
+
+# The malformed-input corpus (tests/fuzz/gen_corpus.py), replayed on the ASan+UBSan binary: every
+# case must end in exit 0 or one "pt: ..." line, within FUZZ_TIMEOUT s and 3 GiB (tests/fuzz/replay.py).
+FUZZ_TIMEOUT ?= 20
+fuzz-replay: asan
+	$(Q)python3 tests/fuzz/gen_corpus.py build-asan/fuzz >/dev/null
+	$(Q)python3 tests/fuzz/replay.py build-asan/pt build-asan/fuzz -j 2 --timeout $(FUZZ_TIMEOUT)
+
+# libFuzzer targets (tests/fuzz/fuzz_*.c) for the scene parser, the OBJ/MTL loader and the texture
+# loader, built with clang (apt-get install clang) into build-fuzz/; each runs FUZZ_SECONDS s from
+# the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
+FUZZ_SECONDS ?= 60
+FUZZ_CC ?= clang
+FUZZ_TARGETS := scene obj texture
+fuzz:
+	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
+	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \
+	    OPT="-O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
+	    $(FUZZ_TARGETS:%=build-fuzz/fuzz_%)
+	$(Q)python3 tests/fuzz/gen_corpus.py build-fuzz/replay --seeds build-fuzz/seeds >/dev/null
+	$(Q)mkdir -p build-fuzz/findings
+	$(Q)for t in $(FUZZ_TARGETS); do mkdir -p build-fuzz/corpus/$$t; echo "== fuzz_$$t"; \
+	    ASAN_OPTIONS=detect_leaks=0 nice build-fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) \
+	        -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout=10 -max_len=65536 -print_final_stats=1 \
+	        -artifact_prefix=build-fuzz/findings/$$t- build-fuzz/corpus/$$t build-fuzz/seeds/$$t \
+	        2>&1 | grep -E '^(#[0-9]+ +DONE|Done|stat::|==[0-9]+==ERROR|SUMMARY|artifact_prefix|Test unit written)' \
+	        || true; echo "fuzz_$$t: corpus of $$(ls build-fuzz/corpus/$$t | wc -l) inputs" \
+	        "(+ $$(ls build-fuzz/seeds/$$t | wc -l) seeds)"; done
+	$(Q)ls build-fuzz/findings | sed 's/^/finding: /'; echo "fuzz: $$(ls build-fuzz/findings | wc -l) findings"
+
+build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_input.h build-fuzz/libpt.a
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(CPPFLAGS) -Itests/fuzz -std=c11 -w $(OPT) -x c $< -x none -fsanitize=fuzzer \
+	    -o $@ build-fuzz/libpt.a $(LDLIBS)
 
 bench: all
 	$(Q)PT=$(BUILD)/pt ./tools/bench.sh $(if $(DEVICE),--device $(DEVICE))
@@ -81,7 +118,7 @@ bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))
 	$(Q)./tools/bundle.sh $(BUILD) $(VERSION)
 
 clean:
-	rm -rf build build-asan dist
+	rm -rf build build-asan build-fuzz dist
 
 $(BUILD)/pt: $(BUILD)/host/main.o $(BUILD)/libpt.a
 	@echo "  LD    $@"

@@ -34,6 +34,7 @@ static double now_seconds(void)
 
 static cl_uint get_platforms(cl_platform_id *platforms)
 {
+    kernel_cache_prepare(); /* before PoCL reads its cache folder */
     cl_uint count = 0;
     cl_int status = clGetPlatformIDs(MAX_PLATFORMS, platforms, &count);
     /* The ICD loader reports "no platform" as CL_PLATFORM_NOT_FOUND_KHR (-1001): not a bug. */
@@ -332,9 +333,15 @@ static bool build_from_cache(Device *dev, uint64_t key)
     cl_program program = clCreateProgramWithBinary(dev->context, 1, &dev->device, &size, binaries,
                                                    &binary_status, &status);
     free(binary);
-    if (status != CL_SUCCESS || binary_status != CL_SUCCESS)
+    if (status != CL_SUCCESS || binary_status != CL_SUCCESS) {
+        if (status == CL_SUCCESS)
+            clReleaseProgram(program);
+        warn("the driver refused the cached kernels (%s): rebuilding",
+             cl_error_name(status != CL_SUCCESS ? status : binary_status));
         return false;
+    }
     if (clBuildProgram(program, 1, &dev->device, device_build_options(dev), NULL, NULL) != CL_SUCCESS) {
+        warn("the cached kernels do not build on %s: rebuilding", dev->name);
         clReleaseProgram(program);
         return false;
     }

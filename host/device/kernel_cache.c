@@ -2,18 +2,43 @@
 #include "device/kernel_cache.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/error.h"
+
+/* An entry is a header then the driver's binary. The file is untrusted (truncated by a full disk,
+ * written by another version, edited): drivers read their binaries without bounds checks (PoCL
+ * reads past a truncated one), so nothing reaches the driver unless the header's size and
+ * checksum match the bytes on disk. The "-v2" in the name keeps older, headerless entries apart. */
+#define ENTRY_MAGIC "ptkcache"
+#define ENTRY_VERSION 2u
+/* No real program binary comes near this; a larger size field is corruption. */
+#define ENTRY_MAX_PAYLOAD ((uint64_t)1 << 30)
+
+typedef struct {
+    char magic[8];
+    uint32_t version, reserved;
+    uint64_t payload_size;
+    uint64_t payload_hash; /* FNV-1a 64 of the payload */
+} EntryHeader;
+
+static uint64_t fnv1a(const unsigned char *data, size_t size, uint64_t hash)
+{
+    for (size_t i = 0; i < size; i++)
+        hash = (hash ^ data[i]) * 1099511628211ull;
+    return hash;
+}
+
 uint64_t kernel_cache_key(const char *const *parts, size_t n)
 {
     uint64_t hash = 1469598103934665603ull;
     for (size_t i = 0; i < n; i++) {
-        for (const unsigned char *p = (const unsigned char *)parts[i]; *p; p++)
-            hash = (hash ^ *p) * 1099511628211ull;
+        hash = fnv1a((const unsigned char *)parts[i], strlen(parts[i]), hash);
         hash = (hash ^ 0xffu) * 1099511628211ull; /* keeps ("ab","c") apart from ("a","bc") */
     }
     return hash;
@@ -34,34 +59,69 @@ const char *kernel_cache_dir(void)
 
 static void entry_path(uint64_t key, char *out, size_t size)
 {
-    snprintf(out, size, "%s/kernels-%016llx.bin", kernel_cache_dir(), (unsigned long long)key);
+    snprintf(out, size, "%s/kernels-%016llx-v2.bin", kernel_cache_dir(), (unsigned long long)key);
+}
+
+/* Why the entry's bytes cannot be a binary we wrote; NULL when they can. */
+static const char *entry_problem(const unsigned char *bytes, size_t size)
+{
+    EntryHeader header;
+    if (size < sizeof header)
+        return "shorter than its header";
+    memcpy(&header, bytes, sizeof header);
+    if (memcmp(header.magic, ENTRY_MAGIC, sizeof header.magic) != 0)
+        return "not a pt kernel cache entry";
+    if (header.version != ENTRY_VERSION)
+        return "written by another version of pt";
+    if (header.payload_size == 0 || header.payload_size > ENTRY_MAX_PAYLOAD ||
+        header.payload_size != size - sizeof header)
+        return "truncated, or its size field is wrong";
+    if (fnv1a(bytes + sizeof header, size - sizeof header, 1469598103934665603ull) !=
+        header.payload_hash)
+        return "checksum mismatch";
+    return NULL;
 }
 
 bool kernel_cache_load(uint64_t key, unsigned char **data, size_t *size)
 {
+    *data = NULL;
+    *size = 0;
     if (!kernel_cache_dir()[0])
         return false;
     char path[1100];
     entry_path(key, path, sizeof path);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return false;
-    bool ok = false;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long n = ftell(f);
-        if (n > 0 && fseek(f, 0, SEEK_SET) == 0) {
-            *data = malloc((size_t)n);
-            if (*data && fread(*data, 1, (size_t)n, f) == (size_t)n) {
-                *size = (size_t)n;
-                ok = true;
-            } else {
-                free(*data);
-                *data = NULL;
-            }
-        }
+    /* O_NONBLOCK: a FIFO in place of the entry must not block the open; fstat refuses it. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
+        return false; /* no entry: the usual first run */
     }
+    struct stat st;
+    unsigned char *bytes = NULL;
+    size_t got = 0;
+    const char *problem = NULL;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode))
+        problem = "not a regular file";
+    else if ((uint64_t)st.st_size > ENTRY_MAX_PAYLOAD + sizeof(EntryHeader))
+        problem = "too large";
+    else if (!(bytes = malloc((size_t)st.st_size + 1)))
+        problem = "out of memory";
+    else if ((got = fread(bytes, 1, (size_t)st.st_size, f)) != (size_t)st.st_size)
+        problem = "unreadable";
+    else
+        problem = entry_problem(bytes, got);
     fclose(f);
-    return ok;
+    if (problem) {
+        free(bytes);
+        warn("kernel cache entry %s is unusable (%s): the kernels are rebuilt", path, problem);
+        return false;
+    }
+    *size = got - sizeof(EntryHeader);
+    memmove(bytes, bytes + sizeof(EntryHeader), *size);
+    *data = bytes;
+    return true;
 }
 
 /* mkdir -p for the cache folder. */
@@ -77,21 +137,69 @@ static bool make_dirs(const char *dir)
             *p = '/';
         }
     }
-    return mkdir(path, 0755) == 0 || errno == EEXIST;
+    if (mkdir(path, 0755) != 0 && errno != EEXIST)
+        return false;
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return false;
+    }
+    return access(path, W_OK | X_OK) == 0;
+}
+
+static bool warned_unwritable;
+
+static void warn_unwritable(const char *dir, int error)
+{
+    if (!warned_unwritable)
+        warn("kernel cache folder %s is not writable (%s): kernels are compiled on every run", dir,
+             strerror(error));
+    warned_unwritable = true;
+}
+
+void kernel_cache_prepare(void)
+{
+    const char *dir = kernel_cache_dir();
+    if (!dir[0] || make_dirs(dir))
+        return;
+    warn_unwritable(dir, errno);
+    /* PoCL keeps its own cache in the same cache home ($XDG_CACHE_HOME/pocl) and reports no
+     * device at all when it cannot create it; give it a private folder of its own instead. */
+    if (getenv("POCL_CACHE_DIR"))
+        return;
+    const char *tmp = getenv("TMPDIR");
+    static char pocl[1024];
+    snprintf(pocl, sizeof pocl, "%s/pt-pocl-cache-%ld", tmp && *tmp ? tmp : "/tmp", (long)getuid());
+    struct stat st;
+    if (mkdir(pocl, 0700) != 0 && errno != EEXIST)
+        return;
+    /* Only a folder of our own: another user could have made one under that name first. */
+    if (lstat(pocl, &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == getuid())
+        setenv("POCL_CACHE_DIR", pocl, 1);
 }
 
 void kernel_cache_store(uint64_t key, const unsigned char *data, size_t size)
 {
     const char *dir = kernel_cache_dir();
-    if (!dir[0] || !make_dirs(dir))
+    if (!dir[0] || size == 0 || size > ENTRY_MAX_PAYLOAD)
         return;
+    if (!make_dirs(dir)) {
+        warn_unwritable(dir, errno);
+        return;
+    }
     char path[1100], tmp[1200];
     entry_path(key, path, sizeof path);
     snprintf(tmp, sizeof tmp, "%s.tmp-%d", path, (int)getpid());
     FILE *f = fopen(tmp, "wb");
-    if (!f)
+    if (!f) {
+        warn_unwritable(dir, errno);
         return;
-    bool ok = fwrite(data, 1, size, f) == size;
+    }
+    EntryHeader header = {.version = ENTRY_VERSION,
+                          .payload_size = size,
+                          .payload_hash = fnv1a(data, size, 1469598103934665603ull)};
+    memcpy(header.magic, ENTRY_MAGIC, sizeof header.magic);
+    bool ok = fwrite(&header, sizeof header, 1, f) == 1 && fwrite(data, 1, size, f) == size;
     ok = (fclose(f) == 0) && ok;
     if (!ok || rename(tmp, path) != 0)
         unlink(tmp);

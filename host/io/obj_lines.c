@@ -266,6 +266,39 @@ static bool check_face(const char *p, const char *end, const size_t defined[4],
     return true;
 }
 
+/* Control bytes other than blanks and line ends never occur in OBJ text: they mean the file is
+ * something else (an image, an archive) and every "record" in it would be noise. */
+static const char *find_binary_byte(const char *p, const char *end)
+{
+    for (; p < end; p++) {
+        unsigned char c = (unsigned char)*p;
+        bool text_control = c == '\t' || c == '\v' || c == '\f' || c == '\r' || c == '\n';
+        if ((c < 0x20 && !text_control) || c == 0x7f)
+            return p;
+    }
+    return NULL;
+}
+
+/* Lines that are not text, or absurdly long ones (tinyobjloader copies each line into a string). */
+static bool check_line_text(const LineCursor *cursor, const char *path, Error *err)
+{
+    size_t length = (size_t)(cursor->line_end - cursor->line);
+    if (length > OBJ_MAX_LINE_LENGTH) {
+        error_set(err, ERR_TOO_LARGE, path, cursor->number,
+                  "%s:%d: line of %zu bytes, over the limit of %d", path, cursor->number, length,
+                  OBJ_MAX_LINE_LENGTH);
+        return false;
+    }
+    const char *binary = find_binary_byte(cursor->line, cursor->line_end);
+    if (binary) {
+        error_set(err, ERR_OBJ_PARSE, path, cursor->number,
+                  "%s:%d: not an OBJ text file (binary data at line %d: byte 0x%02x)", path,
+                  cursor->number, cursor->number, (unsigned char)*binary);
+        return false;
+    }
+    return true;
+}
+
 bool obj_lines_check(const char *text, size_t size, const char *path, ObjRecordCounts *counts,
                      Error *err)
 {
@@ -275,6 +308,8 @@ bool obj_lines_check(const char *text, size_t size, const char *path, ObjRecordC
     size_t faces = 0;
     LineCursor cursor = {.next = text, .end = text + size};
     while (next_line(&cursor)) {
+        if (!check_line_text(&cursor, path, err))
+            return false;
         const char *p = cursor.line;
         RecordKind kind = record_kind(&p, cursor.line_end);
         if (kind == RECORD_FACE) {

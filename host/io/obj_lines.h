@@ -13,13 +13,18 @@
 
 /* tinyobjloader stores corner counts in an unsigned char. */
 #define OBJ_MAX_FACE_CORNERS 255
+/* A longer line is refused (ERR_TOO_LARGE): no real record needs it, and tinyobjloader copies every
+ * line into a string. */
+#define OBJ_MAX_LINE_LENGTH (1 << 20)
 
 typedef struct {
     size_t positions, texcoords, normals; /* v, vt, vn records */
     size_t faces;                         /* f records with at least 3 corners */
 } ObjRecordCounts;
 
-/* Checks every v, vt, vn and f record: coordinates are numbers and finite as floats (v and vn need
+/* Checks that the file is text (a control byte other than a blank or line end is ERR_OBJ_PARSE
+ * "not an OBJ text file (binary data at line N)") with lines of at most OBJ_MAX_LINE_LENGTH
+ * bytes, then every v, vt, vn and f record: coordinates are numbers and finite as floats (v and vn need
  * 3, vt at least 1), face corners are i, i/j, i//k or i/j/k with indices in range (negative ones
  * relative to the records before the face, positive ones against the whole file, as tinyobjloader
  * resolves them) and at most OBJ_MAX_FACE_CORNERS corners. A face with fewer than 3 corners gets a

@@ -12,8 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <new>
 #include <sstream>
 #include <string>
@@ -23,6 +21,7 @@
 #define _Noreturn [[noreturn]]
 extern "C" {
 #include "base/error.h"
+#include "io/input_file.h"
 #include "io/obj_lines.h"
 #include "io/obj_loader.h"
 #include "io/triangulate.h"
@@ -61,26 +60,22 @@ std::string join_path(const std::string &folder, const std::string &name)
     return folder[folder.size() - 1] == '/' ? folder + name : folder + "/" + name;
 }
 
-bool read_whole_file(const char *path, std::string *text, Error *err)
+/* The whole file as a string: a regular file under `limit` bytes only (input_file.h). */
+bool read_whole_file(const char *path, const char *kind, size_t limit, std::string *text,
+                     Error *err)
 {
-    FILE *file = fopen(path, "rb");
-    if (!file) {
-        if (errno == ENOENT)
-            error_set(err, ERR_FILE_MISSING, path, 0, "%s: no such file", path);
-        else
-            error_set(err, ERR_FILE_READ, path, 0, "%s: %s", path, strerror(errno));
+    char *data = NULL;
+    size_t size = 0;
+    if (!input_file_read(path, kind, limit, &data, &size, err))
         return false;
+    try {
+        text->assign(data, size);
+    } catch (...) {
+        free(data);
+        throw;
     }
-    char chunk[1 << 16];
-    size_t got;
-    while ((got = fread(chunk, 1, sizeof chunk, file)) > 0)
-        text->append(chunk, got);
-    bool failed = ferror(file) != 0;
-    int read_errno = errno;
-    fclose(file);
-    if (failed)
-        error_set(err, ERR_FILE_READ, path, 0, "%s: %s", path, strerror(read_errno));
-    return !failed;
+    free(data);
+    return true;
 }
 
 /* tinyobjloader's messages are '\n'-separated (one is "...found\n."): each line becomes one
@@ -143,11 +138,14 @@ std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const 
     return appended;
 }
 
-/* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. */
+/* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. One that
+ * exists but cannot be read as a material library (a folder, /dev/zero, too large) is an error,
+ * kept in `error` for load() to report after tinyobjloader returns. */
 class MaterialLibraryReader : public tinyobj::MaterialReader {
   public:
-    explicit MaterialLibraryReader(const std::string &folder) : folder_(folder) {}
+    explicit MaterialLibraryReader(const std::string &folder) : error(), folder_(folder) {}
     std::vector<MaterialExtras> extras; /* parallel to the materials appended */
+    Error error;
 
     bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
                     std::map<std::string, int> *names, std::string *warnings,
@@ -155,13 +153,17 @@ class MaterialLibraryReader : public tinyobj::MaterialReader {
     {
         (void)warnings; /* ours go straight to warn(), naming the MTL */
         std::string path = join_path(folder_, name);
-        std::ifstream file(path.c_str(), std::ios::binary);
-        if (!file) {
-            warn("material library %s not found: its materials are replaced by the default",
-                 path.c_str());
+        std::string text;
+        Error read_error = {};
+        if (!read_whole_file(path.c_str(), "a material library", INPUT_LIMIT_MTL, &text,
+                             &read_error)) {
+            if (read_error.code == ERR_FILE_MISSING)
+                warn("material library %s not found: its materials are replaced by the default",
+                     path.c_str());
+            else
+                error_set(&error, read_error.code, path.c_str(), 0, "%s", read_error.message);
             return false;
         }
-        std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
         size_t before = materials->size();
         std::istringstream stream(text);
         std::string mtl_warnings;
@@ -317,10 +319,17 @@ bool parse_error(const char *path, const std::string &message, Error *err)
     return false;
 }
 
+bool copy_error(const Error &from, Error *to)
+{
+    if (!error_is_set(to))
+        *to = from;
+    return false;
+}
+
 bool load(const char *path, ObjMesh *out, Error *err)
 {
     std::string text;
-    if (!read_whole_file(path, &text, err))
+    if (!read_whole_file(path, "an OBJ file", INPUT_LIMIT_OBJ, &text, err))
         return false;
     ObjRecordCounts counts;
     if (!obj_lines_check(text.data(), text.size(), path, &counts, err))
@@ -333,8 +342,13 @@ bool load(const char *path, ObjMesh *out, Error *err)
     std::istream stream(&buffer);
     MaterialLibraryReader library(folder_of(path));
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &stream, &library,
-                          false, false))
+                          false, false)) {
+        if (error_is_set(&library.error))
+            return copy_error(library.error, err);
         return parse_error(path, errors, err);
+    }
+    if (error_is_set(&library.error))
+        return copy_error(library.error, err);
     warn_lines(path, warnings + errors);
     size_t faces = 0;
     for (const tinyobj::shape_t &shape : shapes)
@@ -369,6 +383,12 @@ extern "C" bool obj_load(const char *path, ObjMesh *out, Error *err)
         loaded = load(path, out, err);
     } catch (const std::bad_alloc &) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory while loading", path);
+    } catch (const std::exception &e) {
+        /* No exception may cross the C API: whatever tinyobjloader or the library throws becomes
+         * an Error naming the file. */
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: cannot load: %s", path, e.what());
+    } catch (...) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: cannot load (unknown exception)", path);
     }
     if (!loaded)
         obj_free(out);

@@ -2,8 +2,10 @@
 #include "scene/scene_data.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* Triangles that use the default material carry this id until scene_data_finish appends the one
  * default material of the scene and patches them. */
@@ -259,8 +261,28 @@ static void drop_bad_normals(SceneData *data, uint32_t first_triangle)
     }
 }
 
+/* Remembers why the first OBJ without triangles has none, for scene_data_finish's message. */
+static void note_faceless(SceneData *data, const ObjMesh *mesh, const char *obj_path)
+{
+    if (mesh->num_triangles > 0 || data->faceless_obj[0])
+        return;
+    struct stat st;
+    snprintf(data->faceless_obj, sizeof data->faceless_obj, "%s", obj_path);
+    if (mesh->num_faces > 0)
+        snprintf(data->faceless_reason, sizeof data->faceless_reason,
+                 "all %zu faces are degenerate", mesh->num_faces);
+    else if (stat(obj_path, &st) == 0 && st.st_size == 0)
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "the file is empty");
+    else if (mesh->num_positions == 0)
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "no 'v' or 'f' records");
+    else
+        snprintf(data->faceless_reason, sizeof data->faceless_reason,
+                 "'v' records but no 'f' records");
+}
+
 bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
 {
+    note_faceless(data, mesh, obj_path);
     /* Every corner may become a vertex: both counts must stay below 2^32 - 1 for uint indices. */
     size_t max_new_vertices = 3 * mesh->num_triangles;
     if (mesh->num_triangles > UINT32_MAX - 1 - (size_t)data->num_triangles ||
@@ -362,7 +384,17 @@ static bool build_emissive_table(SceneData *data, Error *err)
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err)
 {
     if (data->num_triangles == 0) {
-        error_set(err, ERR_NO_TRIANGLES, scene_path, 0, "%s: the scene has no triangles", scene_path);
+        if (!data->faceless_obj[0])
+            error_set(err, ERR_NO_TRIANGLES, scene_path, 0, "%s: the scene has no triangles",
+                      scene_path);
+        else if (strcmp(data->faceless_obj, scene_path) == 0)
+            error_set(err, ERR_NO_TRIANGLES, scene_path, 0,
+                      "%s: no faces (%s): the scene has no triangles", scene_path,
+                      data->faceless_reason);
+        else
+            error_set(err, ERR_NO_TRIANGLES, scene_path, 0,
+                      "%s: the scene has no triangles (%s: no faces, %s)", scene_path,
+                      data->faceless_obj, data->faceless_reason);
         return false;
     }
     if (!resolve_default_material(data, err) || !build_emissive_table(data, err))

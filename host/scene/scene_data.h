@@ -27,12 +27,17 @@ typedef struct {
     uint32_t *emissive_triangles; /* indices of triangles whose material emits */
     uint32_t num_emissive;
     float bounds_min[3], bounds_max[3];
+    /* The first OBJ that added no triangles and why, for the message when the whole scene has
+     * none ("x.obj: no faces (the file is empty)"). */
+    char faceless_obj[512];
+    char faceless_reason[128];
 } SceneData;
 
 void scene_data_init(SceneData *data);
 /* Appends one loaded OBJ: vertices, triangles (indices offset), materials (ids offset), textures. */
 bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err);
-/* Finishes: bounds, emissive table; ERR_NO_TRIANGLES for an empty scene (names scene_path). */
+/* Finishes: bounds, emissive table; ERR_NO_TRIANGLES for an empty scene (names scene_path, and the
+ * first OBJ without faces and why). */
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err);
 void scene_data_free(SceneData *data);
 

@@ -2,16 +2,22 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "scene/texture.h"
 
-#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <stb_image.h>
 
+#include "io/image_checks.h"
+#include "io/input_file.h"
+
 /* Every offset and texel index is a uint in the kernel (and RGBA32F indices are multiplied by 4),
  * so the whole texel buffer is capped at 2^31 uints (8 GiB). */
 #define TEXEL_BUFFER_LIMIT ((size_t)1 << 31)
+/* One texture may declare at most 8192 x 8192 texels (1 GiB as floats): checked on the header
+ * before decoding, so a tiny file declaring a huge image is refused without allocating. */
+#define TEXTURE_MAX_TEXELS ((uint64_t)1 << 26)
 
 /* Finds a texture already added under the same file (compared after realpath, so "a/../t.png" and
  * "t.png" share one copy). */
@@ -34,24 +40,49 @@ typedef struct {
 static bool decode_image(const char *path, DecodedImage *img, Error *err)
 {
     memset(img, 0, sizeof *img);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        ErrorCode code = errno == ENOENT ? ERR_FILE_MISSING : ERR_TEXTURE;
-        error_set(err, code, path, 0, "%s: cannot open texture: %s", path, strerror(errno));
+    char *file = NULL;
+    size_t size = 0;
+    Error read_err = {0};
+    if (!input_file_read(path, "a texture", INPUT_LIMIT_TEXTURE, &file, &size, &read_err)) {
+        /* Anything but a missing file is a texture that cannot be used. */
+        error_set(err, read_err.code == ERR_FILE_MISSING ? ERR_FILE_MISSING : ERR_TEXTURE, path, 0,
+                  "%s", read_err.message);
         return false;
     }
-    int channels = 0;
-    if (stbi_is_hdr_from_file(f))
-        img->rgba32f = stbi_loadf_from_file(f, &img->width, &img->height, &channels, 4);
-    else
-        img->rgba8 = stbi_load_from_file(f, &img->width, &img->height, &channels, 4);
-    fclose(f);
-    if (!img->rgba32f && !img->rgba8) {
+    const stbi_uc *bytes = (const stbi_uc *)file;
+    int length = size > INT_MAX ? INT_MAX : (int)size, channels = 0;
+    bool ok = false;
+    const char *problem = NULL;
+    /* Before stbi_info, which already builds a JPEG's Huffman tables. */
+    if ((problem = image_check_jpeg(bytes, (size_t)length))) {
+        error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt JPEG texture: %s", path, problem);
+    } else if ((problem = image_check_png(bytes, (size_t)length))) {
+        error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt PNG texture: %s", path, problem);
+    } else if (!stbi_info_from_memory(bytes, length, &img->width, &img->height, &channels)) {
         error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
                   stbi_failure_reason());
-        return false;
+    } else if (img->width <= 0 || img->height <= 0 ||
+               (uint64_t)img->width * (uint64_t)img->height > TEXTURE_MAX_TEXELS) {
+        error_set(err, ERR_TOO_LARGE, path, 0,
+                  "%s: declared size %dx%d is over the limit of %llu texels per texture", path,
+                  img->width, img->height, (unsigned long long)TEXTURE_MAX_TEXELS);
+    } else if (stbi_is_hdr_from_memory(bytes, length) &&
+               (problem = image_check_hdr(bytes, (size_t)length, img->width, img->height))) {
+        error_set(err, ERR_TEXTURE, path, 0, "%s: corrupt HDR texture: %s", path, problem);
+    } else {
+        if (stbi_is_hdr_from_memory(bytes, length))
+            img->rgba32f = stbi_loadf_from_memory(bytes, length, &img->width, &img->height,
+                                                  &channels, 4);
+        else
+            img->rgba8 = stbi_load_from_memory(bytes, length, &img->width, &img->height,
+                                               &channels, 4);
+        ok = img->rgba32f || img->rgba8;
+        if (!ok)
+            error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
+                      stbi_failure_reason());
     }
-    return true;
+    free(file);
+    return ok;
 }
 
 /* Appends the decoded texels in the kernel's layout (cl/shared.h TEXTURE_*). */
