@@ -105,6 +105,13 @@ bool fs_check_writable(const char *path, Error *err)
         error_set(err, ERR_OUTPUT, path, 0, "%s: output path is a directory", path);
         return false;
     }
+    /* The temporary file is renamed over the target: over a device (/dev/full, /dev/null), a FIFO
+     * or a socket that would replace the node itself (as root, in /dev), so only a regular file
+     * (or nothing yet) may be there. */
+    if (stat(path, &info) == 0 && !S_ISREG(info.st_mode)) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: output path exists and is not a regular file", path);
+        return false;
+    }
     if (stat(folder, &info) != 0) {
         error_set(err, ERR_OUTPUT, path, 0, "%s: folder %s does not exist (%s)", path, folder,
                   strerror(errno));

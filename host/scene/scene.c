@@ -10,42 +10,29 @@
 #include <sys/stat.h>
 
 #include "base/fs.h"
+#include "io/input_file.h"
 #include "scene/camera.h"
 #include "scene/json.h"
 #include "scene/scene_json.h"
 
-#define SCENE_FILE_LIMIT ((long)64 << 20) /* a scene description is small; refuse anything huge */
+#define SCENE_FILE_LIMIT ((size_t)64 << 20) /* a scene description is small; refuse anything huge */
 
 /* ---- Files ---------------------------------------------------------------------------------- */
 
+/* The scene file as text: a regular file of at most SCENE_FILE_LIMIT bytes (io/input_file.h: a
+ * FIFO or device is refused by name, never read), without NUL bytes (cJSON would stop there). */
 static char *read_text(const char *path, Error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        ErrorCode code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
-        error_set(err, code, path, 0, "%s: %s", path, strerror(errno));
+    char *text;
+    size_t size;
+    if (!input_file_read(path, "a scene file", SCENE_FILE_LIMIT, &text, &size, err))
+        return NULL;
+    if (strlen(text) != size) {
+        int line = json_line_at(text, strlen(text));
+        error_set(err, ERR_JSON_SYNTAX, path, line, "%s:%d: NUL byte in the scene file", path, line);
+        free(text);
         return NULL;
     }
-    char *text = NULL;
-    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    if (size > SCENE_FILE_LIMIT) {
-        error_set(err, ERR_TOO_LARGE, path, 0, "%s: %ld bytes is too large for a scene", path, size);
-    } else if (size < 0 || fseek(f, 0, SEEK_SET) != 0 || !(text = malloc((size_t)size + 1)) ||
-               fread(text, 1, (size_t)size, f) != (size_t)size) {
-        error_set(err, ERR_FILE_READ, path, 0, "%s: cannot read", path);
-        free(text);
-        text = NULL;
-    } else {
-        text[size] = '\0';
-        if (strlen(text) != (size_t)size) {
-            int line = json_line_at(text, strlen(text));
-            error_set(err, ERR_JSON_SYNTAX, path, line, "%s:%d: NUL byte in the scene file", path,
-                      line);
-            free(text);
-            text = NULL;
-        }
-    }
-    fclose(f);
     return text;
 }
 
