@@ -148,7 +148,6 @@ float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *st
     float *rgb = malloc(n * 3 * sizeof *rgb);
     RenderStats stats;
     Error err = {0};
-    s.quiet = true;
     cr_assert(wavefront_render(f->dev, &f->scene, &f->buffers, &s, rgb, &stats, &err), "%s", err.message);
     cr_assert_eq(stats.nonfinite, 0, "%u non-finite samples", stats.nonfinite);
     if (stats_out)

@@ -14,7 +14,7 @@
 #define SIZE 64
 #define PIXELS (SIZE * SIZE)
 
-static const RenderSettings cornell = {.spp = 32, .max_depth = 6, .seed = 5, .quiet = true};
+static const RenderSettings cornell = {.spp = 32, .max_depth = 6, .seed = 5};
 
 /* The film's raw words after rendering settings s (all of its spp) on f. */
 static uint64_t *render_sums(RenderFixture *f, RenderSettings s)
@@ -149,7 +149,7 @@ Test(film, the_count_grows_past_2_24_and_sums_saturate, .timeout = 120)
 {
     RenderFixture f;
     render_fixture_open(&f, write_sky_scene("[2, 1.5, 0.25]"), 4, 4);
-    RenderSettings s = {.spp = 1, .max_depth = 2, .quiet = true};
+    RenderSettings s = {.spp = 1, .max_depth = 2};
     Error err = {0};
     Wavefront *w = wavefront_create(f.dev, &f.scene, &f.buffers, &s, &err);
     cr_assert(w, "%s", err.message);

@@ -121,7 +121,7 @@ int command_bench(const Options *o)
     float *rgb = malloc((size_t)d->width * d->height * 3 * sizeof *rgb);
     if (!rgb)
         die("out of memory for a %dx%d film", d->width, d->height);
-    RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed, .quiet = true,
+    RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed,
                            .no_nee = o->no_nee};
 
     RenderStats stats[NUM_MODES];

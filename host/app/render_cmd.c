@@ -181,7 +181,6 @@ int command_render(const Options *o)
             .no_nee = o->no_nee,
             .sort_materials = o->sort_materials,
             .no_compaction = o->no_compaction,
-            .quiet = o->quiet,
             .profile = o->profile,
         };
         RenderStats stats;

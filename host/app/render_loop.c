@@ -2,20 +2,13 @@
 #include "app/render_loop.h"
 
 #include <stdio.h>
-#include <time.h>
 
 #include "app/stop_signals.h"
+#include "base/clock.h"
 
 /* Seconds between progress updates: often enough to see it move, rare enough to cost nothing. */
 #define TERMINAL_UPDATE_SECONDS 0.25
 #define LINE_UPDATE_SECONDS 1.0
-
-static double seconds_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void print_progress(ProgressStyle style, int spp_done, int spp, uint64_t done,
                            uint64_t total, double elapsed)

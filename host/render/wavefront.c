@@ -3,15 +3,10 @@
  * paths into free slots, steps every live path (extend, [sort], shade, connect), compacts the
  * survivors and refills the pool, then accumulates the window into the film. The device state it
  * drives is set up in render/wavefront_state.c. */
-#include <signal.h>
 #include <stdio.h>
-#include <unistd.h>
 
 #include "base/clock.h"
 #include "render/wavefront_internal.h"
-
-static volatile sig_atomic_t g_stop_requested;
-void wavefront_request_stop(void) { g_stop_requested = 1; }
 
 static void run(Wavefront *w, int stage, size_t n)
 {
@@ -128,16 +123,6 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
     device_write(w->dev, w->counters, COUNTER_SHADOW_RAYS * sizeof(uint32_t), sizeof zeros, zeros);
 }
 
-static void print_progress(const RenderStats *stats, int spp, double elapsed, uint64_t done,
-                           uint64_t total)
-{
-    double rate = done / (elapsed > 0 ? elapsed : 1e-9);
-    double eta = (double)(total - done) / (rate > 0 ? rate : 1);
-    fprintf(stderr, "\rpt: %5.1f%%  %d/%d spp  %.2f Msamples/s  elapsed %.1f s  ETA %.1f s   ",
-            100.0 * (double)done / (double)total, stats->spp_done, spp, rate * 1e-6, elapsed, eta);
-    fflush(stderr);
-}
-
 /* The next window from the cursor: whole samples per pixel when the window holds the film, else a
  * slice of pixels of one sample. Returns the paths traced. */
 static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
@@ -173,31 +158,16 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
 }
 
 
-/* All spp, a pool's worth at a time, with progress; stops early after wavefront_request_stop(). */
-static void render_all(Wavefront *w, int spp, bool show_progress)
-{
-    uint64_t total = (uint64_t)w->num_pixels * (uint64_t)spp, done = 0;
-    double start = seconds_now(), last_print = -1.0;
-    while ((int)w->next_sample < spp && !g_stop_requested) {
-        done += wavefront_advance(w, 1, spp);
-        double now = seconds_now() - start;
-        if (show_progress && (now - last_print > 0.25 || (int)w->next_sample == spp)) {
-            print_progress(w->stats, spp, now, done, total);
-            last_print = now;
-        }
-    }
-    if (show_progress)
-        fputc('\n', stderr);
-}
-
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                       const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err)
 {
-    g_stop_requested = 0;
     Wavefront *w = wavefront_create(dev, scene, buffers, settings, err);
     if (!w)
         return false;
-    render_all(w, settings->spp, !settings->quiet && isatty(STDERR_FILENO));
+    /* Progress and stopping early belong to the caller (app/render_loop.c drives
+     * wavefront_advance itself); this is the plain whole render that bench and tests use. */
+    while ((int)w->next_sample < settings->spp)
+        wavefront_advance(w, 1, settings->spp);
     wavefront_read_film(w, rgb);
     *stats = *w->stats;
     wavefront_destroy(w);

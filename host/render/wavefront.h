@@ -20,7 +20,6 @@ typedef struct {
                             * pixel: films of disjoint blocks add up (film_sums_add) to one render */
     bool no_nee;         /* BSDF sampling only */
     bool no_compaction;  /* every bounce runs over the whole window; dead slots idle, no refill */
-    bool quiet;          /* no progress line */
     bool profile;        /* time every kernel (waits after each launch) */
     bool brute_force;    /* no BVH: every ray against every triangle (benchmark ablation) */
     bool sort_materials; /* shade the live paths grouped by the material they hit */
@@ -76,12 +75,10 @@ RenderStats *wavefront_stats(Wavefront *w);
 void wavefront_destroy(Wavefront *w);
 
 /* Renders scene into rgb (width * height * 3 floats, row 0 at the top): the mean of spp samples
- * per pixel. Stops early, keeping what is done, after wavefront_request_stop(). */
+ * per pixel, all of them, silently (pt render's own loop, app/render_loop.c, shows progress and
+ * stops early on a signal through wavefront_advance). */
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                       const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err);
-
-/* Async-signal-safe: asks a running render to stop after the current batch (Ctrl-C). */
-void wavefront_request_stop(void);
 
 extern const char *const stage_names[STAGE_COUNT];
 

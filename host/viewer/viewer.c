@@ -281,7 +281,7 @@ int command_view(const ViewerDesc *o)
     v->target_spp = o->render.spp ? o->render.spp : UNLIMITED_SPP;
     v->settings = (RenderSettings){.spp = v->target_spp, .max_depth = d->max_depth,
                                    .seed = o->seed, .no_nee = o->no_nee, .sort_materials = o->sort_materials,
-                                   .no_compaction = o->no_compaction, .quiet = true};
+                                   .no_compaction = o->no_compaction};
     if (!o->quiet) {
         session_print_summary(&v->session);
         fprintf(stderr, "pt: view: press H in the window for the keys\n");
