@@ -1,6 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* device.h: OpenCL platform/device selection, the one program built from the embedded cl/ sources,
- * checked buffer allocation and kernel launches. Nothing here knows about rendering. */
+/* device.h: OpenCL platform/device selection (device.c), the one program built from the embedded
+ * cl/ sources (program.c), checked buffer allocation and kernel launches (launch.c). The one
+ * rendering choice made here is the BVH layout the kernels are compiled for (bvh_width,
+ * bvh_quantized: program.c), because it follows the device type and must match -DBVH_WIDTH in the
+ * build options; render/ and the tests lay the tree out from those two fields. */
 #ifndef PT_DEVICE_H
 #define PT_DEVICE_H
 

@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: MIT
+/* program.c: the one program of a device: its build options (with the BVH layout the kernels are
+ * compiled for), the source assembled from the embedded cl/ files, the build or the load from the
+ * kernel cache (device/kernel_cache.c), the build log of a failure, and its kernels. */
+#include "device/device_internal.h"
+
+#include "device/kernel_cache.h"
+#include "base/clock.h"
+#include "base/env.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern const unsigned char pt_kernel_source[];
+extern const size_t pt_kernel_source_length;
+
+/* Room in Device.build_options for PT_CL_OPTIONS next to the options pt always adds. */
+#define MAX_CL_OPTIONS_LENGTH 160
+
+/* The program's build options for this device. Conservative maths: no fast-relaxed-math, which
+ * would let the compiler drop the Inf/NaN handling that the traversal and the film guard depend
+ * on. Correctly rounded division where the device offers it: NVIDIA's default division is off by
+ * up to 2 ulp, enough to flip watertight edge tests against the host's (and PoCL's) results and
+ * so to make images differ across devices; measured on the H100, it costs no traversal speed.
+ * PT_CL_OPTIONS replaces the maths options (for experiments; the vendor switch stays). */
+static bool choose_build_options(Device *dev, Error *err)
+{
+    cl_device_fp_config fp = 0;
+    CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
+    const char *maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
+                            ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
+                            : "-cl-mad-enable -cl-no-signed-zeros";
+    if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))
+        return false;
+    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s",
+             maths, dev->bvh_width, dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",
+             dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+    return true;
+}
+
+/* The BVH layout (bvh_wide.h). A GPU runs each work item as one SIMD lane, so the 2-wide tree
+ * with one box per lane is its natural layout; a CPU runs a work item on a whole core, whose
+ * SIMD units only work when one item tests many boxes at once (8 lanes of AVX). The 2-wide nodes
+ * are 64-byte floats by default; PT_BVH_QUANTIZED=1 halves them (bvh_quantized.h), which
+ * measured 9-10% slower on the H100 (bench/README.md) but halves the nodes' memory. */
+static bool choose_bvh_width(Device *dev, Error *err)
+{
+    long width;
+    if (!env_int("PT_BVH_WIDTH", 2, 8, (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2, &width, err))
+        return false;
+    if (width != 2 && width != 4 && width != 8) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "environment variable PT_BVH_WIDTH=%ld: the BVH layouts are 2, 4 and 8 wide",
+                  width);
+        return false;
+    }
+    dev->bvh_width = (int)width;
+    if (!env_flag("PT_BVH_QUANTIZED", false, &dev->bvh_quantized, err))
+        return false;
+    if (dev->bvh_quantized && dev->bvh_width != 2) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "environment variable PT_BVH_QUANTIZED=1: quantised nodes are a 2-wide layout, "
+                  "and this device walks the %d-wide one (PT_BVH_WIDTH=2 selects it)",
+                  dev->bvh_width);
+        return false;
+    }
+    return true;
+}
+
+bool device_choose_program_options(Device *dev, Error *err)
+{
+    return choose_bvh_width(dev, err) && choose_build_options(dev, err);
+}
+
+const char *device_build_options(const Device *dev) { return dev->build_options; }
+
+/* Prints the build log of a failed build and records the error. */
+static bool build_failed(Device *dev, cl_int status, Error *err)
+{
+    size_t log_size = 0;
+    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
+    char *log = malloc(log_size + 1);
+    if (!log)
+        die("out of memory");
+    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
+    log[log_size] = '\0';
+    fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name,
+            device_build_options(dev), log);
+    free(log);
+    error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
+              dev->name, cl_error_name(status));
+    return false;
+}
+
+/* A program from a cached binary; false (and nothing kept) when the entry is missing or unusable. */
+static bool build_from_cache(Device *dev, uint64_t key)
+{
+    unsigned char *binary = NULL;
+    size_t size = 0;
+    if (!kernel_cache_load(key, &binary, &size))
+        return false;
+    cl_int status, binary_status;
+    const unsigned char *binaries[1] = {binary};
+    cl_program program = clCreateProgramWithBinary(dev->context, 1, &dev->device, &size, binaries,
+                                                   &binary_status, &status);
+    free(binary);
+    if (status != CL_SUCCESS || binary_status != CL_SUCCESS) {
+        if (status == CL_SUCCESS)
+            clReleaseProgram(program);
+        warn("the driver refused the cached kernels (%s): rebuilding",
+             cl_error_name(status != CL_SUCCESS ? status : binary_status));
+        return false;
+    }
+    if (clBuildProgram(program, 1, &dev->device, device_build_options(dev), NULL, NULL) != CL_SUCCESS) {
+        warn("the cached kernels do not build on %s: rebuilding", dev->name);
+        clReleaseProgram(program);
+        return false;
+    }
+    dev->program = program;
+    return true;
+}
+
+static void store_in_cache(Device *dev, uint64_t key)
+{
+    size_t size = 0;
+    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL));
+    if (size == 0)
+        return;
+    unsigned char *binary = malloc(size);
+    if (!binary)
+        return;
+    unsigned char *binaries[1] = {binary};
+    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL));
+    kernel_cache_store(key, binary, size);
+    free(binary);
+}
+
+bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
+{
+    char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
+    if (!source)
+        die("out of memory");
+    memcpy(source, pt_kernel_source, pt_kernel_source_length + 1);
+    if (extra_source)
+        sprintf(source + pt_kernel_source_length, "\n#line 1 \"%.500s\"\n%s",
+                extra_name ? extra_name : "extra", extra_source);
+
+    double start = seconds_now();
+    const char *key_parts[] = {source, device_build_options(dev), dev->name, dev->platform_name,
+                               dev->driver_version};
+    uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
+    dev->cache_hit = dev->use_cache && build_from_cache(dev, key);
+    if (!dev->cache_hit) {
+        cl_int status;
+        const char *sources[1] = {source};
+        dev->program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
+        CL_CHECK_ERR(status, "clCreateProgramWithSource");
+        status = clBuildProgram(dev->program, 1, &dev->device, device_build_options(dev), NULL, NULL);
+        if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS) {
+            free(source);
+            return build_failed(dev, status, err);
+        }
+        CL_CHECK_ERR(status, "clBuildProgram");
+        if (dev->use_cache)
+            store_in_cache(dev, key);
+    }
+    dev->build_seconds = seconds_now() - start;
+    free(source);
+    return true;
+}
+
+cl_kernel device_kernel(Device *dev, const char *name)
+{
+    cl_int status;
+    cl_kernel kernel = clCreateKernel(dev->program, name, &status);
+    if (status != CL_SUCCESS) {
+        fprintf(stderr, "pt: kernel '%s' not found\n", name);
+        cl_fail(status, "clCreateKernel", __FILE__, __LINE__);
+    }
+    return kernel;
+}
