@@ -102,7 +102,7 @@ typedef struct {
  * collapse (bvh_layout) checks that no path needs more. */
 #define BVH_WIDE_STACK_SIZE 192
 
-/* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device/device.c). */
+/* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device/program.c). */
 #ifdef __OPENCL_C_VERSION__
 #ifndef BVH_WIDTH
 #define BVH_WIDTH 2

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/error.h"
+#include "base/fs.h"
 
 /* An entry is a header then the driver's binary. The file is untrusted (truncated by a full disk,
  * written by another version, edited): drivers read their binaries without bounds checks (PoCL
@@ -124,27 +125,15 @@ bool kernel_cache_load(uint64_t key, unsigned char **data, size_t *size)
     return true;
 }
 
-/* mkdir -p for the cache folder. */
+/* mkdir -p for the cache folder (base/fs.h), and a folder this process may write into. */
 static bool make_dirs(const char *dir)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s", dir);
-    for (char *p = path + 1; *p; p++) {
-        if (*p == '/') {
-            *p = '\0';
-            if (mkdir(path, 0755) != 0 && errno != EEXIST)
-                return false;
-            *p = '/';
-        }
-    }
-    if (mkdir(path, 0755) != 0 && errno != EEXIST)
-        return false;
-    struct stat st;
-    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        errno = ENOTDIR;
+    if (!fs_make_dirs(dir)) {
+        if (errno == 0 || errno == EEXIST)
+            errno = ENOTDIR;
         return false;
     }
-    return access(path, W_OK | X_OK) == 0;
+    return access(dir, W_OK | X_OK) == 0;
 }
 
 static bool warned_unwritable;
