@@ -29,83 +29,6 @@ void scene_data_free(SceneData *data)
     memset(data, 0, sizeof *data);
 }
 
-/* ---- Materials ------------------------------------------------------------------------------ */
-
-static float luminance3(const float c[3])
-{
-    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
-}
-
-/* Reflectances above 1 would create energy and non-finite ones poison the image: clamp to [0, 1]. */
-static float4 reflectance(const float c[3])
-{
-    float4 out = {{0.0f, 0.0f, 0.0f, 0.0f}};
-    for (int i = 0; i < 3; i++)
-        out.s[i] = isfinite(c[i]) ? fminf(fmaxf(c[i], 0.0f), 1.0f) : 0.0f;
-    return out;
-}
-
-Material material_from_obj(const ObjMaterial *m, uint32_t map_kd)
-{
-    Material out = {.kd = reflectance(m->kd), .ks = reflectance(m->ks), .tf = reflectance(m->tf),
-                    .type = MATERIAL_DIFFUSE, .map_kd = map_kd};
-    for (int i = 0; i < 3; i++)
-        out.ke.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
-    out.ke.s[3] = luminance3(out.ke.s);
-    /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
-    if (out.tf.s[0] + out.tf.s[1] + out.tf.s[2] <= 0.0f)
-        out.tf = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
-    out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
-    bool has_ks = out.ks.s[0] + out.ks.s[1] + out.ks.s[2] > 0.0f;
-    bool refracts = m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f);
-    if ((m->illum == 3 || m->illum == 5) && has_ks)
-        out.type = MATERIAL_MIRROR;
-    else if (refracts)
-        out.type = MATERIAL_DIELECTRIC;
-    return out;
-}
-
-static Material default_material(void)
-{
-    ObjMaterial grey = {.kd = {0.8f, 0.8f, 0.8f}, .ni = 1.0f, .d = 1.0f, .illum = -1};
-    return material_from_obj(&grey, NO_TEXTURE);
-}
-
-/* Appends the mesh's materials and loads their textures. A missing texture file is a warning (the
- * material keeps its Kd); a corrupt one is an error. */
-static bool append_materials(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
-{
-    if (mesh->num_materials > (size_t)UINT32_MAX - 1 - data->num_materials) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: too many materials", obj_path);
-        return false;
-    }
-    size_t count = data->num_materials + mesh->num_materials;
-    Material *grown = realloc(data->materials, (count ? count : 1) * sizeof *grown);
-    if (!grown) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory for materials", obj_path);
-        return false;
-    }
-    data->materials = grown;
-    for (size_t i = 0; i < mesh->num_materials; i++) {
-        const ObjMaterial *m = &mesh->materials[i];
-        uint32_t map_kd = NO_TEXTURE;
-        if (m->map_kd[0]) {
-            Error texture_err = {0};
-            map_kd = texture_set_add(&data->textures, m->map_kd, &texture_err);
-            if (texture_err.code == ERR_FILE_MISSING) {
-                warn("%s: texture %s of material '%s' not found: using its Kd", obj_path, m->map_kd,
-                     m->name);
-            } else if (error_is_set(&texture_err)) {
-                error_set(err, texture_err.code, texture_err.file, 0, "%s (material '%s' of %s)",
-                          texture_err.message, m->name, obj_path);
-                return false;
-            }
-        }
-        data->materials[data->num_materials++] = material_from_obj(m, map_kd);
-    }
-    return true;
-}
-
 /* ---- Vertex unification --------------------------------------------------------------------- */
 
 /* Open-addressing hash map from a corner's (position, texcoord, normal) indices to its unified
@@ -292,7 +215,8 @@ bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj
         return false;
     }
     uint32_t material_base = data->num_materials;
-    if (!append_materials(data, mesh, obj_path, err))
+    if (!materials_append_obj(&data->materials, &data->num_materials, &data->textures, mesh,
+                              obj_path, err))
         return false;
     size_t num_triangles = data->num_triangles + mesh->num_triangles;
     uint32_t *first_corner = malloc((max_new_vertices ? max_new_vertices : 1) * sizeof *first_corner);
@@ -343,7 +267,7 @@ static bool resolve_default_material(SceneData *data, Error *err)
         error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for materials");
         return false;
     }
-    data->materials[data->num_materials++] = default_material();
+    data->materials[data->num_materials++] = material_default();
     return true;
 }
 

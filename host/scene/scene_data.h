@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "io/obj_loader.h"
 #include "base/shared_types.h"
+#include "scene/materials.h" /* material_from_obj, for the flattener's users and tests */
 #include "scene/texture.h"
 
 typedef struct {
@@ -40,8 +41,5 @@ bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj
  * first OBJ without faces and why). */
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err);
 void scene_data_free(SceneData *data);
-
-/* Maps one MTL material onto the kernels' Material (see README "Materials"). */
-Material material_from_obj(const ObjMaterial *m, uint32_t map_kd);
 
 #endif

@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+/* The MTL side of the OBJ loader (mtl_reader.h): tinyobjloader reads the material libraries
+ * through MaterialLibraryReader, which also scans each one for the keys tinyobj::material_t does
+ * not record as given; copy_material turns the result into ObjMaterial. */
+#include "io/mtl_reader.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+extern "C" {
+#include "io/input_file.h"
+}
+
+namespace mtl_reader {
+
+namespace {
+
+/* Which materials of one MTL gave illum and Tf/Kt, in the order tinyobj::LoadMtl appends them: a
+ * block is appended when the next newmtl starts if it has a name, and the last block always. */
+std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &folder)
+{
+    struct Block {
+        bool named;
+        MaterialExtras extras;
+    };
+    std::vector<Block> blocks(1, Block{false, MaterialExtras(folder, false, false)});
+    std::string unix_text = text; /* tinyobjloader also ends lines at a lone \r */
+    std::replace(unix_text.begin(), unix_text.end(), '\r', '\n');
+    std::istringstream lines(unix_text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        size_t begin = line.find_first_not_of(" \t");
+        size_t end = line.find_last_not_of(" \t\r");
+        if (begin == std::string::npos || end == std::string::npos)
+            continue;
+        std::string record = line.substr(begin, end + 1 - begin);
+        auto keyword = [&record](const char *word) {
+            size_t n = strlen(word);
+            return record.size() > n && record.compare(0, n, word) == 0 &&
+                   (record[n] == ' ' || record[n] == '\t');
+        };
+        if (keyword("newmtl")) {
+            blocks.push_back(Block{record.size() > 7, MaterialExtras(folder, false, false)});
+        } else if (keyword("illum")) {
+            blocks.back().extras.has_illum = true;
+        } else if (keyword("Tf") || keyword("Kt")) {
+            blocks.back().extras.has_tf = true;
+        }
+    }
+    std::vector<MaterialExtras> appended;
+    for (size_t i = 0; i < blocks.size(); i++)
+        if (blocks[i].named || i + 1 == blocks.size())
+            appended.push_back(blocks[i].extras);
+    return appended;
+}
+
+} // namespace
+
+std::string folder_of(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos)
+        return "";
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string join_path(const std::string &folder, const std::string &name)
+{
+    if (folder.empty() || name.empty() || name[0] == '/')
+        return name;
+    return folder[folder.size() - 1] == '/' ? folder + name : folder + "/" + name;
+}
+
+bool read_whole_file(const char *path, const char *kind, size_t limit, std::string *text,
+                     Error *err)
+{
+    char *data = NULL;
+    size_t size = 0;
+    if (!input_file_read(path, kind, limit, &data, &size, err))
+        return false;
+    try {
+        text->assign(data, size);
+    } catch (...) {
+        free(data);
+        throw;
+    }
+    free(data);
+    return true;
+}
+
+/* tinyobjloader's messages are '\n'-separated (one is "...found\n."): each line becomes one
+ * warning. Lines repeating what obj_lines or MaterialLibraryReader already said are dropped. */
+void warn_lines(const std::string &source, const std::string &text)
+{
+    static const char *const already_reported[] = {"Degenerated face found",
+                                                   "Failed to load material file(s)"};
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        size_t begin = line.find_first_not_of(" \t\r.");
+        if (begin == std::string::npos)
+            continue;
+        line = line.substr(begin, line.find_last_not_of(" \t\r") + 1 - begin);
+        bool repeated = false;
+        for (const char *known : already_reported)
+            repeated = repeated || line.compare(0, strlen(known), known) == 0;
+        if (!repeated)
+            warn("%s: %s", source.c_str(), line.c_str());
+    }
+}
+
+bool MaterialLibraryReader::operator()(const std::string &name,
+                                       std::vector<tinyobj::material_t> *materials,
+                                       std::map<std::string, int> *names,
+                                       std::string *warnings, std::string *errors)
+{
+    (void)warnings; /* ours go straight to warn(), naming the MTL */
+    std::string path = join_path(folder_, name);
+    std::string text;
+    Error read_error = {};
+    if (!read_whole_file(path.c_str(), "a material library", INPUT_LIMIT_MTL, &text,
+                         &read_error)) {
+        if (read_error.code == ERR_FILE_MISSING)
+            warn("material library %s not found: its materials are replaced by the default",
+                 path.c_str());
+        else
+            error_set(&error, read_error.code, path.c_str(), 0, "%s", read_error.message);
+        return false;
+    }
+    size_t before = materials->size();
+    std::istringstream stream(text);
+    std::string mtl_warnings;
+    tinyobj::LoadMtl(names, materials, &stream, &mtl_warnings, errors);
+    warn_lines(path, mtl_warnings);
+    std::vector<MaterialExtras> found = scan_material_blocks(text, folder_of(path));
+    if (found.size() != materials->size() - before) /* keep tinyobj's values as they are */
+        found.assign(materials->size() - before, MaterialExtras(folder_of(path)));
+    extras.insert(extras.end(), found.begin(), found.end());
+    return true;
+}
+
+void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to)
+{
+    snprintf(to->name, sizeof to->name, "%s", from.name.c_str());
+    for (int c = 0; c < 3; c++) {
+        to->kd[c] = from.diffuse[c];
+        to->ks[c] = from.specular[c];
+        to->ke[c] = from.emission[c];
+        to->tf[c] = extras.has_tf ? from.transmittance[c] : 1.0f;
+    }
+    to->ni = from.ior;
+    to->d = from.dissolve;
+    to->illum = extras.has_illum ? from.illum : -1;
+    std::string map_kd = join_path(extras.folder, from.diffuse_texname);
+    if (map_kd.size() >= sizeof to->map_kd)
+        warn("material %s: map_Kd path longer than %zu characters ignored", to->name,
+             sizeof to->map_kd - 1);
+    else
+        snprintf(to->map_kd, sizeof to->map_kd, "%s", map_kd.c_str());
+}
+
+} // namespace mtl_reader

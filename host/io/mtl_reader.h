@@ -1,0 +1,73 @@
+/* SPDX-License-Identifier: MIT */
+/* mtl_reader.h: C++, internal to the OBJ loader (obj_loader.cc, mtl_reader.cc); the C API is
+ * obj_loader.h. Reads an OBJ's mtllib files for tinyobjloader, keeps what tinyobj::material_t
+ * cannot tell, and copies the materials into ObjMaterial. Also the file, path and warning helpers
+ * both files use. Nothing here is called from C, so exceptions may pass: obj_load catches them. */
+#ifndef PT_MTL_READER_H
+#define PT_MTL_READER_H
+
+#ifndef __cplusplus
+#error "io/mtl_reader.h is C++ (obj_loader.cc and mtl_reader.cc only)"
+#endif
+
+#include <tiny_obj_loader.h>
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+/* error.h is C11; its _Noreturn has the C++11 spelling [[noreturn]]. */
+#define _Noreturn [[noreturn]]
+extern "C" {
+#include "base/error.h"
+#include "io/obj_loader.h"
+}
+#undef _Noreturn
+
+namespace mtl_reader {
+
+/* What tinyobj::material_t cannot tell: whether illum and Tf were given, and the MTL's folder. */
+struct MaterialExtras {
+    std::string folder;
+    bool has_illum, has_tf;
+    explicit MaterialExtras(const std::string &folder_, bool has_illum_ = true, bool has_tf_ = true)
+        : folder(folder_), has_illum(has_illum_), has_tf(has_tf_)
+    {
+    }
+};
+
+/* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. One that
+ * exists but cannot be read as a material library (a folder, /dev/zero, too large) is an error,
+ * kept in `error` for the loader to report after tinyobjloader returns. */
+class MaterialLibraryReader : public tinyobj::MaterialReader {
+  public:
+    explicit MaterialLibraryReader(const std::string &folder) : error(), folder_(folder) {}
+    std::vector<MaterialExtras> extras; /* parallel to the materials appended */
+    Error error;
+
+    bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
+                    std::map<std::string, int> *names, std::string *warnings,
+                    std::string *errors) override;
+
+  private:
+    std::string folder_;
+};
+
+/* One tinyobjloader material as an ObjMaterial: absent illum -1, absent Tf 1 1 1, map_Kd resolved
+ * against the MTL's folder. */
+void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to);
+
+/* The folder part of a path ("" for none, "/" for the root) and a name resolved against one. */
+std::string folder_of(const std::string &path);
+std::string join_path(const std::string &folder, const std::string &name);
+/* The whole file as a string: a regular file under `limit` bytes only (input_file.h). */
+bool read_whole_file(const char *path, const char *kind, size_t limit, std::string *text,
+                     Error *err);
+/* tinyobjloader's messages, one warning a line, naming `source`; lines repeating what obj_lines
+ * or MaterialLibraryReader already said are dropped. */
+void warn_lines(const std::string &source, const std::string &text);
+
+} // namespace mtl_reader
+
+#endif

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "scene/materials.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static float luminance3(const float c[3])
+{
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+/* Reflectances above 1 would create energy and non-finite ones poison the image: clamp to [0, 1]. */
+static float4 reflectance(const float c[3])
+{
+    float4 out = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    for (int i = 0; i < 3; i++)
+        out.s[i] = isfinite(c[i]) ? fminf(fmaxf(c[i], 0.0f), 1.0f) : 0.0f;
+    return out;
+}
+
+Material material_from_obj(const ObjMaterial *m, uint32_t map_kd)
+{
+    Material out = {.kd = reflectance(m->kd), .ks = reflectance(m->ks), .tf = reflectance(m->tf),
+                    .type = MATERIAL_DIFFUSE, .map_kd = map_kd};
+    for (int i = 0; i < 3; i++)
+        out.ke.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
+    out.ke.s[3] = luminance3(out.ke.s);
+    /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
+    if (out.tf.s[0] + out.tf.s[1] + out.tf.s[2] <= 0.0f)
+        out.tf = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
+    out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
+    bool has_ks = out.ks.s[0] + out.ks.s[1] + out.ks.s[2] > 0.0f;
+    bool refracts = m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f);
+    if ((m->illum == 3 || m->illum == 5) && has_ks)
+        out.type = MATERIAL_MIRROR;
+    else if (refracts)
+        out.type = MATERIAL_DIELECTRIC;
+    return out;
+}
+
+Material material_default(void)
+{
+    ObjMaterial grey = {.kd = {0.8f, 0.8f, 0.8f}, .ni = 1.0f, .d = 1.0f, .illum = -1};
+    return material_from_obj(&grey, NO_TEXTURE);
+}
+
+bool materials_append_obj(Material **materials, uint32_t *num_materials, TextureSet *textures,
+                          const ObjMesh *mesh, const char *obj_path, Error *err)
+{
+    if (mesh->num_materials > (size_t)UINT32_MAX - 1 - *num_materials) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: too many materials", obj_path);
+        return false;
+    }
+    size_t count = *num_materials + mesh->num_materials;
+    Material *grown = realloc(*materials, (count ? count : 1) * sizeof *grown);
+    if (!grown) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory for materials", obj_path);
+        return false;
+    }
+    *materials = grown;
+    for (size_t i = 0; i < mesh->num_materials; i++) {
+        const ObjMaterial *m = &mesh->materials[i];
+        uint32_t map_kd = NO_TEXTURE;
+        if (m->map_kd[0]) {
+            Error texture_err = {0};
+            map_kd = texture_set_add(textures, m->map_kd, &texture_err);
+            if (texture_err.code == ERR_FILE_MISSING) {
+                warn("%s: texture %s of material '%s' not found: using its Kd", obj_path, m->map_kd,
+                     m->name);
+            } else if (error_is_set(&texture_err)) {
+                error_set(err, texture_err.code, texture_err.file, 0, "%s (material '%s' of %s)",
+                          texture_err.message, m->name, obj_path);
+                return false;
+            }
+        }
+        (*materials)[(*num_materials)++] = material_from_obj(m, map_kd);
+    }
+    return true;
+}

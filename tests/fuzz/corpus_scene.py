@@ -1,0 +1,85 @@
+# SPDX-License-Identifier: MIT
+"""Cases for the JSON scene reader: truncations, byte flips, wrong types, unknown keys, nesting,
+special files as objects.
+"""
+import json
+
+from corpus_cases import BASE_SCENE, TINY, TRIANGLE, case, cases
+
+
+def scene_case(name, text, expect="any", needle=None, extra_files=None, args_extra=None):
+    files = {"tri.obj": TRIANGLE, "scene.json": text}
+    files.update(extra_files or {})
+    case("json-" + name, files, ["render", "scene.json"] + TINY + (args_extra or []), expect,
+         needle=needle)
+
+
+def json_cases(rng):
+    base = json.dumps(BASE_SCENE, indent=1)
+    scene_case("valid", base, "ok")
+    for i, cut in enumerate(range(1, len(base), max(1, len(base) // 20))):
+        scene_case("truncated-%02d" % i, base[:cut], "error", needle="scene.json")
+    for i in range(15):
+        b = bytearray(base.encode())
+        for _ in range(rng.randint(1, 4)):
+            b[rng.randrange(len(b))] = rng.randrange(256)
+        scene_case("byteflip-%02d" % i, bytes(b))
+    for name, text in [("empty", ""), ("blank", "  \n\t\n"), ("null", "null"), ("array", "[]"),
+                       ("number", "42"), ("string", '"scene"'), ("nul-byte", base[:20] + "\0" + base[20:]),
+                       ("bom", "\ufeff" + base), ("trailing-garbage", base + "}}"),
+                       ("trailing-comma", base[:-2] + ",\n}"), ("comment", "// c\n" + base),
+                       ("single-quotes", base.replace('"', "'")), ("two-objects", base + base),
+                       ("unclosed-string", '{"objects": [{"obj": "tri.obj}]}'),
+                       ("nan-literal", base.replace('"fov_y": 40', '"fov_y": NaN')),
+                       ("inf-literal", base.replace('"fov_y": 40', '"fov_y": Infinity')),
+                       ("binary", bytes(range(256)) * 4)]:
+        scene_case(name, text)
+    values = {"null": None, "true": True, "string": "x", "empty-array": [], "object": {},
+              "four": [1, 2, 3, 4], "zero": 0, "minus-one": -1, "huge": 1e308,
+              "int-overflow": 2147483648, "tiny": 5e-324, "huge-string": "s" * 100000}
+    paths = ["camera", "camera.eye", "camera.target", "camera.up", "camera.fov_y", "camera.aperture",
+             "camera.focus_distance", "film", "film.width", "film.height", "render", "render.spp",
+             "render.max_depth", "background", "objects", "objects.0", "objects.0.obj"]
+    for path in paths:
+        for vname, value in values.items():
+            scene = json.loads(json.dumps(BASE_SCENE))
+            node, keys = scene, path.split(".")
+            for k in keys[:-1]:
+                node = node[int(k)] if k.isdigit() else node[k]
+            last = keys[-1]
+            if last.isdigit():
+                node[int(last)] = value
+            else:
+                node[last] = value
+            scene_case("type-%s-%s" % (path, vname), json.dumps(scene))
+    for where in ["", "camera", "film", "render", "objects.0"]:
+        scene = json.loads(json.dumps(BASE_SCENE))
+        node = scene
+        for k in filter(None, where.split(".")):
+            node = node[int(k)] if k.isdigit() else node[k]
+        node["bogus_key"] = 1
+        scene_case("unknown-key-%s" % (where or "root"), json.dumps(scene), "error",
+                   needle="bogus_key")
+    scene_case("deep-array", '{"objects": ' + "[" * 20000 + "]" * 20000 + "}", "error")
+    scene_case("deep-object", '{"camera": ' + '{"a":' * 5000 + "1" + "}" * 5000 + "}", "error")
+    long_name = "d" * 5000 + ".obj"
+    scene = json.loads(json.dumps(BASE_SCENE))
+    scene["objects"] = [{"obj": long_name}]
+    scene_case("long-obj-path", json.dumps(scene), "error")
+    scene["objects"] = [{"obj": "tri.obj"}] * 2000
+    scene_case("many-objects", json.dumps(scene), "ok")
+    scene["objects"] = []
+    scene_case("no-objects", json.dumps(scene), "error")
+    for special in ["/dev/zero", "/dev/null", "/", ".", "fifo.obj", "/proc/self/mem", "tri.obj/x"]:
+        scene = json.loads(json.dumps(BASE_SCENE))
+        scene["objects"] = [{"obj": special}]
+        setup = "mkfifo fifo.obj" if special == "fifo.obj" else None
+        cases.append(dict(name="json-object-%s" % special.strip("/").replace("/", "-") or "root",
+                          files={"tri.obj": TRIANGLE, "scene.json": json.dumps(scene)},
+                          args=["render", "scene.json"] + TINY, expect="error", env={},
+                          needle=None, setup=setup, known=None, timeout=None))
+    case("json-scene-is-fifo", {}, ["render", "scene.json"] + TINY, "error", setup="mkfifo scene.json",
+         timeout=5)
+    case("json-scene-is-dev-zero", {}, ["render", "/dev/zero"] + TINY, "error")
+    case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
+         setup="truncate -s 70M scene.json")
