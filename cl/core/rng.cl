@@ -15,7 +15,7 @@ inline uint hash_pcg(uint v)
  * (with differently derived seeds), so for one seed the key is injective: no two samples of a
  * render share a random sequence however many there are. (A 32-bit fold of the three gives about
  * 2^23 pairs of samples with identical sequences at 512 x 512 x 1024 spp.) Hashed once per kernel,
- * then twice per dimension (rng_bits). */
+ * then once per dimension (rng_bits). */
 typedef uint2 RngKey;
 
 inline RngKey rng_path_key(uint pixel, uint sample, uint seed)
@@ -24,9 +24,16 @@ inline RngKey rng_path_key(uint pixel, uint sample, uint seed)
     return (RngKey)(hash_pcg(pixel ^ seed_hash), hash_pcg(sample ^ hash_pcg(seed_hash ^ 0x9e3779b9u)));
 }
 
-/* 32 random bits of one dimension: both key words go through a hash, so two keys whose streams
- * agree in two dimensions are a 2^-64 coincidence, not a shared word. */
-inline uint rng_bits(RngKey key, uint dimension) { return hash_pcg(hash_pcg(key.x ^ dimension) ^ key.y); }
+/* 32 random bits of one dimension: one hash of both key words, the second rotated by the
+ * dimension, plus the dimension times the golden ratio (so dimensions 32 apart differ too). Two
+ * keys of the same pixel (or the same sample) never give the same word in any dimension, as their
+ * difference is a nonzero rotation (or word); two keys differing in both words agree only in the
+ * dimensions d where rotate(dy, d) == dx: a few words of a stream, never a stream. One hash per
+ * dimension, not two: shade_surface draws 8 a bounce. */
+inline uint rng_bits(RngKey key, uint dimension)
+{
+    return hash_pcg(key.x ^ rotate(key.y, dimension & 31u) ^ (dimension * 0x9e3779b9u));
+}
 
 /* A uniform float in [0, 1): the top 24 bits, so 1.0f is never returned. */
 inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f); }

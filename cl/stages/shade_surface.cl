@@ -32,7 +32,7 @@ inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
-inline bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
+PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
     uint depth = path_depth[slot];
     if (depth == 0u)
