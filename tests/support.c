@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "support.h"
 
 #include <criterion/criterion.h>
 #include <dirent.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -153,4 +155,13 @@ float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *st
     if (stats_out)
         *stats_out = stats;
     return rgb;
+}
+
+const char *test_pt_bin(void)
+{
+    static char path[PATH_MAX];
+    const char *bin = getenv("PT_BIN");
+    cr_assert(realpath(bin ? bin : "build/pt", path), "pt binary %s not found (make builds it; PT_BIN "
+              "names another)", bin ? bin : "build/pt");
+    return path;
 }

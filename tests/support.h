@@ -29,6 +29,10 @@ bool assets_available(void);
 Device *test_device(void);
 void test_device_release(Device *dev);
 
+/* The absolute path of the pt binary the tests run: PT_BIN (the Makefile sets it), else
+ * build/pt. `make test` builds it, so a missing binary fails the test rather than skipping it. */
+const char *test_pt_bin(void);
+
 /* Reads a whole file; NULL when it cannot. */
 char *test_read_file(const char *path, size_t *size);
 

@@ -21,15 +21,6 @@ typedef struct {
     char out[8192], err[8192];
 } Run;
 
-static const char *pt_bin(void)
-{
-    static char path[PATH_MAX];
-    const char *bin = getenv("PT_BIN");
-    if (!realpath(bin ? bin : "build/pt", path))
-        cr_skip_test("pt binary not found (set PT_BIN)");
-    return path;
-}
-
 /* Runs pt with args (a shell fragment) in folder dir (NULL = here), with the environment
  * assignments env (a shell fragment such as "PT_LOCAL_SIZE=0"; NULL = none) added. */
 static Run run_pt_env(const char *dir, const char *env, const char *args)
@@ -43,7 +34,7 @@ static Run run_pt_env(const char *dir, const char *env, const char *args)
     char *cmd = malloc(size);
     cr_assert(cmd);
     snprintf(cmd, size, "%s%s%s env %s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
-             dir ? "' && " : "", env ? env : "", pt_bin(), args, out_path, err_path);
+             dir ? "' && " : "", env ? env : "", test_pt_bin(), args, out_path, err_path);
     int status = system(cmd);
     free(cmd);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "io/image_io.h"
+#include "support.h"
 
 #define FILM 64
 #define ENDLESS_SPP "100000000"
@@ -28,15 +29,6 @@ typedef struct {
     char log[16384]; /* everything read from stderr */
 } Child;
 
-static const char *pt_bin(void)
-{
-    static char path[PATH_MAX];
-    const char *bin = getenv("PT_BIN");
-    if (!realpath(bin ? bin : "build/pt", path))
-        cr_skip_test("pt binary not found (set PT_BIN)");
-    return path;
-}
-
 /* Starts `pt render scenes/cornell-box -o DIR/out.exr --device cpu --width 64 --height 64` plus
  * extra (NULL-terminated) with the environment assignment env (NULL = none) and the signals'
  * default dispositions, except `ignored` (0 = none), ignored as nohup does. */
@@ -46,7 +38,7 @@ static void start_pt(Child *c, const char *env, int ignored, const char *const *
     snprintf(c->dir, sizeof c->dir, "/tmp/pt-signals-XXXXXX");
     cr_assert(mkdtemp(c->dir));
     snprintf(c->output, sizeof c->output, "%s/out.exr", c->dir);
-    const char *argv[32] = {pt_bin(), "render", "scenes/cornell-box", "-o", c->output, "--device",
+    const char *argv[32] = {test_pt_bin(), "render", "scenes/cornell-box", "-o", c->output, "--device",
                             "cpu", "--width", "64", "--height", "64"};
     int argc = 11;
     for (int i = 0; extra[i]; i++)

@@ -89,15 +89,6 @@ void require_display(void)
 
 /* ---- Running pt ----------------------------------------------------------------------------- */
 
-static const char *pt_bin(void)
-{
-    static char path[PATH_MAX];
-    const char *bin = getenv("PT_BIN");
-    cr_assert(realpath(bin ? bin : "build/pt", path), "pt binary %s not found (set PT_BIN)",
-              bin ? bin : "build/pt");
-    return path;
-}
-
 void slurp(const char *path, char *out, size_t size)
 {
     char *text = test_read_file(path, NULL);
@@ -121,7 +112,7 @@ Run run_pt(const char *format, ...)
     char display[64] = "env -u DISPLAY -u WAYLAND_DISPLAY";
     if (display_name[0])
         snprintf(display, sizeof display, "DISPLAY=%s", display_name);
-    snprintf(cmd, sizeof cmd, "%s timeout 100 '%s' %s >%s 2>%s", display, pt_bin(), args, out_path,
+    snprintf(cmd, sizeof cmd, "%s timeout 100 '%s' %s >%s 2>%s", display, test_pt_bin(), args, out_path,
              err_path);
     int status = system(cmd);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -255,7 +246,7 @@ void session_start(ViewSession *s, const char *dir, const char *format, ...)
     va_start(ap, format);
     vsnprintf(args, sizeof args, format, ap);
     va_end(ap);
-    snprintf(cmd, sizeof cmd, "exec '%s' %s", pt_bin(), args);
+    snprintf(cmd, sizeof cmd, "exec '%s' %s", test_pt_bin(), args);
     snprintf(s->err_path, sizeof s->err_path, "%s/stderr", dir);
     clock_gettime(CLOCK_MONOTONIC, &s->start);
     int fds[2];
