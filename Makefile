@@ -66,7 +66,7 @@ test: deps
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
 	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
 	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
-	    PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties
+	    PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties
 	$(Q)$(MAKE) --no-print-directory fuzz-replay
 
 asan:
