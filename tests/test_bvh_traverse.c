@@ -259,13 +259,8 @@ static void check_offset_rays(Mesh mesh, const char *name, bool convex)
     cl_kernel kernel = device_kernel(dev, "bvh_test_bounce_rays");
     for (cl_uint reflect = 0; reflect < 2; reflect++) {
         cl_uint num_rays = n, seed = 7 + reflect;
-        KERNEL_ARG(kernel, 0, corner_buf);
-        KERNEL_ARG(kernel, 1, ray_buf);
-        KERNEL_ARG(kernel, 2, hit_buf);
-        KERNEL_ARG(kernel, 3, num_rays);
-        KERNEL_ARG(kernel, 4, seed);
-        KERNEL_ARG(kernel, 5, reflect);
-        KERNEL_ARG(kernel, 6, bounce_buf);
+        KERNEL_ARGS(kernel, 0, KARG(corner_buf), KARG(ray_buf), KARG(hit_buf), KARG(num_rays),
+                    KARG(seed), KARG(reflect), KARG(bounce_buf));
         device_run(dev, kernel, n, 0, NULL);
         device_read(dev, bounce_buf, 0, n * sizeof(Ray), bounce);
         trace(&scene, "bvh_test_trace_closest", bounce, n, bounce_hits);

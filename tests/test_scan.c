@@ -228,10 +228,8 @@ Test(scan, group_exclusive_sum_matches_host)
     cr_assert(in_buf && prefix_buf && totals_buf, "%s", err.message);
     cl_kernel kernel = device_kernel(dev, "test_group_exclusive_sum");
     for (size_t group = 1; group <= 256 && group <= dev->max_work_group; group *= 2) {
-        KERNEL_ARG(kernel, 0, in_buf);
-        KERNEL_ARG(kernel, 1, prefix_buf);
-        KERNEL_ARG(kernel, 2, totals_buf);
-        CL_CHECK(clSetKernelArg(kernel, 3, 2 * group * sizeof(cl_uint), NULL));
+        KERNEL_ARGS(kernel, 0, KARG(in_buf), KARG(prefix_buf), KARG(totals_buf),
+                    KARG_LOCAL(2 * group * sizeof(cl_uint)));
         device_run(dev, kernel, N, group, NULL);
         device_read(dev, prefix_buf, 0, N * 4, prefix);
         device_read(dev, totals_buf, 0, N / group * 4, totals);
