@@ -113,6 +113,10 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
+    /* --profile: the compaction's own kernels' device time, like every other stage (a wall clock
+     * around it also counted the blocking count read). */
+    if (s->profile)
+        compactor_set_profile(w->compactor, &stats->stage_ms[STAGE_COMPACT]);
     if (s->sort_materials) {
         w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
         w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
