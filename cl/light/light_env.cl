@@ -86,8 +86,8 @@ inline EnvSample env_sample(const EnvMap *env, float u1, float u2)
     float sin_theta = sin(theta);
     EnvSample s;
     s.direction = (float3)(sin_theta * sin(phi), cos(theta), -sin_theta * cos(phi));
-    float4 texel = env->texels[j * env->width + i];
-    s.radiance = xyz(texel);
-    s.pdf_w = env_pdf_w(texel.w, sin_theta);
+    /* Radiance and pdf as an escaped ray in this direction sees them: a direction on a texel edge
+     * may round into the neighbour, and both strategies must weigh the same function. */
+    s.radiance = env_lookup(env, s.direction, &s.pdf_w);
     return s;
 }
