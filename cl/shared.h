@@ -184,6 +184,10 @@ typedef struct {
     uint flags;          /* RENDER_* */
     uint batch_start;    /* pixel of the window's first sample (see PATH_STATE_FIELDS) */
     uint batch_size;     /* samples in the window */
+    uint env_width;      /* environment map texels across (0: no map, background is the sky) */
+    uint env_height;
+    float env_rotation;  /* the map's rotation theta as a fraction of a turn */
+    float env_pick_pdf;  /* probability that the light table picks the environment */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -196,9 +200,12 @@ typedef struct {
 typedef struct {
     float prob;    /* probability of keeping this entry rather than its alias */
     uint alias;    /* entry taken otherwise */
-    uint triangle; /* emissive triangle index */
+    uint triangle; /* emissive triangle index, or LIGHT_ENVIRONMENT */
     float pdf;     /* probability of choosing this triangle */
 } LightEntry;
+/* LightEntry.triangle of the environment map's entry (its power: mean luminance x 4 pi R^2, R the
+ * scene's bounding-sphere radius; triangles count area x luminance: both are power / pi). */
+#define LIGHT_ENVIRONMENT 0xffffffffu
 
 /* ---- Scene buffers ------------------------------------------------------------------------- */
 
@@ -219,7 +226,10 @@ typedef struct {
     X(Material, materials)                                                                          \
     X(uint, texels)                                                                                 \
     X(TextureInfo, textures)                                                                        \
-    X(LightEntry, lights)
+    X(LightEntry, lights)                                                                           \
+    X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
+    X(float, env_marginal)     /* CDF over rows, env_height + 1 */                                 \
+    X(float, env_conditional)  /* CDF over each row's columns, env_height * (env_width + 1) */
 
 #define SCENE_BUFFER_COUNT_ONE(type, name) +1
 #define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
@@ -301,12 +311,14 @@ typedef struct {
         FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
-    STRUCT(RenderParams, 128) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
+    STRUCT(RenderParams, 144) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
         FIELD(RenderParams, width) FIELD(RenderParams, height) FIELD(RenderParams, seed)            \
         FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)                            \
         FIELD(RenderParams, num_bvh_prims) FIELD(RenderParams, num_emissive)                        \
         FIELD(RenderParams, aov) FIELD(RenderParams, emissive_power) FIELD(RenderParams, flags)     \
         FIELD(RenderParams, batch_start) FIELD(RenderParams, batch_size)                            \
+        FIELD(RenderParams, env_width) FIELD(RenderParams, env_height)                              \
+        FIELD(RenderParams, env_rotation) FIELD(RenderParams, env_pick_pdf)                         \
     STRUCT(LightEntry, 16) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)
 

@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* light_sample.cl: next-event estimation on emissive triangles (one-sided: they emit on the side of
- * their counter-clockwise normal), chosen through the power-proportional alias table. */
+ * their counter-clockwise normal) and the environment map, chosen through the power-proportional
+ * alias table. */
 
 typedef struct {
-    float3 position;
+    float3 position; /* on the light (unused for the environment) */
     float3 normal;   /* the light's unit geometric normal (its emitting side) */
+    float3 direction; /* unit, from the shading point toward the light */
+    uint at_infinity; /* 1: the environment (the shadow ray has no end) */
     float3 radiance; /* Le toward the shading point, 0 if it sees the back */
     float pdf_w;     /* solid-angle pdf at the shading point */
 } LightSample;
@@ -21,8 +24,8 @@ inline LightEntry light_pick(const global LightEntry *lights, uint num_lights, u
     return u_coin < entry.prob ? entry : lights[entry.alias];
 }
 
-PT_INLINE LightSample light_sample(const SceneView *scene, uint num_lights, float3 from,
-                                   uint pick_bits, float u_coin, float u1, float u2)
+PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, uint num_lights,
+                                   float3 from, uint pick_bits, float u_coin, float u1, float u2)
 {
     const global LightEntry *lights = scene->lights;
     const global float4 *positions = scene->positions;
@@ -31,6 +34,17 @@ PT_INLINE LightSample light_sample(const SceneView *scene, uint num_lights, floa
     const global Material *materials = scene->materials;
     LightSample ls;
     LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
+    if (entry.triangle == LIGHT_ENVIRONMENT) {
+        EnvSample es = env_sample(env, u1, u2);
+        ls.position = from;
+        ls.normal = -es.direction;
+        ls.direction = es.direction;
+        ls.at_infinity = 1u;
+        ls.radiance = es.radiance;
+        ls.pdf_w = entry.pdf * es.pdf_w;
+        return ls;
+    }
+    ls.at_infinity = 0u;
     uint4 tri = triangles[entry.triangle].v;
     float3 p0 = xyz(positions[tri.x]), p1 = xyz(positions[tri.y]), p2 = xyz(positions[tri.z]);
     float2 b = sample_triangle_uniform(u1, u2);
@@ -41,6 +55,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, uint num_lights, floa
     ls.normal = n_light;
     float3 to_light = ls.position - from;
     float dist2 = dot(to_light, to_light);
+    ls.direction = to_light * rsqrt(dist2);
     float cos_light = -dot(to_light, n_light) * rsqrt(dist2);
     if (!(cos_light > 0.0f) || !(double_area > 0.0f)) {
         ls.radiance = (float3)(0.0f);

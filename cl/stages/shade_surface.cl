@@ -22,6 +22,21 @@ inline float3 emission_seen(constant RenderParams *p, Material m, float t, float
     return xyz(m.ke) * mis_power(prev_pdf_w, light_pdf);
 }
 
+/* What an escaped ray sees: the constant background, or the environment map with the MIS weight
+ * against next-event estimation (which picks the map with p->env_pick_pdf, then samples
+ * env_sample's density). */
+inline float3 environment_seen(constant RenderParams *p, const EnvMap *env, float3 d,
+                               float prev_pdf_w, uint depth)
+{
+    if (p->env_width == 0u)
+        return xyz(p->background);
+    float pdf_w;
+    float3 L = env_lookup(env, d, &pdf_w);
+    if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
+        return L;
+    return L * mis_power(prev_pdf_w, p->env_pick_pdf * pdf_w);
+}
+
 /* radiance[k] += c, skipped when c is zero: most vertices gather nothing (no emitter hit), and the
  * window's radiance array is too large for the cache, so the read costs a miss (perf on PoCL: a
  * tenth of the shade kernel's time). A NaN still goes through to the film guard. */
@@ -42,8 +57,9 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     float4 dir4 = ray_direction[slot];
     float3 beta = xyz(throughput[slot]);
     uint prim = as_uint(h.w);
+    EnvMap env = env_map(p, scene);
     if (prim == HIT_NONE) {
-        add_radiance(radiance, k, beta * xyz(p->background));
+        add_radiance(radiance, k, beta * environment_seen(p, &env, xyz(dir4), dir4.w, depth));
         path_depth[slot] = 0u;
         return false;
     }
@@ -73,25 +89,30 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
 
         /* Next-event estimation: diffuse surfaces only (delta lobes cannot meet a sampled light). */
         if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(scene, p->num_emissive, surf.position,
+            LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
-            float3 wi = normalize(ls.position - surf.position);
+            float3 wi = ls.direction;
             float bsdf_pdf;
             float3 f_cos = diffuse_eval_cos(albedo, ns, wi, &bsdf_pdf);
             if (ls.pdf_w > 0.0f && bsdf_pdf > 0.0f && dot(wi, ng) > 0.0f) {
                 float3 contribution = beta * f_cos * ls.radiance *
                                       (mis_power(ls.pdf_w, bsdf_pdf) / ls.pdf_w);
                 float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
+                float dist = INFINITY;
+                float3 to_target = wi;
                 /* The ray ends at the light point moved off the light by the same robust offset,
                  * toward the shaded point: it reaches everything in front of the light, however
                  * close, and never the light's own triangle (the test is half-open, t < tmax). */
-                float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
-                float dist = length(target - origin);
+                if (!ls.at_infinity) {
+                    float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
+                    dist = length(target - origin);
+                    to_target = (target - origin) / dist;
+                }
                 shadow_origin[slot] = (float4)(origin, dist);
-                shadow_direction[slot] = (float4)((target - origin) / dist, 0.0f);
+                shadow_direction[slot] = (float4)(to_target, 0.0f);
                 shadow_contribution[slot] = (float4)(contribution, 1.0f);
                 queued = true;
             }

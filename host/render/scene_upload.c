@@ -43,6 +43,15 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     src.texels = source(data->textures.num_texels, sizeof(uint32_t), data->textures.texels);
     src.textures = source(data->textures.count, sizeof(TextureInfo), data->textures.infos);
     src.lights = source(lights.count, sizeof(LightEntry), lights.entries);
+    const Environment *env = &data->environment;
+    size_t env_w = env->width, env_h = env->height;
+    src.env_texels = source(env_w * env_h, sizeof(float4), env->texels);
+    src.env_marginal = source(env_h ? env_h + 1 : 0, sizeof(float), env->marginal);
+    src.env_conditional = source(env_h * (env_w + 1), sizeof(float), env->conditional);
+    out->env_width = env->width;
+    out->env_height = env->height;
+    out->env_rotation = env->rotation;
+    out->env_pick_pdf = lights.env_pick_pdf;
     out->num_bvh_prims = layout.num_prims;
     out->num_emissive = lights.count;
     out->emissive_power = lights.total_power;

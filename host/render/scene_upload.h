@@ -15,6 +15,9 @@ typedef struct {
     uint32_t num_bvh_prims; /* entries of bvh_tris (RenderParams.num_bvh_prims) */
     uint32_t num_emissive;  /* entries of lights (RenderParams.num_emissive) */
     float emissive_power;   /* the light table's total power (RenderParams.emissive_power) */
+    uint32_t env_width, env_height; /* the environment map's size, 0 without one */
+    float env_rotation;     /* RenderParams.env_rotation */
+    float env_pick_pdf;     /* the light table's probability of the environment entry */
     size_t bytes; /* device memory used */
 } SceneBuffers;
 

@@ -88,6 +88,10 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .num_bvh_prims = buffers->num_bvh_prims,
         .num_emissive = buffers->num_emissive,
         .emissive_power = buffers->emissive_power,
+        .env_width = buffers->env_width,
+        .env_height = buffers->env_height,
+        .env_rotation = buffers->env_rotation,
+        .env_pick_pdf = buffers->env_pick_pdf,
         .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
     };
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);

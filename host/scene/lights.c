@@ -2,6 +2,7 @@
 #include "scene/lights.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,14 +20,29 @@ static double triangle_area(const SceneData *data, uint32_t t)
     return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
+/* The environment's weight: mean luminance x 4 pi R^2, R the bounding sphere's radius (the flux of
+ * the sky through that sphere, over pi). */
+static double environment_power(const SceneData *data)
+{
+    double r2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double half = 0.5 * ((double)data->bounds_max[a] - (double)data->bounds_min[a]);
+        r2 += half > 0.0 && isfinite(half) ? half * half : 0.0;
+    }
+    if (!(r2 > 0.0))
+        r2 = 1.0; /* a point-sized scene: any positive radius gives the same pdfs without triangles */
+    return data->environment.mean_luminance * 4.0 * 3.14159265358979323846 * r2;
+}
+
 void light_table_build(LightTable *table, const SceneData *data)
 {
     memset(table, 0, sizeof *table);
     uint32_t n = data->num_emissive;
-    if (n == 0)
+    bool has_env = data->environment.width > 0;
+    if (n == 0 && !has_env)
         return;
-    double *power = malloc(n * sizeof *power);
-    uint32_t *tris = malloc(n * sizeof *tris);
+    double *power = malloc((n + 1) * sizeof *power);
+    uint32_t *tris = malloc((n + 1) * sizeof *tris);
     if (!power || !tris)
         die("out of memory for the light table (%u emitters)", n);
     double total = 0.0;
@@ -37,6 +53,14 @@ void light_table_build(LightTable *table, const SceneData *data)
         if (w > 0.0 && isfinite(w)) {
             power[count] = w;
             tris[count++] = t;
+            total += w;
+        }
+    }
+    if (has_env) {
+        double w = environment_power(data);
+        if (w > 0.0 && isfinite(w)) {
+            power[count] = w;
+            tris[count++] = LIGHT_ENVIRONMENT;
             total += w;
         }
     }
@@ -83,6 +107,9 @@ void light_table_build(LightTable *table, const SceneData *data)
     table->entries = entries;
     table->count = count;
     table->total_power = (float)total;
+    for (uint32_t i = 0; i < count; i++)
+        if (tris[i] == LIGHT_ENVIRONMENT)
+            table->env_pick_pdf = (float)(power[i] / total);
     free(power), free(tris), free(scaled), free(small), free(large);
 }
 

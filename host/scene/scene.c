@@ -60,6 +60,7 @@ static void set_defaults(SceneDesc *d)
     d->width = d->height = 512;
     d->spp = 64;
     d->max_depth = 8;
+    d->environment_scale = 1.0f;
 }
 
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
@@ -119,6 +120,12 @@ bool scene_load(const char *path, Scene *out, Error *err)
         }
     }
     if (!scene_data_finish(&out->data, out->desc.path, err)) {
+        scene_free(out);
+        return false;
+    }
+    if (out->desc.environment[0] &&
+        !environment_load(&out->data.environment, out->desc.environment, out->desc.environment_scale,
+                          out->desc.environment_rotation, err)) {
         scene_free(out);
         return false;
     }

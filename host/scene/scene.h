@@ -21,6 +21,9 @@ typedef struct {
     int width, height;  /* film; default 512 x 512 */
     int spp, max_depth; /* default 64, 8 */
     float background[3];
+    char environment[1024];   /* the map's path resolved against the scene file; "" = none */
+    float environment_scale;  /* default 1 */
+    float environment_rotation; /* degrees */
     int num_objects;
     char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
 } SceneDesc;

@@ -25,6 +25,7 @@ void scene_data_free(SceneData *data)
     free(data->material_ids);
     free(data->materials);
     texture_set_free(&data->textures);
+    environment_free(&data->environment);
     free(data->emissive_triangles);
     memset(data, 0, sizeof *data);
 }

@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "io/obj_loader.h"
 #include "base/shared_types.h"
+#include "scene/environment.h"
 #include "scene/materials.h" /* material_from_obj, for the flattener's users and tests */
 #include "scene/texture.h"
 
@@ -28,6 +29,7 @@ typedef struct {
     uint32_t *emissive_triangles; /* indices of triangles whose material emits */
     uint32_t num_emissive;
     float bounds_min[3], bounds_max[3];
+    Environment environment; /* width 0: none (scene_load loads it after scene_data_finish) */
     /* The first OBJ that added no triangles and why, for the message when the whole scene has
      * none ("x.obj: no faces (the file is empty)"). */
     char faceless_obj[512];

@@ -96,9 +96,35 @@ static bool parse_background(JsonParser *p, const cJSON *item, float background[
     return true;
 }
 
+static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
+{
+    static const char *const keys[] = {"file", "scale", "rotation", NULL};
+    if (!json_check_object(p, obj, "environment", keys))
+        return false;
+    const cJSON *file = json_member(obj, "file"), *item;
+    if (!file)
+        return json_fail(p, ERR_JSON_VALUE, "environment.file", "missing");
+    if (!cJSON_IsString(file))
+        return json_fail(p, ERR_JSON_TYPE, "environment.file", "expected a file name (string)");
+    if (!file->valuestring[0])
+        return json_fail(p, ERR_JSON_VALUE, "environment.file", "empty file name");
+    if (!resolve_path(p, "environment.file", file->valuestring, d->environment))
+        return false;
+    if ((item = json_member(obj, "scale"))) {
+        if (!json_read_float(p, item, "environment.scale", &d->environment_scale))
+            return false;
+        if (!(d->environment_scale >= 0.0f))
+            return json_fail(p, ERR_JSON_VALUE, "environment.scale", "%g must be >= 0",
+                             d->environment_scale);
+    }
+    return !(item = json_member(obj, "rotation")) ||
+           json_read_float(p, item, "environment.rotation", &d->environment_rotation);
+}
+
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
 {
-    static const char *const keys[] = {"camera", "film", "render", "objects", "background", NULL};
+    static const char *const keys[] = {"camera",     "film",        "render", "objects",
+                                       "background", "environment", NULL};
     if (!json_check_object(p, root, "", keys))
         return false;
     const cJSON *item;
@@ -110,6 +136,8 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
     if ((item = json_member(root, "render")) && !parse_render(p, item, d))
         return false;
     if ((item = json_member(root, "background")) && !parse_background(p, item, d->background))
+        return false;
+    if ((item = json_member(root, "environment")) && !parse_environment(p, item, d))
         return false;
     return parse_objects(p, json_member(root, "objects"), d);
 }

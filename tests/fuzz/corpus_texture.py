@@ -77,3 +77,38 @@ def texture_cases(rng):
     texture_case("bmp-truncated", b"BM" + b"\0" * 20, "error", tex="t.bmp")
     texture_case("gif-truncated", b"GIF89a\x10\x00\x10\x00", "error", tex="t.gif")
     texture_case("psd-header", b"8BPS" + b"\0" * 30, "error", tex="t.psd")
+
+
+def environment_map_cases():
+    """The environment map (scene.json "environment"): the same image loaders behind another key,
+    and its own checks (zero power, scale). Uses its own random numbers: the cases before keep
+    their bytes."""
+    import json
+    import random
+    from corpus_cases import BASE_SCENE, TRIANGLE
+
+    rng = random.Random(17)
+
+    def env_case(name, data, expect="any", env_file="sky.hdr", extra=None, needle=None):
+        scene = dict(BASE_SCENE, environment=dict({"file": env_file}, **(extra or {})))
+        files = {"tri.obj": TRIANGLE, "scene.json": json.dumps(scene)}
+        if data is not None:
+            files[env_file] = data
+        case("envmap-" + name, files, ["render", "scene.json"] + TINY, expect, needle=needle)
+
+    good = hdr(16, 8)
+    env_case("hdr-valid", good, "ok")
+    env_case("hdr-rotated-scaled", good, "ok", extra={"rotation": -725.5, "scale": 3})
+    for cut in (1, 8, 30, len(good) // 2, len(good) - 12):
+        env_case("hdr-truncated-%d" % cut, good[:len(good) - cut], "error")
+    for i in range(4):
+        b = bytearray(good)
+        for _ in range(3):
+            b[rng.randrange(40, len(b))] = rng.randrange(256)
+        env_case("hdr-flipped-%02d" % i, bytes(b))
+    env_case("hdr-huge-declared", hdr(16, 1, declared=(16000000, 16000000)), "error")
+    env_case("scale-zero", good, "error", extra={"scale": 0}, needle="zero total power")
+    env_case("scale-negative", good, "error", extra={"scale": -1}, needle="environment.scale")
+    env_case("exr-garbage", b"v/1\x01" + bytes(40), "error", env_file="sky.exr")
+    env_case("missing", None, "error", needle="sky.hdr")
+    env_case("png", png(4, 4), "error", env_file="sky.png")

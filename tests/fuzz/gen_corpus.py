@@ -31,7 +31,7 @@ from corpus_cases import cases  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
-from corpus_texture import texture_cases  # noqa: E402
+from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
 
 
 def as_bytes(content):
@@ -67,6 +67,7 @@ def main():
     texture_cases(rng)
     cli_cases()
     env_cases()
+    environment_map_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)

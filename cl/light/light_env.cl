@@ -1,0 +1,93 @@
+/* SPDX-License-Identifier: MIT */
+/* light_env.cl: the environment map (host/scene/environment.h): what an escaped ray sees and its
+ * importance sampling. Mapping (shared/DESIGN.md "Environment"): direction d, +y up,
+ * u = 0.5 + (atan2(d.x, -d.z) + theta) / 2 pi, v = acos(d.y) / pi, v = 0 the image's top row; texel
+ * (i, j) covers [i/W, (i+1)/W) x [j/H, (j+1)/H). The radiance is piecewise constant (the texel the
+ * direction falls in, no bilinear filter): exactly the function env_sample draws from, so env_pdf is
+ * the density of env_sample's directions and MIS weights are exact. */
+
+typedef struct {
+    const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
+    const global float *marginal;     /* height + 1 */
+    const global float *conditional;  /* height * (width + 1) */
+    uint width, height;
+    float rotation;                   /* theta as a fraction of a turn */
+} EnvMap;
+
+inline EnvMap env_map(constant RenderParams *p, const SceneView *scene)
+{
+    EnvMap env = {scene->env_texels, scene->env_marginal, scene->env_conditional, p->env_width,
+                  p->env_height, p->env_rotation};
+    return env;
+}
+
+/* The texel index of direction d (unit length). */
+inline uint env_texel_of(const EnvMap *env, float3 d)
+{
+    float u = 0.5f + atan2(d.x, -d.z) * (0.5f * M_1_PI_F) + env->rotation;
+    u -= floor(u);
+    float v = acos(clamp(d.y, -1.0f, 1.0f)) * M_1_PI_F;
+    uint i = min((uint)(u * (float)env->width), env->width - 1u);
+    uint j = min((uint)(v * (float)env->height), env->height - 1u);
+    return j * env->width + i;
+}
+
+/* Solid-angle pdf of direction d from the texel's uv pdf: the map covers 2 pi x pi radians, and a
+ * uv cell at polar angle t spans sin(t) of its area in solid angle. */
+inline float env_pdf_w(float pdf_uv, float sin_theta)
+{
+    return sin_theta > 0.0f ? pdf_uv / (2.0f * M_PI_F * M_PI_F * sin_theta) : 0.0f;
+}
+
+/* Radiance seen along d; *pdf_w: env_sample's solid-angle density of d. */
+inline float3 env_lookup(const EnvMap *env, float3 d, float *pdf_w)
+{
+    float4 texel = env->texels[env_texel_of(env, d)];
+    float sin_theta = sqrt(fmax(0.0f, 1.0f - d.y * d.y));
+    *pdf_w = env_pdf_w(texel.w, sin_theta);
+    return xyz(texel);
+}
+
+/* The index k in [0, n) with cdf[k] <= x < cdf[k + 1] (cdf[0] = 0, cdf[n] = 1, x in [0, 1)): a
+ * zero-width entry (a black texel or row) is never returned. */
+inline uint env_cdf_find(const global float *cdf, uint n, float x)
+{
+    uint lo = 0u, hi = n;
+    while (lo + 1u < hi) {
+        uint mid = (lo + hi) >> 1;
+        if (cdf[mid] <= x)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+typedef struct {
+    float3 direction;
+    float3 radiance;
+    float pdf_w;
+} EnvSample;
+
+/* A direction in proportion to luminance x sin(theta) of the texel row: a row by the marginal CDF,
+ * a column by the row's conditional CDF, then uniformly within the texel's uv cell. */
+inline EnvSample env_sample(const EnvMap *env, float u1, float u2)
+{
+    uint j = env_cdf_find(env->marginal, env->height, u1);
+    float row_lo = env->marginal[j], row_hi = env->marginal[j + 1u];
+    const global float *cdf = env->conditional + j * (env->width + 1u);
+    uint i = env_cdf_find(cdf, env->width, u2);
+    float col_lo = cdf[i], col_hi = cdf[i + 1u];
+    float fv = clamp((u1 - row_lo) / (row_hi - row_lo), 0.0f, 0.99999994f);
+    float fu = clamp((u2 - col_lo) / (col_hi - col_lo), 0.0f, 0.99999994f);
+    float u = ((float)i + fu) / (float)env->width, v = ((float)j + fv) / (float)env->height;
+    float phi = 2.0f * M_PI_F * (u - 0.5f - env->rotation);
+    float theta = M_PI_F * v;
+    float sin_theta = sin(theta);
+    EnvSample s;
+    s.direction = (float3)(sin_theta * sin(phi), cos(theta), -sin_theta * cos(phi));
+    /* Radiance and pdf as an escaped ray in this direction sees them: a direction on a texel edge
+     * may round into the neighbour, and both strategies must weigh the same function. */
+    s.radiance = env_lookup(env, s.direction, &s.pdf_w);
+    return s;
+}

@@ -1,0 +1,36 @@
+/* SPDX-License-Identifier: MIT */
+/* environment.h: the environment map (shared/DESIGN.md "Environment"): an equirectangular HDR or
+ * EXR image, its radiance per texel (times scale) and the 2-D piecewise-constant distribution that
+ * next-event estimation samples it from (marginal CDF over rows, one conditional CDF per row, each
+ * texel weighted by luminance x sin(theta of its row centre)). Escaped rays and the sampler see the
+ * same piecewise-constant radiance (nearest texel, no bilinear filter), so the pdf matches exactly
+ * what is evaluated. Kernels: cl/light/light_env.cl. */
+#ifndef PT_ENVIRONMENT_H
+#define PT_ENVIRONMENT_H
+
+#include <stdbool.h>
+
+#include "base/error.h"
+#include "base/shared_types.h"
+
+typedef struct {
+    uint32_t width, height;   /* 0 x 0: no map (the constant background is the environment) */
+    float4 *texels;           /* width * height, row 0 at the top: rgb radiance x scale; w: pdf
+                                 of the texel's (u, v) cell per unit uv area */
+    float *marginal;          /* height + 1: CDF over rows, marginal[height] = 1 */
+    float *conditional;       /* height * (width + 1): per row the CDF over its columns */
+    float rotation;           /* DESIGN's theta as a fraction of a turn */
+    double mean_luminance;    /* of the radiance over the sphere (solid-angle weighted) */
+} Environment;
+
+/* Builds from linear rgb (width * height * 3 floats, row 0 at the top). NaN, Inf and negative
+ * values are clamped to 0 with one warning naming `name` and the count; a map of zero power is an
+ * error. scale >= 0, rotation in degrees. */
+bool environment_build(Environment *env, const float *rgb, int width, int height, float scale,
+                       float rotation_degrees, const char *name, Error *err);
+/* Reads path (.hdr through stb_image, .exr through io/exr_read.c) and builds. */
+bool environment_load(Environment *env, const char *path, float scale, float rotation_degrees,
+                      Error *err);
+void environment_free(Environment *env);
+
+#endif

@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: MIT */
+/* env_test.cl: kernels for tests/test_environment.c. */
+
+#define ENV_TEST_PARAMS                                                                            \
+    const global float4 *texels, const global float *marginal, const global float *conditional,   \
+        uint width, uint height, float rotation
+#define ENV_TEST_MAP {texels, marginal, conditional, width, height, rotation}
+
+/* Work item i draws samples_per_item env_sample directions (the path RNG of pixel i, samples 0..,
+ * light dimensions of the first bounce) and counts them per texel that env_lookup puts them in.
+ * mismatches[0] counts samples whose pdf or radiance differ from env_lookup's for their
+ * direction (the NEE pdf and the escaped-ray pdf must be the same function). */
+kernel void env_test_sample(ENV_TEST_PARAMS, uint samples_per_item, uint seed,
+                            global uint *counts, global uint *mismatches)
+{
+    EnvMap env = ENV_TEST_MAP;
+    uint item = get_global_id(0);
+    for (uint s = 0; s < samples_per_item; s++) {
+        RngKey key = rng_path_key(item, s, seed);
+        EnvSample es = env_sample(&env, rng_bounce(key, 0u, DIM_LIGHT_U), rng_bounce(key, 0u, DIM_LIGHT_V));
+        atomic_inc(&counts[env_texel_of(&env, es.direction)]);
+        float pdf;
+        float3 L = env_lookup(&env, es.direction, &pdf);
+        if (!(fabs(pdf - es.pdf_w) <= 1e-3f * es.pdf_w) || any(L != es.radiance) ||
+            !(fabs(length(es.direction) - 1.0f) < 1e-5f))
+            atomic_inc(&mismatches[0]);
+    }
+}
+
+/* pdf[i] = env_lookup's solid-angle pdf of directions[i]. */
+kernel void env_test_pdf(ENV_TEST_PARAMS, const global float4 *directions, uint n, global float *pdf)
+{
+    EnvMap env = ENV_TEST_MAP;
+    uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    float p;
+    env_lookup(&env, xyz(directions[i]), &p);
+    pdf[i] = p;
+}
