@@ -188,6 +188,8 @@ typedef struct {
     uint env_height;
     float env_rotation;  /* the map's rotation theta as a fraction of a turn */
     float env_pick_pdf;  /* probability that the light table picks the environment */
+    uint num_analytic;   /* entries of analytic_lights (escaped rays look for suns there) */
+    uint pad0, pad1, pad2;
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -206,6 +208,25 @@ typedef struct {
 /* LightEntry.triangle of the environment map's entry (its power: mean luminance x 4 pi R^2, R the
  * scene's bounding-sphere radius; triangles count area x luminance: both are power / pi). */
 #define LIGHT_ENVIRONMENT 0xffffffffu
+/* LightEntry.triangle of analytic light i (analytic_lights[i]): LIGHT_ANALYTIC_BASE + i. Triangle
+ * indices stay far below (BVH_QUANTIZED_MAX_TRIANGLES). */
+#define LIGHT_ANALYTIC_BASE 0x80000000u
+
+/* Analytic lights (JSON "lights", shared/DESIGN.md "Lights"; host/scene/analytic_lights.c). */
+#define LIGHT_POINT 0u
+#define LIGHT_SPOT 1u
+#define LIGHT_DIRECTIONAL 2u
+#define LIGHT_SUN 3u
+typedef struct {
+    float4 position; /* point/spot: position; directional/sun: unit direction the light travels */
+    float4 color;    /* point/spot: intensity (W/sr, rgb); directional/sun: irradiance; w: luminance */
+    float4 axis;     /* spot: unit axis (where it shines) */
+    float4 params;   /* spot: x cone, y falloff half-angles (radians); sun: x cos(half-angle),
+                        y radiance / irradiance = 1 / (pi sin^2(half-angle)), z 1 / cone solid angle
+                        (0 for angle 0: a delta light); w: the light table's pick probability */
+    uint type;       /* LIGHT_POINT .. LIGHT_SUN */
+    uint pad0, pad1, pad2;
+} AnalyticLight;
 
 /* ---- Scene buffers ------------------------------------------------------------------------- */
 
@@ -227,6 +248,7 @@ typedef struct {
     X(uint, texels)                                                                                 \
     X(TextureInfo, textures)                                                                        \
     X(LightEntry, lights)                                                                           \
+    X(AnalyticLight, analytic_lights)                                                               \
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
     X(float, env_marginal)     /* CDF over rows, env_height + 1 */                                 \
     X(float, env_conditional)  /* CDF over each row's columns, env_height * (env_width + 1) */
@@ -311,7 +333,7 @@ typedef struct {
         FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
-    STRUCT(RenderParams, 144) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
+    STRUCT(RenderParams, 160) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
         FIELD(RenderParams, width) FIELD(RenderParams, height) FIELD(RenderParams, seed)            \
         FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)                            \
         FIELD(RenderParams, num_bvh_prims) FIELD(RenderParams, num_emissive)                        \
@@ -319,8 +341,13 @@ typedef struct {
         FIELD(RenderParams, batch_start) FIELD(RenderParams, batch_size)                            \
         FIELD(RenderParams, env_width) FIELD(RenderParams, env_height)                              \
         FIELD(RenderParams, env_rotation) FIELD(RenderParams, env_pick_pdf)                         \
+        FIELD(RenderParams, num_analytic) FIELD(RenderParams, pad0) FIELD(RenderParams, pad1)       \
+        FIELD(RenderParams, pad2)                                                                   \
     STRUCT(LightEntry, 16) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
-        FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)
+        FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)                                          \
+    STRUCT(AnalyticLight, 80) FIELD(AnalyticLight, position) FIELD(AnalyticLight, color)            \
+        FIELD(AnalyticLight, axis) FIELD(AnalyticLight, params) FIELD(AnalyticLight, type)          \
+        FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)
 
 /* Words written by report_layout: per struct its size, per field its offset and size. */
 #define SHARED_LAYOUT_STRUCT_WORDS(type, size) +1

@@ -1,16 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* light_sample.cl: next-event estimation on emissive triangles (one-sided: they emit on the side of
- * their counter-clockwise normal) and the environment map, chosen through the power-proportional
+ * their counter-clockwise normal), analytic lights (light_analytic.cl) and the environment map,
+ * chosen through the power-proportional
  * alias table. */
-
-typedef struct {
-    float3 position; /* on the light (unused for the environment) */
-    float3 normal;   /* the light's unit geometric normal (its emitting side) */
-    float3 direction; /* unit, from the shading point toward the light */
-    uint at_infinity; /* 1: the environment (the shadow ray has no end) */
-    float3 radiance; /* Le toward the shading point, 0 if it sees the back */
-    float pdf_w;     /* solid-angle pdf at the shading point */
-} LightSample;
 
 /* The alias table's choice from two independent random numbers: the entry, uniform over
  * [0, num_lights) from 32 bits by a multiply-high (each index gets floor or ceil of 2^32 / n of the
@@ -40,11 +32,16 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         ls.normal = -es.direction;
         ls.direction = es.direction;
         ls.at_infinity = 1u;
+        ls.delta = 0u;
         ls.radiance = es.radiance;
         ls.pdf_w = entry.pdf * es.pdf_w;
         return ls;
     }
+    if (entry.triangle >= LIGHT_ANALYTIC_BASE)
+        return analytic_light_sample(scene->analytic_lights[entry.triangle - LIGHT_ANALYTIC_BASE],
+                                     entry.pdf, from, u1, u2);
     ls.at_infinity = 0u;
+    ls.delta = 0u;
     uint4 tri = triangles[entry.triangle].v;
     float3 p0 = xyz(positions[tri.x]), p1 = xyz(positions[tri.y]), p2 = xyz(positions[tri.z]);
     float2 b = sample_triangle_uniform(u1, u2);

@@ -59,7 +59,10 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     uint prim = as_uint(h.w);
     EnvMap env = env_map(p, scene);
     if (prim == HIT_NONE) {
-        add_radiance(radiance, k, beta * environment_seen(p, &env, xyz(dir4), dir4.w, depth));
+        float3 sky = environment_seen(p, &env, xyz(dir4), dir4.w, depth);
+        if (p->num_analytic > 0u)
+            sky += suns_seen(p, scene->analytic_lights, xyz(dir4), dir4.w, depth);
+        add_radiance(radiance, k, beta * sky);
         path_depth[slot] = 0u;
         return false;
     }
@@ -98,15 +101,20 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
             float bsdf_pdf;
             float3 f_cos = diffuse_eval_cos(albedo, ns, wi, &bsdf_pdf);
             if (ls.pdf_w > 0.0f && bsdf_pdf > 0.0f && dot(wi, ng) > 0.0f) {
-                float3 contribution = beta * f_cos * ls.radiance *
-                                      (mis_power(ls.pdf_w, bsdf_pdf) / ls.pdf_w);
+                /* A delta light cannot be hit by the BSDF's rays: no MIS. */
+                float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
+                float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
                 float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
                 float dist = INFINITY;
                 float3 to_target = wi;
                 /* The ray ends at the light point moved off the light by the same robust offset,
                  * toward the shaded point: it reaches everything in front of the light, however
                  * close, and never the light's own triangle (the test is half-open, t < tmax). */
-                if (!ls.at_infinity) {
+                if (ls.delta && !ls.at_infinity) {
+                    /* A point or spot light has no surface: the ray ends exactly at it. */
+                    dist = length(ls.position - origin);
+                    to_target = (ls.position - origin) / dist;
+                } else if (!ls.at_infinity) {
                     float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
                     dist = length(target - origin);
                     to_target = (target - origin) / dist;

@@ -43,6 +43,8 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     src.texels = source(data->textures.num_texels, sizeof(uint32_t), data->textures.texels);
     src.textures = source(data->textures.count, sizeof(TextureInfo), data->textures.infos);
     src.lights = source(lights.count, sizeof(LightEntry), lights.entries);
+    src.analytic_lights = source(lights.num_analytic, sizeof(AnalyticLight), lights.analytic);
+    out->num_analytic = lights.num_analytic;
     const Environment *env = &data->environment;
     size_t env_w = env->width, env_h = env->height;
     src.env_texels = source(env_w * env_h, sizeof(float4), env->texels);

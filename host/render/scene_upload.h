@@ -17,6 +17,7 @@ typedef struct {
     float emissive_power;   /* the light table's total power (RenderParams.emissive_power) */
     uint32_t env_width, env_height; /* the environment map's size, 0 without one */
     float env_rotation;     /* RenderParams.env_rotation */
+    uint32_t num_analytic;  /* entries of analytic_lights (RenderParams.num_analytic) */
     float env_pick_pdf;     /* the light table's probability of the environment entry */
     size_t bytes; /* device memory used */
 } SceneBuffers;

@@ -92,6 +92,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .env_height = buffers->env_height,
         .env_rotation = buffers->env_rotation,
         .env_pick_pdf = buffers->env_pick_pdf,
+        .num_analytic = buffers->num_analytic,
         .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
     };
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "scene/analytic_lights.h"
 
 static double triangle_area(const SceneData *data, uint32_t t)
 {
@@ -22,7 +23,7 @@ static double triangle_area(const SceneData *data, uint32_t t)
 
 /* The environment's weight: mean luminance x 4 pi R^2, R the bounding sphere's radius (the flux of
  * the sky through that sphere, over pi). */
-static double environment_power(const SceneData *data)
+static double bounding_radius2(const SceneData *data)
 {
     double r2 = 0.0;
     for (int a = 0; a < 3; a++) {
@@ -31,7 +32,12 @@ static double environment_power(const SceneData *data)
     }
     if (!(r2 > 0.0))
         r2 = 1.0; /* a point-sized scene: any positive radius gives the same pdfs without triangles */
-    return data->environment.mean_luminance * 4.0 * 3.14159265358979323846 * r2;
+    return r2;
+}
+
+static double environment_power(const SceneData *data)
+{
+    return data->environment.mean_luminance * 4.0 * 3.14159265358979323846 * bounding_radius2(data);
 }
 
 void light_table_build(LightTable *table, const SceneData *data)
@@ -39,10 +45,11 @@ void light_table_build(LightTable *table, const SceneData *data)
     memset(table, 0, sizeof *table);
     uint32_t n = data->num_emissive;
     bool has_env = data->environment.width > 0;
-    if (n == 0 && !has_env)
+    uint32_t na = data->num_analytic;
+    if (n == 0 && !has_env && na == 0)
         return;
-    double *power = malloc((n + 1) * sizeof *power);
-    uint32_t *tris = malloc((n + 1) * sizeof *tris);
+    double *power = malloc((n + na + 1) * sizeof *power);
+    uint32_t *tris = malloc((n + na + 1) * sizeof *tris);
     if (!power || !tris)
         die("out of memory for the light table (%u emitters)", n);
     double total = 0.0;
@@ -53,6 +60,14 @@ void light_table_build(LightTable *table, const SceneData *data)
         if (w > 0.0 && isfinite(w)) {
             power[count] = w;
             tris[count++] = t;
+            total += w;
+        }
+    }
+    for (uint32_t i = 0; i < na; i++) {
+        double w = analytic_light_weight(&data->analytic_lights[i], bounding_radius2(data));
+        if (w > 0.0 && isfinite(w)) {
+            power[count] = w;
+            tris[count++] = LIGHT_ANALYTIC_BASE + i;
             total += w;
         }
     }
@@ -107,14 +122,25 @@ void light_table_build(LightTable *table, const SceneData *data)
     table->entries = entries;
     table->count = count;
     table->total_power = (float)total;
-    for (uint32_t i = 0; i < count; i++)
+    if (na > 0) {
+        table->analytic = calloc(na, sizeof *table->analytic);
+        if (!table->analytic)
+            die("out of memory for the light table (%u analytic lights)", na);
+        memcpy(table->analytic, data->analytic_lights, na * sizeof *table->analytic);
+        table->num_analytic = na;
+    }
+    for (uint32_t i = 0; i < count; i++) {
         if (tris[i] == LIGHT_ENVIRONMENT)
             table->env_pick_pdf = (float)(power[i] / total);
+        else if (tris[i] >= LIGHT_ANALYTIC_BASE)
+            table->analytic[tris[i] - LIGHT_ANALYTIC_BASE].params.s[3] = (float)(power[i] / total);
+    }
     free(power), free(tris), free(scaled), free(small), free(large);
 }
 
 void light_table_free(LightTable *table)
 {
     free(table->entries);
+    free(table->analytic);
     memset(table, 0, sizeof *table);
 }

@@ -12,12 +12,15 @@ typedef struct {
     uint32_t count;
     float total_power;   /* sum of area * luminance(Ke), plus the environment's: the pdfs' normaliser */
     float env_pick_pdf;  /* the environment entry's probability; 0 without a map */
+    AnalyticLight *analytic; /* a copy of the scene's analytic lights, params.w = pick probability */
+    uint32_t num_analytic;
 } LightTable;
 
 /* Builds the table from data->emissive_triangles, each weighted by area * luminance(Ke), and the
  * environment map if any (one entry, triangle = LIGHT_ENVIRONMENT, weighted by its mean luminance x
  * 4 pi R^2 with R the radius of the scene's bounding sphere: DESIGN's power over pi, as for the
- * triangles). Triangles of zero area or zero emission are left out. */
+ * triangles), and the analytic lights (LIGHT_ANALYTIC_BASE + index, weighted by
+ * analytic_light_weight). Triangles of zero area or zero emission, and dark lights, are left out. */
 void light_table_build(LightTable *table, const SceneData *data);
 void light_table_free(LightTable *table);
 

@@ -99,6 +99,9 @@ void scene_desc_free(SceneDesc *desc)
 {
     free(desc->objects);
     desc->objects = NULL;
+    free(desc->lights);
+    desc->lights = NULL;
+    desc->num_lights = 0;
     desc->num_objects = 0;
 }
 
@@ -122,6 +125,17 @@ bool scene_load(const char *path, Scene *out, Error *err)
     if (!scene_data_finish(&out->data, out->desc.path, err)) {
         scene_free(out);
         return false;
+    }
+    if (out->desc.num_lights > 0) {
+        size_t bytes = (size_t)out->desc.num_lights * sizeof(AnalyticLight);
+        out->data.analytic_lights = malloc(bytes);
+        if (!out->data.analytic_lights) {
+            error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
+            scene_free(out);
+            return false;
+        }
+        memcpy(out->data.analytic_lights, out->desc.lights, bytes);
+        out->data.num_analytic = (uint32_t)out->desc.num_lights;
     }
     if (out->desc.environment[0] &&
         !environment_load(&out->data.environment, out->desc.environment, out->desc.environment_scale,

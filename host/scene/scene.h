@@ -24,6 +24,8 @@ typedef struct {
     char environment[1024];   /* the map's path resolved against the scene file; "" = none */
     float environment_scale;  /* default 1 */
     float environment_rotation; /* degrees */
+    AnalyticLight *lights; /* the "lights" array (host/scene/analytic_lights.h) */
+    int num_lights;
     int num_objects;
     char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
 } SceneDesc;

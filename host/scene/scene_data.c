@@ -27,6 +27,7 @@ void scene_data_free(SceneData *data)
     texture_set_free(&data->textures);
     environment_free(&data->environment);
     free(data->emissive_triangles);
+    free(data->analytic_lights);
     memset(data, 0, sizeof *data);
 }
 

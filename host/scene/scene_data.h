@@ -29,6 +29,8 @@ typedef struct {
     uint32_t *emissive_triangles; /* indices of triangles whose material emits */
     uint32_t num_emissive;
     float bounds_min[3], bounds_max[3];
+    AnalyticLight *analytic_lights; /* the scene's "lights" (scene_load copies them in) */
+    uint32_t num_analytic;
     Environment environment; /* width 0: none (scene_load loads it after scene_data_finish) */
     /* The first OBJ that added no triangles and why, for the message when the whole scene has
      * none ("x.obj: no faces (the file is empty)"). */

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/analytic_lights.h"
 #include "scene/camera_json.h"
 
 static bool parse_positive_int(JsonParser *p, const cJSON *obj, const char *name, const char *key,
@@ -124,7 +125,7 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
 {
     static const char *const keys[] = {"camera",     "film",        "render", "objects",
-                                       "background", "environment", NULL};
+                                       "background", "environment", "lights",     NULL};
     if (!json_check_object(p, root, "", keys))
         return false;
     const cJSON *item;
@@ -138,6 +139,9 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
     if ((item = json_member(root, "background")) && !parse_background(p, item, d->background))
         return false;
     if ((item = json_member(root, "environment")) && !parse_environment(p, item, d))
+        return false;
+    if ((item = json_member(root, "lights")) &&
+        !analytic_lights_from_json(p, item, &d->lights, &d->num_lights))
         return false;
     return parse_objects(p, json_member(root, "objects"), d);
 }

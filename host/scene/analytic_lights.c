@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+/* analytic_lights.c: parsing the "lights" array and each light's power. */
+#include "scene/analytic_lights.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static float luminance3(const float c[3]) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+
+static bool read_color(JsonParser *p, const cJSON *e, const char *name, const char *prefix, float out[3])
+{
+    char key[96];
+    snprintf(key, sizeof key, "%s.%s", prefix, name);
+    const cJSON *item = json_member(e, name);
+    if (!item)
+        return json_fail(p, ERR_JSON_VALUE, key, "missing");
+    if (cJSON_IsNumber(item)) { /* a grey, as colours elsewhere in the scene */
+        if (!json_read_float(p, item, key, &out[0]))
+            return false;
+        out[1] = out[2] = out[0];
+    } else if (!json_read_vec3(p, item, key, out)) {
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        if (!(out[i] >= 0.0f) || !isfinite(out[i]))
+            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be finite and >= 0", out[0],
+                             out[1], out[2]);
+    return true;
+}
+
+/* A unit vector from a non-zero finite one. */
+static bool read_direction(JsonParser *p, const cJSON *e, const char *prefix, float out[3])
+{
+    char key[96];
+    snprintf(key, sizeof key, "%s.direction", prefix);
+    const cJSON *item = json_member(e, "direction");
+    if (!item)
+        return json_fail(p, ERR_JSON_VALUE, key, "missing");
+    if (!json_read_vec3(p, item, key, out))
+        return false;
+    double len = sqrt((double)out[0] * out[0] + (double)out[1] * out[1] + (double)out[2] * out[2]);
+    if (!(len > 0.0) || !isfinite(len))
+        return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] is not a usable direction (zero length)",
+                         out[0], out[1], out[2]);
+    for (int i = 0; i < 3; i++)
+        out[i] = (float)(out[i] / len);
+    return true;
+}
+
+/* An angle in degrees within [lo, hi] (lo excluded when open_lo), or def when absent. */
+static bool read_angle(JsonParser *p, const cJSON *e, const char *name, const char *prefix, float def,
+                       float lo, bool open_lo, float hi, float *out)
+{
+    char key[96];
+    snprintf(key, sizeof key, "%s.%s", prefix, name);
+    const cJSON *item = json_member(e, name);
+    *out = def;
+    if (item && !json_read_float(p, item, key, out))
+        return false;
+    if (!(open_lo ? *out > lo : *out >= lo) || !(*out <= hi))
+        return json_fail(p, ERR_JSON_VALUE, key, "%g is out of range %c%g, %g]", *out,
+                         open_lo ? '(' : '[', lo, hi);
+    return true;
+}
+
+static bool parse_light(JsonParser *p, const cJSON *e, const char *prefix, AnalyticLight *l)
+{
+    static const char *const point_keys[] = {"type", "position", "intensity", NULL};
+    static const char *const spot_keys[] = {"type",      "position",      "intensity", "direction",
+                                            "cone_angle", "falloff_angle", NULL};
+    static const char *const directional_keys[] = {"type", "direction", "irradiance", NULL};
+    static const char *const sun_keys[] = {"type", "direction", "irradiance", "angle", NULL};
+    char key[96];
+    snprintf(key, sizeof key, "%s.type", prefix);
+    if (!cJSON_IsObject(e))
+        return json_fail(p, ERR_JSON_TYPE, prefix, "expected an object");
+    const cJSON *type = json_member(e, "type");
+    if (!type)
+        return json_fail(p, ERR_JSON_VALUE, key, "missing (point, spot, directional or sun)");
+    if (!cJSON_IsString(type))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected a string (point, spot, directional or sun)");
+    const char *t = type->valuestring;
+    memset(l, 0, sizeof *l);
+    float v[3];
+    if (!strcmp(t, "point") || !strcmp(t, "spot")) {
+        bool spot = t[0] == 's';
+        l->type = spot ? LIGHT_SPOT : LIGHT_POINT;
+        if (!json_check_object(p, e, prefix, spot ? spot_keys : point_keys))
+            return false;
+        const cJSON *pos = json_member(e, "position");
+        snprintf(key, sizeof key, "%s.position", prefix);
+        if (!pos)
+            return json_fail(p, ERR_JSON_VALUE, key, "missing");
+        if (!json_read_vec3(p, pos, key, v))
+            return false;
+        l->position = (float4){{v[0], v[1], v[2], 0.0f}};
+        if (!read_color(p, e, "intensity", prefix, v))
+            return false;
+        l->color = (float4){{v[0], v[1], v[2], luminance3(v)}};
+        if (spot) {
+            float cone, falloff;
+            if (!read_direction(p, e, prefix, v) ||
+                !read_angle(p, e, "cone_angle", prefix, 30.0f, 0.0f, true, 180.0f, &cone))
+                return false;
+            if (!read_angle(p, e, "falloff_angle", prefix, cone, 0.0f, false, 180.0f, &falloff))
+                return false;
+            if (falloff > cone) {
+                snprintf(key, sizeof key, "%s.falloff_angle", prefix);
+                return json_fail(p, ERR_JSON_VALUE, key, "%g is larger than cone_angle %g", falloff, cone);
+            }
+            l->axis = (float4){{v[0], v[1], v[2], 0.0f}};
+            l->params.s[0] = (float)(cone * PI / 180.0);
+            l->params.s[1] = (float)(falloff * PI / 180.0);
+        }
+        return true;
+    }
+    if (!strcmp(t, "directional") || !strcmp(t, "sun")) {
+        bool sun = t[0] == 's';
+        l->type = sun ? LIGHT_SUN : LIGHT_DIRECTIONAL;
+        if (!json_check_object(p, e, prefix, sun ? sun_keys : directional_keys))
+            return false;
+        if (!read_direction(p, e, prefix, v))
+            return false;
+        l->position = (float4){{v[0], v[1], v[2], 0.0f}};
+        if (!read_color(p, e, "irradiance", prefix, v))
+            return false;
+        l->color = (float4){{v[0], v[1], v[2], luminance3(v)}};
+        float angle = 0.0f;
+        if (sun && !read_angle(p, e, "angle", prefix, 0.0f, 0.0f, false, 180.0f, &angle))
+            return false;
+        double half = 0.5 * angle * PI / 180.0;
+        if (half > 0.0) {
+            /* Radiance L over the disc with L x pi sin^2(half) = E: a surface facing the sun
+             * receives exactly E (the cosine-weighted integral over the cone). */
+            double s = sin(half);
+            l->params.s[0] = (float)cos(half);
+            l->params.s[1] = (float)(1.0 / (PI * s * s));
+            l->params.s[2] = (float)(1.0 / (2.0 * PI * (1.0 - cos(half))));
+        } else {
+            l->params.s[0] = 1.0f;
+        }
+        return true;
+    }
+    return json_fail(p, ERR_JSON_VALUE, key, "unknown light type \"%s\" (point, spot, directional or sun)", t);
+}
+
+bool analytic_lights_from_json(JsonParser *p, const cJSON *array, AnalyticLight **out, int *count)
+{
+    *out = NULL;
+    *count = 0;
+    if (!cJSON_IsArray(array))
+        return json_fail(p, ERR_JSON_TYPE, "lights", "expected an array of lights");
+    int n = cJSON_GetArraySize(array);
+    if (n == 0)
+        return true;
+    AnalyticLight *lights = calloc((size_t)n, sizeof *lights);
+    if (!lights)
+        return json_fail(p, ERR_TOO_LARGE, "lights", "out of memory");
+    int i = 0;
+    for (const cJSON *e = array->child; e; e = e->next, i++) {
+        char prefix[64];
+        snprintf(prefix, sizeof prefix, "lights[%d]", i);
+        if (!parse_light(p, e, prefix, &lights[i])) {
+            free(lights);
+            return false;
+        }
+    }
+    *out = lights;
+    *count = n;
+    return true;
+}
+
+double analytic_light_weight(const AnalyticLight *l, double bounding_radius2)
+{
+    double lum = l->color.s[3];
+    switch (l->type) {
+    case LIGHT_POINT:
+        return 4.0 * lum;
+    case LIGHT_SPOT: {
+        /* 2 pi x the integral of the profile x sin over the cone: 1 inside falloff f, then
+         * (c - t) / (c - f) up to the cone c, which integrates to 2 pi (1 - (sin c - sin f) / (c - f)). */
+        double c = l->params.s[0], f = l->params.s[1];
+        double solid = c - f > 1e-6 ? 2.0 * PI * (1.0 - (sin(c) - sin(f)) / (c - f))
+                                    : 2.0 * PI * (1.0 - cos(c));
+        return lum * solid / PI;
+    }
+    default:
+        return lum * bounding_radius2;
+    }
+}
