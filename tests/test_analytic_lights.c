@@ -36,14 +36,16 @@ static const char *write_scene(const char *dir, double cam_h, double tan_half, c
     return test_write_file(dir, "scene.json", text);
 }
 
-static float *render(const char *scene, int spp, unsigned seed)
+static float *render_with(const char *scene, int spp, unsigned seed, bool no_nee)
 {
     RenderFixture f;
     render_fixture_open(&f, scene, 0, 0);
-    float *rgb = render_fixture_render(&f, (RenderSettings){.spp = spp, .max_depth = 2, .seed = seed}, NULL);
+    float *rgb = render_fixture_render(&f, (RenderSettings){.spp = spp, .max_depth = 2, .seed = seed, .no_nee = no_nee}, NULL);
     render_fixture_close(&f);
     return rgb;
 }
+
+static float *render(const char *scene, int spp, unsigned seed) { return render_with(scene, spp, seed, false); }
 
 typedef double (*IrradianceFn)(double x, double z, const double *light);
 
@@ -128,30 +130,34 @@ Test(analytic_lights, spot_profile_follows_design, .timeout = 120)
 }
 
 /* The mean of the image against 0.8 / pi x E cos(theta). */
-static void expect_uniform(const char *lights, double e_cos, int spp, double tolerance)
+static void expect_uniform(const char *lights, double e_cos, int spp, double tolerance, bool no_nee)
 {
     const char *scene = write_scene(test_temp_dir(), 3.0, 0.5, "", lights);
-    float *rgb = render(scene, spp, 3);
+    float *rgb = render_with(scene, spp, 3, no_nee);
     double sum = 0.0;
     for (int k = 0; k < RES * RES * 3; k++)
         sum += rgb[k];
     double mean = sum / (RES * RES * 3), want = ALBEDO / PI * e_cos;
-    cr_expect(fabs(mean - want) < tolerance * want, "%s: mean %g, E cos says %g", lights, mean, want);
+    cr_expect(fabs(mean - want) < tolerance * want, "%s%s: mean %g, E cos says %g", lights,
+              no_nee ? " (BSDF only)" : "", mean, want);
     free(rgb);
 }
 
-/* Directional and sun lights at 60 degrees from the normal: E cos = E / 2. The sun is a disc of 20
- * degrees whose radiance gives E at normal incidence, hence exactly E cos on a plane it lights fully. */
+/* A directional light at 60 degrees from the normal: E cos = E / 2. A sun of 90 degrees at 30
+ * degrees from the normal: its radiance L = E / (pi sin^2 45) gives E at normal incidence, hence
+ * exactly E cos on a plane that sees the whole disc (uniform L over the disc's solid angle,
+ * L = E / (2 pi (1 - cos 45)), would give 0.85 E cos). BSDF-only sampling sees the same disc. */
 Test(analytic_lights, directional_and_sun_give_irradiance_times_cosine, .timeout = 120)
 {
     double s = sin(PI / 3.0), c = cos(PI / 3.0);
     char lights[512];
     snprintf(lights, sizeof lights,
              "[{\"type\": \"directional\", \"direction\": [%.9g, %.9g, 0], \"irradiance\": [2, 2, 2]}]", s, -c);
-    expect_uniform(lights, 2.0 * c, 4, 0.002);
+    expect_uniform(lights, 2.0 * c, 4, 0.002, false);
     snprintf(lights, sizeof lights,
-             "[{\"type\": \"sun\", \"direction\": [%.9g, %.9g, 0], \"irradiance\": [2, 2, 2], \"angle\": 20}]", s, -c);
-    expect_uniform(lights, 2.0 * c, 64, 0.01);
+             "[{\"type\": \"sun\", \"direction\": [%.9g, %.9g, 0], \"irradiance\": [2, 2, 2], \"angle\": 90}]", c, -s);
+    expect_uniform(lights, 2.0 * s, 64, 0.01, false);
+    expect_uniform(lights, 2.0 * s, 256, 0.02, true);
 }
 
 /* Column means of a render under a sun shining straight down past the edge of a half-plane
