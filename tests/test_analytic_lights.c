@@ -251,3 +251,35 @@ Test(analytic_lights, bad_input_is_named)
                    "lights[0].cone_angle: 0 is out of range");
     expect_refused("{\"type\": \"point\"}", "lights: expected an array");
 }
+
+static double image_mean(const char *scene, int spp, unsigned seed)
+{
+    float *rgb = render(scene, spp, seed);
+    double sum = 0.0;
+    for (int k = 0; k < RES * RES * 3; k++)
+        sum += rgb[k];
+    free(rgb);
+    return sum / (RES * RES * 3);
+}
+
+/* An emissive quad and a point light share the alias table: each is picked with its share of the
+ * power and divided by it, so the image of both is the sum of the images of each alone. */
+Test(analytic_lights, one_table_with_triangles_adds_up, .timeout = 240)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "lamp.mtl", "newmtl lamp\nKd 0 0 0\nKe 4 4 4\nnewmtl off\nKd 0 0 0\n");
+    const char *quad = "v 0.5 1 -0.25\nv 1 1 -0.25\nv 1 1 0.25\nv 0.5 1 0.25\nf 1 2 3\nf 1 3 4\n";
+    char text[512];
+    snprintf(text, sizeof text, "mtllib lamp.mtl\nusemtl lamp\n%s", quad);
+    test_write_file(dir, "lamp.obj", text);
+    /* The same quad, dark: it hides the same part of the plane from the camera. */
+    snprintf(text, sizeof text, "mtllib lamp.mtl\nusemtl off\n%s", quad);
+    test_write_file(dir, "off.obj", text);
+    const char *point = "[{\"type\": \"point\", \"position\": [-0.5, 1, 0], \"intensity\": [1, 1, 1]}]";
+    double both = image_mean(write_scene(dir, 3.0, 0.5, ", {\"obj\": \"lamp.obj\"}", point), 64, 5);
+    double lamp = image_mean(write_scene(dir, 3.0, 0.5, ", {\"obj\": \"lamp.obj\"}", "[]"), 64, 6);
+    double alone = image_mean(write_scene(dir, 3.0, 0.5, ", {\"obj\": \"off.obj\"}", point), 4, 7);
+    cr_assert(lamp > 0.2 * alone && alone > 0.2 * lamp, "lamp %g, point %g: not comparable", lamp, alone);
+    cr_expect(fabs(both - (lamp + alone)) < 0.01 * (lamp + alone), "both %g, lamp %g + point %g = %g",
+              both, lamp, alone, lamp + alone);
+}
