@@ -83,3 +83,38 @@ def json_cases(rng):
     case("json-scene-is-dev-zero", {}, ["render", "/dev/zero"] + TINY, "error")
     case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
          setup="truncate -s 70M scene.json")
+    lights_cases()
+
+
+def lights_cases():
+    """The "lights" array: each type valid, then bad values that must be one-line errors."""
+    good = {"point": {"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]},
+            "spot": {"type": "spot", "position": [0, 1, 0], "intensity": 2, "direction": [0, -1, 0],
+                     "cone_angle": 40, "falloff_angle": 20},
+            "directional": {"type": "directional", "direction": [1, -1, 0], "irradiance": [1, 1, 1]},
+            "sun": {"type": "sun", "direction": [0, -1, 0], "irradiance": 3, "angle": 0.5}}
+    for name, light in good.items():
+        scene = json.loads(json.dumps(BASE_SCENE))
+        scene["lights"] = [light]
+        scene_case("lights-valid-%s" % name, json.dumps(scene), "ok")
+    bad = [("zero-direction", "directional", "direction", [0, 0, 0]),
+           ("falloff-over-cone", "spot", "falloff_angle", 60),
+           ("negative-intensity", "point", "intensity", [1, -1, 1]),
+           ("negative-irradiance", "sun", "irradiance", -1),
+           ("huge-angle", "sun", "angle", 1e30),
+           ("string-type", "point", "type", 3),
+           ("unknown-type", "point", "type", "area"),
+           ("extra-key", "point", "angle", 1)]
+    for name, kind, key, value in bad:
+        scene = json.loads(json.dumps(BASE_SCENE))
+        light = dict(good[kind])
+        light[key] = value
+        scene["lights"] = [light]
+        scene_case("lights-%s" % name, json.dumps(scene), "error", needle="lights[0]")
+    scene = json.loads(json.dumps(BASE_SCENE))
+    for name, value in [("missing-position", {"type": "point", "intensity": 1}),
+                        ("not-an-object", 7), ("not-an-array", None)]:
+        scene["lights"] = [value] if name != "not-an-array" else {"type": "point"}
+        scene_case("lights-%s" % name, json.dumps(scene), "error", needle="lights")
+    scene["lights"] = [good["sun"]] * 3000
+    scene_case("lights-many", json.dumps(scene), "ok")
