@@ -42,6 +42,9 @@ void cli_print_help(void)
          "  --profile          per-kernel timing table\n"
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
          "                     default ~/.cache/pt) holds them\n"
+         "  --no-default-light a scene without any light (no emissive triangles, lights,\n"
+         "                     environment or background) stays black; by default it gets a\n"
+         "                     uniform white sky (background [1, 1, 1]) and a warning\n"
          "  --quiet            no progress output\n"
          "  --progress         progress as lines on stderr, even when it is not a terminal:\n"
          "                     \"pt: progress: D/N spp (P%), S s\" after the first window, then at\n"
@@ -164,6 +167,7 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
             else if (!strcmp(a, "--profile")) o->profile = true;
             else if (!strcmp(a, "--no-cache")) o->no_cache = true;
+            else if (!strcmp(a, "--no-default-light")) o->no_default_light = true;
             else if (!strcmp(a, "--events")) o->print_events = true;
             else if (!strcmp(a, "--help") || !strcmp(a, "-h")) o->command = CMD_HELP;
             else if (a[0] == '-' && a[1]) {
@@ -191,7 +195,7 @@ RenderDesc cli_render_desc(const Options *o)
 {
     return (RenderDesc){.scene = o->scene, .device = o->device, .width = o->width,
                         .height = o->height, .spp = o->spp, .max_depth = o->max_depth,
-                        .no_cache = o->no_cache};
+                        .no_cache = o->no_cache, .no_default_light = o->no_default_light};
 }
 
 ViewerDesc cli_viewer_desc(const Options *o)

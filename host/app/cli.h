@@ -26,6 +26,7 @@ typedef struct {
     bool preview;   /* with -o X.exr, also write X.png */
     bool no_nee, no_compaction, profile, sort_materials;
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
+    bool no_default_light; /* a scene without any light stays dark */
     const char *csv; /* pt bench: append results to this CSV file */
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* pt view: at exit, the film (FILE.exr) or the framebuffer (PNG) */

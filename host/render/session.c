@@ -32,6 +32,8 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
         scene_free(&s->scene);
         return false;
     }
+    if (!o->no_default_light)
+        scene_add_default_light(&s->scene);
     s->load_seconds = seconds_now() - t0;
     bool opened = device_open(&s->dev, o->device, err);
     if (opened && o->no_cache)

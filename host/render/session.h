@@ -16,6 +16,7 @@ typedef struct {
     const char *device; /* gpu|cpu|P:D; NULL = the default device */
     int width, height, spp, max_depth;
     bool no_cache;      /* compile the kernels even if the kernel cache has them */
+    bool no_default_light; /* leave a scene without any light dark (scene_add_default_light) */
 } RenderDesc;
 
 typedef struct {

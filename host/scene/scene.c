@@ -148,6 +148,19 @@ bool scene_load(const char *path, Scene *out, Error *err)
     return true;
 }
 
+bool scene_add_default_light(Scene *scene)
+{
+    const float *bg = scene->desc.background;
+    if (scene->data.num_emissive > 0 || scene->data.num_analytic > 0 ||
+        scene->data.environment.width > 0 || bg[0] > 0.0f || bg[1] > 0.0f || bg[2] > 0.0f)
+        return false;
+    warn("%s has no light (no emissive triangles, no \"lights\", no environment map, a black "
+         "background): lit by a uniform white sky (background [1, 1, 1]); --no-default-light keeps "
+         "it dark", scene->desc.path);
+    scene->desc.background[0] = scene->desc.background[1] = scene->desc.background[2] = 1.0f;
+    return true;
+}
+
 void scene_free(Scene *scene)
 {
     scene_desc_free(&scene->desc);

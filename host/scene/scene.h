@@ -44,4 +44,9 @@ typedef struct {
 bool scene_load(const char *path, Scene *out, Error *err);
 void scene_free(Scene *scene);
 
+/* A scene with no light at all (no emissive triangle, no "lights", no environment map and a black
+ * background) gets a uniform white sky, background [1, 1, 1], with one warning naming what is
+ * missing; true when it did. */
+bool scene_add_default_light(Scene *scene);
+
 #endif
