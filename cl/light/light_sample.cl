@@ -26,7 +26,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     const global Material *materials = scene->materials;
     LightSample ls;
     LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
-    if (entry.triangle == LIGHT_ENVIRONMENT) {
+    if (PT_FEATURE_ENV && entry.triangle == LIGHT_ENVIRONMENT) {
         EnvSample es = env_sample(env, u1, u2);
         ls.position = from;
         ls.normal = -es.direction;
@@ -37,7 +37,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         ls.pdf_w = entry.pdf * es.pdf_w;
         return ls;
     }
-    if (entry.triangle >= LIGHT_ANALYTIC_BASE)
+    if (PT_FEATURE_ANALYTIC && entry.triangle >= LIGHT_ANALYTIC_BASE)
         return analytic_light_sample(scene->analytic_lights[entry.triangle - LIGHT_ANALYTIC_BASE],
                                      entry.pdf, from, u1, u2);
     ls.at_infinity = 0u;

@@ -28,7 +28,7 @@ inline float3 emission_seen(constant RenderParams *p, Material m, float t, float
 inline float3 environment_seen(constant RenderParams *p, const EnvMap *env, float3 d,
                                float prev_pdf_w, uint depth)
 {
-    if (p->env_width == 0u)
+    if (!PT_FEATURE_ENV || p->env_width == 0u)
         return xyz(p->background);
     float pdf_w;
     float3 L = env_lookup(env, d, &pdf_w);
@@ -60,7 +60,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     EnvMap env = env_map(p, scene);
     if (prim == HIT_NONE) {
         float3 sky = environment_seen(p, &env, xyz(dir4), dir4.w, depth);
-        if (p->num_analytic > 0u)
+        if (PT_FEATURE_ANALYTIC && p->num_analytic > 0u)
             sky += suns_seen(p, scene->analytic_lights, xyz(dir4), dir4.w, depth);
         add_radiance(radiance, k, beta * sky);
         path_depth[slot] = 0u;
