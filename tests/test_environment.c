@@ -341,10 +341,10 @@ static void block_means(const float *rgb, double out[NB])
 
 /* A diffuse sphere on a floor under a map with a small bright sun: NEE + MIS (the map sampled,
  * escaped rays weighted) and BSDF-only sampling converge to the same image. Each block's mean is
- * compared with the spread of that mean over independent seeds. */
-Test(environment, nee_with_mis_agrees_with_bsdf_sampling, .timeout = 300)
+ * compared with the spread of that mean over independent seeds. `objects` is the scene's object
+ * list (the ball and floor, plus anything else). */
+static void check_nee_against_bsdf_sampling(const char *dir, const char *objects)
 {
-    const char *dir = test_temp_dir();
     int w = 64, h = 32;
     float *rgb = contrast_map(w, h);
     char hdr[512];
@@ -352,7 +352,7 @@ Test(environment, nee_with_mis_agrees_with_bsdf_sampling, .timeout = 300)
     cr_assert(stbi_write_hdr(hdr, w, h, 3, rgb));
     free(rgb);
     write_ball_obj(dir, true);
-    const char *scene = write_scene(dir, "scene.json", "[{\"obj\": \"ball.obj\"}]", "sky.hdr", 20.0f,
+    const char *scene = write_scene(dir, "scene.json", objects, "sky.hdr", 20.0f,
                                     "{\"eye\": [0, 1, 4], \"target\": [0, -0.3, 0], \"fov_y\": 45}");
     RenderFixture f;
     render_fixture_open(&f, scene, SIDE, SIDE);
@@ -387,4 +387,22 @@ Test(environment, nee_with_mis_agrees_with_bsdf_sampling, .timeout = 300)
     cr_expect(fabs(total[0] - total[1]) < 0.01 * total[1], "image means NEE %.4f, BSDF-only %.4f",
               total[0] / NB, total[1] / NB);
     render_fixture_close(&f);
+}
+
+Test(environment, nee_with_mis_agrees_with_bsdf_sampling, .timeout = 300)
+{
+    check_nee_against_bsdf_sampling(test_temp_dir(), "[{\"obj\": \"ball.obj\"}]");
+}
+
+/* The same with a small lamp (two emissive triangles facing down) above the ball: triangles and
+ * the map share one light table, so each one's MIS weight (emission_seen, environment_seen) must
+ * use its share of the table's power. */
+Test(environment, nee_with_mis_agrees_with_a_lamp_in_the_same_light_table, .timeout = 300)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "lamp.mtl", "newmtl lamp\nKd 0 0 0\nKe 20 18 15\n");
+    test_write_file(dir, "lamp.obj",
+                    "mtllib lamp.mtl\nusemtl lamp\nv -0.3 2.5 -0.3\nv 0.3 2.5 -0.3\nv 0.3 2.5 0.3\n"
+                    "v -0.3 2.5 0.3\nf 1 2 3\nf 1 3 4\n");
+    check_nee_against_bsdf_sampling(dir, "[{\"obj\": \"ball.obj\"}, {\"obj\": \"lamp.obj\"}]");
 }
