@@ -73,3 +73,49 @@ Test(rng, distinct_samples_start_distinct_sequences, .timeout = 300)
     free(scratch);
     test_device_release(dev);
 }
+
+/* Each dimension is uniform and pairs of dimensions are independent, across pixels and samples:
+ * neighbours (d, d + 1), dimensions 32 apart (the rotation of the sample word repeats every 32)
+ * and a bounce's light and BSDF numbers. A 2-D chi-square over 16 x 16 cells of 2^20 draws. */
+Test(rng, dimensions_are_uniform_and_pairwise_independent, .timeout = 120)
+{
+    static const cl_uint pairs[][2] = {{0, 1}, {0, 32}, {5, 37}, {31, 32}, {8, 12}, {9, 25}, {40, 72}, {3, 100}};
+    enum { COUNT = 1 << 20, CELLS = 16 };
+    Device *dev = test_device();
+    Error err = {0};
+    cl_mem out = device_buffer(dev, "bins", CL_MEM_WRITE_ONLY, COUNT * sizeof(cl_ushort), NULL, &err);
+    cr_assert(!error_is_set(&err), "%s", err.message);
+    cl_kernel kernel = device_kernel(dev, "rng_test_dimension_pair");
+    cl_ushort *bins = malloc(COUNT * sizeof *bins);
+    cr_assert(bins);
+    for (size_t p = 0; p < sizeof pairs / sizeof pairs[0]; p++) {
+        cl_uint num_pixels = 4096, seed = 3, count = COUNT;
+        KERNEL_ARGS(kernel, 0, KARG(num_pixels), KARG(seed), KARG(pairs[p][0]), KARG(pairs[p][1]),
+                    KARG(count), KARG(out));
+        device_run(dev, kernel, COUNT, 0, NULL);
+        device_read(dev, out, 0, COUNT * sizeof *bins, bins);
+        static double cell[CELLS][CELLS], margin0[CELLS], margin1[CELLS];
+        memset(cell, 0, sizeof cell), memset(margin0, 0, sizeof margin0), memset(margin1, 0, sizeof margin1);
+        for (size_t i = 0; i < COUNT; i++) {
+            int a = (bins[i] >> 8) / (256 / CELLS), b = (bins[i] & 0xff) / (256 / CELLS);
+            cell[a][b]++, margin0[a]++, margin1[b]++;
+        }
+        double chi2 = 0.0, chi2_0 = 0.0, chi2_1 = 0.0;
+        double e2 = (double)COUNT / (CELLS * CELLS), e1 = (double)COUNT / CELLS;
+        for (int a = 0; a < CELLS; a++) {
+            chi2_0 += (margin0[a] - e1) * (margin0[a] - e1) / e1;
+            chi2_1 += (margin1[a] - e1) * (margin1[a] - e1) / e1;
+            for (int b = 0; b < CELLS; b++)
+                chi2 += (cell[a][b] - e2) * (cell[a][b] - e2) / e2;
+        }
+        /* 255 and 15 degrees of freedom; limits at about p = 1e-5. */
+        cr_expect(chi2 < 360.0, "dimensions %u and %u: joint chi-square %.1f (255 dof)",
+                  pairs[p][0], pairs[p][1], chi2);
+        cr_expect(chi2_0 < 50.0 && chi2_1 < 50.0, "dimensions %u, %u: marginal chi-square %.1f, %.1f",
+                  pairs[p][0], pairs[p][1], chi2_0, chi2_1);
+    }
+    free(bins);
+    clReleaseKernel(kernel);
+    clReleaseMemObject(out);
+    test_device_release(dev);
+}

@@ -16,3 +16,17 @@ kernel void rng_test_sequence_starts(uint num_pixels, uint sample_base, uint see
     ulong d2 = (ulong)(rng_uniform(pixel, sample, 2u, seed) * 65536.0f);
     starts[i] = d0 << 40 | d1 << 16 | d2;
 }
+
+/* Dimensions d0 and d1 of sample i / num_pixels of pixel i % num_pixels, as 8-bit bins each
+ * (bins[i] = bin(d0) * 256 + bin(d1)), for tests/test_rng.c's uniformity and independence checks. */
+kernel void rng_test_dimension_pair(uint num_pixels, uint seed, uint d0, uint d1, uint count,
+                                    global ushort *bins)
+{
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    uint pixel = i % num_pixels, sample = i / num_pixels;
+    uint b0 = min((uint)(rng_uniform(pixel, sample, d0, seed) * 256.0f), 255u);
+    uint b1 = min((uint)(rng_uniform(pixel, sample, d1, seed) * 256.0f), 255u);
+    bins[i] = (ushort)(b0 * 256u + b1);
+}
