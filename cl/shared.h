@@ -129,21 +129,64 @@ typedef BvhTriangle TraversalPrim;
 
 /* ---- Materials and textures ---------------------------------------------------------------- */
 
-#define MATERIAL_DIFFUSE 0u
-#define MATERIAL_MIRROR 1u
-#define MATERIAL_DIELECTRIC 2u
+/* Material types: X(NAME, "json name"). The values are the kernels' Material.type. */
+#define MATERIAL_TYPES(X)                                                                          \
+    X(DIFFUSE, "diffuse")       /* Lambert */                                                      \
+    X(CONDUCTOR, "conductor")   /* GGX, complex Fresnel; roughness 0 = perfect mirror */           \
+    X(DIELECTRIC, "dielectric") /* GGX (Walter 2007); roughness 0 = smooth glass */                \
+    X(PRINCIPLED, "principled") /* glTF 2.0 metallic-roughness */                                  \
+    X(MIX, "mix")               /* (1 - weight) a + weight b, resolved stochastically per hit */
+#define MATERIAL_TYPE_ENUM(name, json) MATERIAL_##name,
+enum { MATERIAL_TYPES(MATERIAL_TYPE_ENUM) MATERIAL_TYPE_COUNT };
+#undef MATERIAL_TYPE_ENUM
+
+/* Texture slots of a Material: X(NAME, "json key"). A slot holds a texture index or NO_TEXTURE;
+ * a textured colour multiplies the constant, a textured scalar replaces it (its red channel). */
+#define MATERIAL_TEXTURE_SLOTS(X)                                                                  \
+    X(BASE, "base")           /* albedo | reflectance | tint | base_color (rgb, multiplies) */     \
+    X(EMISSION, "emission")   /* rgb, multiplies emission */                                       \
+    X(ROUGHNESS, "roughness") /* scalar */                                                         \
+    X(METALLIC, "metallic")   /* scalar */                                                         \
+    X(OPACITY, "opacity")     /* scalar (an RGBA base texture's alpha is put here by the host) */  \
+    X(WEIGHT, "weight")       /* scalar, mix */                                                    \
+    X(NORMAL, "normal_map")   /* tangent-space normal, linear */                                   \
+    X(BUMP, "bump_map")       /* height, red channel */
+#define MATERIAL_TEXTURE_SLOT_ENUM(name, json) MATERIAL_TEX_##name,
+enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
+#undef MATERIAL_TEXTURE_SLOT_ENUM
+
+#define MATERIAL_FLAG_FRESNEL_ONE 1u  /* conductor without eta/k: Fresnel 1 */
+#define MATERIAL_FLAG_CUTOUT 2u       /* opacity < 1 somewhere: rays may pass through */
+#define MATERIAL_FLAG_BASE_ALPHA 4u   /* the BASE texture's alpha multiplies the opacity */
 
 #define NO_TEXTURE 0xffffffffu
+/* Mixes nest at most this deep (the host refuses deeper ones and cycles). */
+#define MATERIAL_MIX_DEPTH_LIMIT 8u
 
+/* One material as the kernels see it (shared/DESIGN.md "Materials"); textures are looked up at
+ * the hit. Unused members of a type are 0 (textures NO_TEXTURE). */
 typedef struct {
-    float4 kd; /* diffuse albedo (linear rgb); w unused */
-    float4 ks; /* mirror reflectance; w unused */
-    float4 ke; /* emitted radiance (one-sided, front = counter-clockwise side); w: luminance */
-    float4 tf; /* dielectric transmission tint; w unused */
-    float ior; /* index of refraction (dielectric) */
-    uint type; /* MATERIAL_* */
-    uint map_kd; /* texture index or NO_TEXTURE */
-    uint pad0;
+    float4 base;           /* rgb: diffuse albedo, conductor reflectance, dielectric tint or
+                              principled base_color; w unused */
+    float4 emission;       /* rgb: emitted radiance times emission_strength (one-sided, front =
+                              counter-clockwise side); w: luminance, times the emission texture's
+                              mean luminance when textured (the light table's weight) */
+    float4 eta;            /* rgb: conductor eta; w unused */
+    float4 k;              /* rgb: conductor k; w unused */
+    float4 absorption;     /* rgb: dielectric Beer-Lambert sigma per scene unit; w unused */
+    float4 specular_color; /* rgb: principled specular_color; w unused */
+    float roughness;       /* [0, 1]; GGX alpha = roughness^2 */
+    float anisotropy;      /* [0, 1) */
+    float metallic;        /* principled */
+    float opacity;         /* [0, 1]; 1 = opaque */
+    float ior;             /* dielectric and principled */
+    float specular;        /* principled (KHR_materials_specular) */
+    float weight;          /* mix: weight of b */
+    float bump_scale;
+    uint type;             /* MATERIAL_* */
+    uint flags;            /* MATERIAL_FLAG_* */
+    uint mix_a, mix_b;     /* mix: material indices */
+    uint tex[MATERIAL_TEX_COUNT]; /* MATERIAL_TEX_* slots: texture index or NO_TEXTURE */
 } Material;
 
 #define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */
@@ -326,9 +369,12 @@ typedef struct {
     STRUCT(TrianglePack4, 160) FIELD(TrianglePack4, v) FIELD(TrianglePack4, prim)                   \
     STRUCT(BvhNode8, 224) FIELD(BvhNode8, lo) FIELD(BvhNode8, hi) FIELD(BvhNode8, child)            \
     STRUCT(TrianglePack8, 320) FIELD(TrianglePack8, v) FIELD(TrianglePack8, prim)                   \
-    STRUCT(Material, 80) FIELD(Material, kd) FIELD(Material, ks) FIELD(Material, ke)                \
-        FIELD(Material, tf) FIELD(Material, ior) FIELD(Material, type) FIELD(Material, map_kd)      \
-        FIELD(Material, pad0)                                                                       \
+    STRUCT(Material, 176) FIELD(Material, base) FIELD(Material, emission) FIELD(Material, eta)     \
+        FIELD(Material, k) FIELD(Material, absorption) FIELD(Material, specular_color)              \
+        FIELD(Material, roughness) FIELD(Material, anisotropy) FIELD(Material, metallic)            \
+        FIELD(Material, opacity) FIELD(Material, ior) FIELD(Material, specular)                     \
+        FIELD(Material, weight) FIELD(Material, bump_scale) FIELD(Material, type)                   \
+        FIELD(Material, flags) FIELD(Material, mix_a) FIELD(Material, mix_b) FIELD(Material, tex)   \
     STRUCT(TextureInfo, 16) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
         FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \

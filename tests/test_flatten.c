@@ -119,16 +119,16 @@ Test(flatten, two_meshes_land_at_their_offsets)
     cr_expect_eq(d.material_ids[2], 2);
     cr_expect_eq(d.material_ids[3], 2);
     cr_expect_eq(d.material_ids[4], 3);
-    cr_expect_eq(d.materials[2].kd.s[2], 0.9f);
-    cr_expect_eq(d.materials[3].kd.s[0], 0.8f, "default grey");
+    cr_expect_eq(d.materials[2].base.s[2], 0.9f);
+    cr_expect_eq(d.materials[3].base.s[0], 0.8f, "default grey");
     cr_expect_eq(d.materials[3].type, MATERIAL_DIFFUSE);
-    cr_expect_eq(d.materials[3].map_kd, NO_TEXTURE);
+    cr_expect_eq(d.materials[3].tex[MATERIAL_TEX_BASE], NO_TEXTURE);
 
     /* Textures: one per material that has one, disjoint, inside the texel buffer. */
     cr_assert_eq(d.textures.count, 2);
-    cr_expect_eq(d.materials[0].map_kd, NO_TEXTURE);
-    cr_expect_eq(d.materials[1].map_kd, 0);
-    cr_expect_eq(d.materials[2].map_kd, 1);
+    cr_expect_eq(d.materials[0].tex[MATERIAL_TEX_BASE], NO_TEXTURE);
+    cr_expect_eq(d.materials[1].tex[MATERIAL_TEX_BASE], 0);
+    cr_expect_eq(d.materials[2].tex[MATERIAL_TEX_BASE], 1);
     TextureInfo t0 = d.textures.infos[0], t1 = d.textures.infos[1];
     cr_expect_eq(t0.width * t0.height, 4);
     cr_expect_eq(t1.width * t1.height, 3);
@@ -207,8 +207,8 @@ Test(flatten, materials_map_from_mtl)
     ObjMaterial m = obj_material("m", 0.5f, 0.25f, 0.125f);
     Material out = material_from_obj(&m, 7);
     cr_expect_eq(out.type, MATERIAL_DIFFUSE);
-    cr_expect_eq(out.kd.s[1], 0.25f);
-    cr_expect_eq(out.map_kd, 7);
+    cr_expect_eq(out.base.s[1], 0.25f);
+    cr_expect_eq(out.tex[MATERIAL_TEX_BASE], 7);
 
     m.ni = 1.5f; /* Cornell box walls: Ni 1.5 without d < 1 stays diffuse */
     cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_DIFFUSE);
@@ -217,10 +217,10 @@ Test(flatten, materials_map_from_mtl)
     cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_DIFFUSE);
     m.ks[0] = m.ks[1] = m.ks[2] = 0.9f;
     out = material_from_obj(&m, NO_TEXTURE);
-    cr_expect_eq(out.type, MATERIAL_MIRROR);
-    cr_expect_eq(out.ks.s[0], 0.9f);
+    cr_expect_eq(out.type, MATERIAL_CONDUCTOR);
+    cr_expect_eq(out.base.s[0], 0.9f);
     m.illum = 5;
-    cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_MIRROR);
+    cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_CONDUCTOR);
 
     ObjMaterial glass = obj_material("glass", 0, 0, 0);
     glass.illum = 7;
@@ -228,14 +228,14 @@ Test(flatten, materials_map_from_mtl)
     out = material_from_obj(&glass, NO_TEXTURE);
     cr_expect_eq(out.type, MATERIAL_DIELECTRIC);
     cr_expect_eq(out.ior, 2.5f);
-    cr_expect_eq(out.tf.s[0], 1.0f, "absent Tf means untinted");
+    cr_expect_eq(out.base.s[0], 1.0f, "absent Tf means untinted");
     glass.illum = 4;
     glass.ni = 1.0f;
     out = material_from_obj(&glass, NO_TEXTURE);
     cr_expect_eq(out.type, MATERIAL_DIELECTRIC);
     cr_expect_eq(out.ior, 1.5f, "Ni <= 1 on a dielectric: 1.5");
     glass.tf[0] = 0.1f, glass.tf[1] = 0.2f, glass.tf[2] = 0.3f;
-    cr_expect_eq(material_from_obj(&glass, NO_TEXTURE).tf.s[2], 0.3f);
+    cr_expect_eq(material_from_obj(&glass, NO_TEXTURE).base.s[2], 0.3f);
 
     ObjMaterial water = obj_material("water", 0.5f, 0.5f, 0.5f);
     water.ni = 1.33f;
@@ -249,8 +249,8 @@ Test(flatten, materials_map_from_mtl)
     ObjMaterial light = obj_material("light", 0.78f, 0.78f, 0.78f);
     light.ke[0] = 17, light.ke[1] = 12, light.ke[2] = 4;
     out = material_from_obj(&light, NO_TEXTURE);
-    cr_expect_eq(out.ke.s[0], 17.0f);
-    cr_expect(fabsf(out.ke.s[3] - (0.2126f * 17 + 0.7152f * 12 + 0.0722f * 4)) < 1e-4f);
+    cr_expect_eq(out.emission.s[0], 17.0f);
+    cr_expect(fabsf(out.emission.s[3] - (0.2126f * 17 + 0.7152f * 12 + 0.0722f * 4)) < 1e-4f);
 }
 
 /* ---- Through obj_load ----------------------------------------------------------------------- */
@@ -267,14 +267,14 @@ Test(flatten, cornell_box_lights_are_the_two_light_triangles)
     for (uint32_t i = 0; i < d->num_emissive; i++) {
         uint32_t t = d->emissive_triangles[i];
         const Material *m = &d->materials[d->material_ids[t]];
-        cr_expect_eq(m->ke.s[0], 17.0f);
-        cr_expect_eq(m->ke.s[1], 12.0f);
+        cr_expect_eq(m->emission.s[0], 17.0f);
+        cr_expect_eq(m->emission.s[1], 12.0f);
         for (int k = 0; k < 3; k++) /* the light quad hangs just below the ceiling */
             cr_expect(fabsf(d->positions[d->triangles[t].v.s[k]].s[1] - 1.98f) < 1e-4f);
     }
     uint32_t emitting = 0;
     for (uint32_t t = 0; t < d->num_triangles; t++)
-        emitting += d->materials[d->material_ids[t]].ke.s[3] > 0.0f;
+        emitting += d->materials[d->material_ids[t]].emission.s[3] > 0.0f;
     cr_expect_eq(emitting, 2);
     scene_free(&scene);
 }
@@ -292,7 +292,7 @@ Test(flatten, missing_mtl_gives_the_default_material_and_a_warning)
     cr_expect_gt(warning_count(), before);
     cr_assert_eq(scene.data.num_materials, 1);
     cr_expect_eq(scene.data.material_ids[0], 0);
-    cr_expect_eq(scene.data.materials[0].kd.s[1], 0.8f);
+    cr_expect_eq(scene.data.materials[0].base.s[1], 0.8f);
     cr_expect_eq(scene.data.materials[0].type, MATERIAL_DIFFUSE);
     scene_free(&scene);
 }
@@ -319,9 +319,9 @@ Test(flatten, missing_texture_warns_and_keeps_kd)
     cr_expect(strstr(log, "not-there.png") && strstr(log, "painted"), "warning: %s", log);
     free(log);
     const Material *m = &scene.data.materials[scene.data.material_ids[0]];
-    cr_expect_eq(m->map_kd, NO_TEXTURE);
-    cr_expect_eq(m->kd.s[0], 0.3f);
-    cr_expect_eq(m->kd.s[2], 0.5f);
+    cr_expect_eq(m->tex[MATERIAL_TEX_BASE], NO_TEXTURE);
+    cr_expect_eq(m->base.s[0], 0.3f);
+    cr_expect_eq(m->base.s[2], 0.5f);
     cr_expect_eq(scene.data.textures.count, 0);
     scene_free(&scene);
 }

@@ -59,7 +59,14 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         ls.pdf_w = 0.0f;
         return ls;
     }
-    ls.radiance = xyz(materials[material_ids[entry.triangle]].ke);
+    Material m = materials[material_ids[entry.triangle]];
+    ls.radiance = xyz(m.emission);
+    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE) {
+        float2 uv = (float2)(b.x, b.y);
+        if (tri.w & TRIANGLE_HAS_UVS)
+            uv = (1.0f - b.x - b.y) * scene->uvs[tri.x] + b.x * scene->uvs[tri.y] + b.y * scene->uvs[tri.z];
+        ls.radiance *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
+    }
     ls.pdf_w = entry.pdf * (2.0f / double_area) * dist2 / cos_light;
     return ls;
 }

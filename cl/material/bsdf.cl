@@ -1,72 +1,97 @@
 /* SPDX-License-Identifier: MIT */
-/* bsdf.cl: the v1 materials. Lambert (two-sided), perfect mirror, smooth dielectric with exact
- * Fresnel. Directions point away from the surface; n is the shading normal turned to wo's side. */
+/* bsdf.cl: the material at a hit (textures looked up, mixes resolved) and the dispatch of eval,
+ * pdf and sample to its lobes (diffuse.cl, conductor.cl, dielectric.cl, principled.cl). All in
+ * the local shading frame of bsdf_common.cl. */
 
-typedef struct {
-    float3 wi;
-    float3 weight; /* f * |cos| / pdf */
-    float pdf_w;   /* 0 for delta lobes */
-} BsdfSample;
-
-/* Unpolarised Fresnel reflectance of a smooth dielectric; cos_i > 0 on the incident side, eta =
- * eta_t / eta_i. Returns 1 on total internal reflection and sets *cos_t otherwise. */
-inline float fresnel_dielectric(float cos_i, float eta, float *cos_t)
+/* A scalar parameter: the constant, or its texture's red channel. */
+inline float material_scalar(const SceneView *scene, uint texture, float constant, float2 uv)
 {
-    float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f) {
-        *cos_t = 0.0f;
-        return 1.0f;
-    }
-    float ct = sqrt(fmax(0.0f, 1.0f - sin2_t));
-    float r_s = (cos_i - eta * ct) / (cos_i + eta * ct);
-    float r_p = (eta * cos_i - ct) / (eta * cos_i + ct);
-    *cos_t = ct;
-    return 0.5f * (r_s * r_s + r_p * r_p);
+    return texture == NO_TEXTURE ? constant : texture_sample(scene, texture, uv).x;
 }
 
-inline float3 reflect_about(float3 wo, float3 n) { return 2.0f * dot(wo, n) * n - wo; }
-
-/* Lambert value f(wo, wi) * cos for a light sample (two-sided: both on wo's side of n). */
-inline float3 diffuse_eval_cos(float3 albedo, float3 n, float3 wi, float *pdf_w)
+/* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
+ * the expected BSDF is then (1 - w) f_a + w f_b, and next-event estimation and BSDF sampling at
+ * this vertex both use the chosen leaf, so MIS stays consistent. u is reused (rescaled) per
+ * level; the host bounds the nesting (MATERIAL_MIX_DEPTH_LIMIT) and refuses cycles. */
+inline Material material_resolve_mix(const SceneView *scene, Material m, float2 uv, float u)
 {
-    float cos_i = dot(wi, n);
-    if (cos_i <= 0.0f) {
-        *pdf_w = 0.0f;
-        return (float3)(0.0f);
-    }
-    *pdf_w = cos_i * PT_INV_PI;
-    return albedo * (cos_i * PT_INV_PI);
-}
-
-/* Samples the material. front: wo is on the side the geometric normal points to (the outside of a
- * dielectric). n: shading normal on wo's side. */
-PT_INLINE BsdfSample bsdf_sample(Material m, float3 albedo, float3 wo, float3 n, bool front, float u1,
-                       float u2, float u_lobe)
-{
-    BsdfSample s;
-    if (m.type == MATERIAL_MIRROR) {
-        s.wi = reflect_about(wo, n);
-        s.weight = xyz(m.ks);
-        s.pdf_w = 0.0f;
-    } else if (m.type == MATERIAL_DIELECTRIC) {
-        float eta = front ? m.ior : 1.0f / m.ior; /* eta_t / eta_i */
-        float cos_i = dot(wo, n), cos_t;
-        float reflectance = fresnel_dielectric(cos_i, eta, &cos_t);
-        s.pdf_w = 0.0f;
-        if (u_lobe < reflectance) {
-            s.wi = reflect_about(wo, n);
-            s.weight = (float3)(1.0f);
+    for (uint level = 0u; m.type == MATERIAL_MIX && level < MATERIAL_MIX_DEPTH_LIMIT; level++) {
+        float w = clamp(material_scalar(scene, m.tex[MATERIAL_TEX_WEIGHT], m.weight, uv), 0.0f, 1.0f);
+        if (u < w) {
+            u = u / w;
+            m = scene->materials[m.mix_b];
         } else {
-            /* Snell: wi = -wo / eta + (cos_i / eta - cos_t) n. Radiance scales by 1 / eta^2 as the
-             * solid angle compresses (Veach 1997, sec. 5.2). */
-            s.wi = normalize(-wo / eta + (cos_i / eta - cos_t) * n);
-            s.weight = xyz(m.tf) / (eta * eta);
+            u = (u - w) / (1.0f - w);
+            m = scene->materials[m.mix_a];
         }
-    } else {
-        float3 v_local = sample_cosine_hemisphere(u1, u2);
-        s.wi = to_world(v_local, n);
-        s.weight = albedo;
-        s.pdf_w = v_local.z * PT_INV_PI;
+        u = fmin(u, 0x1.fffffep-1f);
     }
-    return s;
+    return m;
 }
+
+/* The leaf material m (not a mix) at uv, textures looked up. */
+inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv)
+{
+    Bsdf b;
+    b.type = m.type;
+    b.flags = m.flags;
+    b.base = xyz(m.base);
+    if (m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
+        b.base *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_BASE], uv));
+    b.eta = xyz(m.eta);
+    b.k = xyz(m.k);
+    b.specular_color = xyz(m.specular_color);
+    b.ior = m.ior;
+    b.metallic = m.metallic;
+    b.specular = m.specular;
+    float r = m.roughness, aniso = m.anisotropy;
+    if (m.tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
+        r = clamp(texture_sample(scene, m.tex[MATERIAL_TEX_ROUGHNESS], uv).x, 0.0f, 1.0f);
+    if (m.tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE)
+        b.metallic = clamp(texture_sample(scene, m.tex[MATERIAL_TEX_METALLIC], uv).x, 0.0f, 1.0f);
+    /* DESIGN: alpha = r^2; anisotropy a stretches it along u and shrinks it along v. */
+    float alpha = r * r, stretch = aniso > 0.0f ? sqrt(1.0f - 0.9f * aniso) : 1.0f;
+    b.alpha_x = alpha / stretch;
+    b.alpha_y = alpha * stretch;
+    return b;
+}
+
+/* True when every lobe is a delta (no light sample can meet it: next-event estimation is skipped). */
+inline bool bsdf_is_delta(const Bsdf *b)
+{
+    if (b->type == MATERIAL_CONDUCTOR || b->type == MATERIAL_DIELECTRIC)
+        return fmax(b->alpha_x, b->alpha_y) < BSDF_SMOOTH_ALPHA;
+    return false;
+}
+
+/* f(wo, wi) * |cos(wi)| and the density bsdf_sample has of returning wi (0 for delta lobes). */
+inline float3 bsdf_eval(const Bsdf *b, float3 wo, float3 wi, bool front, float *pdf_w)
+{
+    switch (b->type) {
+    case MATERIAL_CONDUCTOR:
+        return conductor_eval(b, wo, wi, pdf_w);
+    case MATERIAL_DIELECTRIC:
+        return dielectric_eval(b, wo, wi, front, pdf_w);
+    case MATERIAL_PRINCIPLED:
+        return principled_eval(b, wo, wi, pdf_w);
+    default:
+        return diffuse_eval(b, wo, wi, pdf_w);
+    }
+}
+
+inline BsdfSample bsdf_sample(const Bsdf *b, float3 wo, bool front, float u1, float u2, float u3)
+{
+    switch (b->type) {
+    case MATERIAL_CONDUCTOR:
+        return conductor_sample(b, wo, u1, u2);
+    case MATERIAL_DIELECTRIC:
+        return dielectric_sample(b, wo, front, u1, u2, u3);
+    case MATERIAL_PRINCIPLED:
+        return principled_sample(b, wo, u1, u2, u3);
+    default:
+        return diffuse_sample(b, wo, u1, u2);
+    }
+}
+
+/* The albedo AOV: the colour a denoiser wants (base colour of the leaf). */
+inline float3 bsdf_albedo(const Bsdf *b) { return b->base; }

@@ -23,13 +23,10 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
         } else if (p->aov == AOV_DEPTH) {
             sum += (float3)(hit.t);
         } else {
-            Material m = materials[surf.material];
-            float3 albedo = m.type == MATERIAL_MIRROR        ? xyz(m.ks)
-                            : m.type == MATERIAL_DIELECTRIC ? xyz(m.tf)
-                                                            : xyz(m.kd);
-            if (m.map_kd != NO_TEXTURE)
-                albedo *= xyz(texture_sample(&scene, m.map_kd, surf.uv));
-            sum += albedo;
+            /* A mix shows its first leaf's colour: the AOV is deterministic. */
+            Material m = material_resolve_mix(&scene, materials[surf.material], surf.uv, 1.0f);
+            Bsdf bsdf = bsdf_at(&scene, m, surf.uv);
+            sum += bsdf_albedo(&bsdf);
         }
     }
     film[pixel] = (float4)(sum / (float)max(spp, 1u), 1.0f);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* shade_surface: one path vertex. Adds emission (MIS-weighted against light sampling), queues a
- * next-event shadow ray for diffuse surfaces, samples the BSDF for the next segment and applies
+ * next-event shadow ray for non-delta materials, samples the BSDF for the next segment and applies
  * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
  * Reads: hit, ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
@@ -8,18 +8,21 @@
  * Next: intersect_shadow, then compaction. */
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
-inline float3 emission_seen(constant RenderParams *p, Material m, float t, float cos_light,
-                            float prev_pdf_w, uint depth)
+inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Material m, float2 uv,
+                            float t, float cos_light, float prev_pdf_w, uint depth)
 {
-    if (m.ke.w <= 0.0f || cos_light <= 0.0f)
+    if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
+    float3 L = xyz(m.emission);
+    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+        L *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
-        return xyz(m.ke);
-    /* light_sample picks a triangle with probability area * luminance / total power, then a point
-     * with density 1 / area: per unit area that is luminance / total power. */
-    float light_pdf = m.ke.w / p->emissive_power * t * t / cos_light;
-    return xyz(m.ke) * mis_power(prev_pdf_w, light_pdf);
+        return L;
+    /* light_sample picks a triangle with probability area * emission.w / total power, then a point
+     * with density 1 / area: per unit area that is emission.w / total power. */
+    float light_pdf = m.emission.w / p->emissive_power * t * t / cos_light;
+    return L * mis_power(prev_pdf_w, light_pdf);
 }
 
 /* What an escaped ray sees: the constant background, or the environment map with the MIS weight
@@ -77,7 +80,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
         ns = ng;
 
-    float3 L = emission_seen(p, m, h.x, cos_o_geometric, dir4.w, depth);
+    float3 L = emission_seen(p, scene, m, surf.uv, h.x, cos_o_geometric, dir4.w, depth);
     float3 gathered = beta * L;
 
     bool path_continues = depth < p->max_depth;
@@ -86,21 +89,30 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (path_continues) {
         RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
         uint bounce = depth - 1u;
-        float3 albedo = xyz(m.kd);
-        if (m.map_kd != NO_TEXTURE)
-            albedo *= xyz(texture_sample(scene, m.map_kd, surf.uv));
+        /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
+         * a mix resolves to. */
+        Material leaf = m.type == MATERIAL_MIX
+                            ? material_resolve_mix(scene, m, surf.uv, rng_bounce(key, bounce, DIM_MIX))
+                            : m;
+        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv);
+        Frame frame = frame_from_normal(ns);
+        float3 wo_local = frame_to_local(frame, wo);
 
-        /* Next-event estimation: diffuse surfaces only (delta lobes cannot meet a sampled light). */
-        if (m.type == MATERIAL_DIFFUSE && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
+        /* Next-event estimation for every non-delta lobe. */
+        if (!bsdf_is_delta(&bsdf) && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
             LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
             float3 wi = ls.direction;
+            float3 wi_local = frame_to_local(frame, wi);
             float bsdf_pdf;
-            float3 f_cos = diffuse_eval_cos(albedo, ns, wi, &bsdf_pdf);
-            if (ls.pdf_w > 0.0f && bsdf_pdf > 0.0f && dot(wi, ng) > 0.0f) {
+            float3 f_cos = bsdf_eval(&bsdf, wo_local, wi_local, front, &bsdf_pdf);
+            /* The light must lie on the side of the true surface that the shading frame puts it
+             * on (reflection above, transmission below): shading normals never leak light. */
+            bool same_side = (dot(wi, ng) > 0.0f) == (wi_local.z > 0.0f);
+            if (ls.pdf_w > 0.0f && max3(f_cos) > 0.0f && same_side) {
                 /* A delta light cannot be hit by the BSDF's rays: no MIS. */
                 float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
                 float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
@@ -126,13 +138,15 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
             }
         }
 
-        BsdfSample bs = bsdf_sample(m, albedo, wo, ns, front,
-                                    rng_bounce(key, bounce, DIM_BSDF_U),
+        BsdfSample bs = bsdf_sample(&bsdf, wo_local, front, rng_bounce(key, bounce, DIM_BSDF_U),
                                     rng_bounce(key, bounce, DIM_BSDF_V),
                                     rng_bounce(key, bounce, DIM_BSDF_LOBE));
+        float3 wi = frame_to_world(frame, bs.wi);
         beta *= bs.weight;
-        /* A diffuse sample below the true surface (possible with interpolated normals) is lost. */
-        if (m.type == MATERIAL_DIFFUSE && dot(bs.wi, ng) <= 0.0f)
+        /* A sample on the other side of the true surface than its lobe says (possible with
+         * shading normals) is lost, never counted on the wrong side. */
+        bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
+        if (bs.flags == 0u || (dot(wi, ng) > 0.0f) != reflects)
             path_continues = false;
         /* Russian roulette from the third vertex on, driven by the throughput. */
         if (path_continues && depth >= 3u) {
@@ -145,8 +159,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         if (!(max3(beta) > 0.0f))
             path_continues = false;
         if (path_continues) {
-            ray_origin[slot] = (float4)(offset_ray_origin(surf.position, surf.geometric_normal, bs.wi), 0.0f);
-            ray_direction[slot] = (float4)(bs.wi, bs.pdf_w);
+            ray_origin[slot] = (float4)(offset_ray_origin(surf.position, surf.geometric_normal, wi), 0.0f);
+            ray_direction[slot] = (float4)(wi, bs.pdf_w);
             throughput[slot] = (float4)(beta, 0.0f);
         }
     }

@@ -56,7 +56,7 @@ void light_table_build(LightTable *table, const SceneData *data)
     uint32_t count = 0;
     for (uint32_t i = 0; i < n; i++) {
         uint32_t t = data->emissive_triangles[i];
-        double w = triangle_area(data, t) * data->materials[data->material_ids[t]].ke.s[3];
+        double w = triangle_area(data, t) * data->materials[data->material_ids[t]].emission.s[3];
         if (w > 0.0 && isfinite(w)) {
             power[count] = w;
             tris[count++] = t;

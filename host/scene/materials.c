@@ -18,23 +18,42 @@ static float4 reflectance(const float c[3])
     return out;
 }
 
+/* A material of `type` with every texture slot empty and the neutral values DESIGN gives. */
+Material material_blank(uint32_t type)
+{
+    Material out = {.type = type, .opacity = 1.0f, .ior = 1.5f, .specular = 1.0f, .weight = 0.5f,
+                    .bump_scale = 1.0f, .mix_a = 0, .mix_b = 0};
+    for (int i = 0; i < 3; i++)
+        out.base.s[i] = out.specular_color.s[i] = 1.0f;
+    for (int i = 0; i < MATERIAL_TEX_COUNT; i++)
+        out.tex[i] = NO_TEXTURE;
+    return out;
+}
+
 Material material_from_obj(const ObjMaterial *m, uint32_t map_kd)
 {
-    Material out = {.kd = reflectance(m->kd), .ks = reflectance(m->ks), .tf = reflectance(m->tf),
-                    .type = MATERIAL_DIFFUSE, .map_kd = map_kd};
-    for (int i = 0; i < 3; i++)
-        out.ke.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
-    out.ke.s[3] = luminance3(out.ke.s);
-    /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
-    if (out.tf.s[0] + out.tf.s[1] + out.tf.s[2] <= 0.0f)
-        out.tf = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
-    out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
-    bool has_ks = out.ks.s[0] + out.ks.s[1] + out.ks.s[2] > 0.0f;
+    bool has_ks = m->ks[0] + m->ks[1] + m->ks[2] > 0.0f;
     bool refracts = m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f);
-    if ((m->illum == 3 || m->illum == 5) && has_ks)
-        out.type = MATERIAL_MIRROR;
-    else if (refracts)
-        out.type = MATERIAL_DIELECTRIC;
+    Material out;
+    if ((m->illum == 3 || m->illum == 5) && has_ks) {
+        out = material_blank(MATERIAL_CONDUCTOR);
+        out.base = reflectance(m->ks);
+        out.flags |= MATERIAL_FLAG_FRESNEL_ONE;
+    } else if (refracts) {
+        out = material_blank(MATERIAL_DIELECTRIC);
+        out.base = reflectance(m->tf);
+        /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
+        if (out.base.s[0] + out.base.s[1] + out.base.s[2] <= 0.0f)
+            out.base = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
+        out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
+    } else {
+        out = material_blank(MATERIAL_DIFFUSE);
+        out.base = reflectance(m->kd);
+        out.tex[MATERIAL_TEX_BASE] = map_kd;
+    }
+    for (int i = 0; i < 3; i++)
+        out.emission.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
+    out.emission.s[3] = luminance3(out.emission.s);
     return out;
 }
 

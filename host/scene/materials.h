@@ -12,6 +12,8 @@
 #include "io/obj_loader.h"
 #include "scene/texture.h"
 
+/* A material of `type` with DESIGN's defaults and no textures. */
+Material material_blank(uint32_t type);
 /* Maps one MTL material onto the kernels' Material (see README "Materials"). */
 Material material_from_obj(const ObjMaterial *m, uint32_t map_kd);
 /* The material of triangles that name none: diffuse grey 0.8. */

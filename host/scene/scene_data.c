@@ -290,7 +290,7 @@ static bool build_emissive_table(SceneData *data, Error *err)
 {
     uint32_t count = 0;
     for (uint32_t t = 0; t < data->num_triangles; t++)
-        if (data->materials[data->material_ids[t]].ke.s[3] > 0.0f &&
+        if (data->materials[data->material_ids[t]].emission.s[3] > 0.0f &&
             triangle_area2(data, &data->triangles[t]) > 0.0f)
             count++;
     free(data->emissive_triangles);
@@ -301,7 +301,7 @@ static bool build_emissive_table(SceneData *data, Error *err)
     }
     data->num_emissive = 0;
     for (uint32_t t = 0; t < data->num_triangles; t++)
-        if (data->materials[data->material_ids[t]].ke.s[3] > 0.0f &&
+        if (data->materials[data->material_ids[t]].emission.s[3] > 0.0f &&
             triangle_area2(data, &data->triangles[t]) > 0.0f)
             data->emissive_triangles[data->num_emissive++] = t;
     return true;
