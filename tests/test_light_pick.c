@@ -36,7 +36,7 @@ Test(light_pick, picks_follow_power_among_a_million_emitters, .timeout = 300)
     memset(materials, 0, sizeof materials);
     for (uint32_t l = 0; l < LEVELS; l++) {
         float luminance = 0.3f + 0.25f * (float)l;
-        materials[l].ke = (float4){{luminance, luminance, luminance, luminance}};
+        materials[l].emission = (float4){{luminance, luminance, luminance, luminance}};
     }
     data.positions = corners;
     data.num_vertices = 3;
