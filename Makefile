@@ -76,8 +76,8 @@ asan:
 	    LDFLAGS="-fsanitize=address,undefined" all
 
 # The malformed-input corpus (tests/fuzz/gen_corpus.py), replayed on the ASan+UBSan binary: every
-# case must end in exit 0 or one "pt: ..." line, within FUZZ_TIMEOUT s and 3 GiB (tests/fuzz/replay.py).
-FUZZ_TIMEOUT ?= 20
+# case must end in exit 0 or one "pt: ..." line, within FUZZ_TIMEOUT s (a true hang; far above a healthy case under load) and 3 GiB (tests/fuzz/replay.py).
+FUZZ_TIMEOUT ?= 300
 fuzz-replay: asan
 	$(Q)python3 tests/fuzz/gen_corpus.py build-asan/fuzz >/dev/null
 	$(Q)python3 tests/fuzz/replay.py build-asan/pt build-asan/fuzz -j 2 --timeout $(FUZZ_TIMEOUT)

@@ -79,7 +79,7 @@ def env_cases():
     case("env-no-home", scene, base, "ok", env={"XDG_CACHE_HOME": None, "HOME": None})
     # Without POCL_CACHE_DIR, PoCL's cache is in the unusable cache home too (it offered no device).
     case("env-cache-home-file-pocl", scene, base, "ok",
-         env={"XDG_CACHE_HOME": "f", "POCL_CACHE_DIR": None}, setup="touch f", timeout=120)
+         env={"XDG_CACHE_HOME": "f", "POCL_CACHE_DIR": None}, setup="touch f")
     # A warm cache copied in, then damaged: truncated at several sizes, zeroed, replaced.
     copy = 'mkdir -p cache && cp -r "$PT_FUZZ_CACHE/pt" cache/ && for f in cache/pt/*.bin; do '
     for name, damage in [("empty", ': > "$f"'), ("1-byte", 'truncate -s 1 "$f"'),

@@ -79,7 +79,7 @@ def json_cases(rng):
                           args=["render", "scene.json"] + TINY, expect="error", env={},
                           needle=None, setup=setup, known=None, timeout=None))
     case("json-scene-is-fifo", {}, ["render", "scene.json"] + TINY, "error", setup="mkfifo scene.json",
-         timeout=5)
+         timeout=60)
     case("json-scene-is-dev-zero", {}, ["render", "/dev/zero"] + TINY, "error")
     case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
          setup="truncate -s 70M scene.json")

@@ -3,7 +3,8 @@
 """replay.py PT CORPUS [-j N] [--timeout S] [--only SUBSTRING]: runs every case of CORPUS/cases
 (written by gen_corpus.py) against the pt binary PT, built with ASan+UBSan, and checks that each
 one ends as its case.json expects: exit 0, or a non-zero exit whose last stderr line is one
-"pt: ..." message. A signal, a sanitizer report, a hang (over --timeout seconds) or a silent
+"pt: ..." message. A signal, a sanitizer report, a hang (over --timeout seconds: 300 by default, far above any
+healthy case even cold and under load, so that machine load never fails a case) or a silent
 non-zero exit fails the case. Memory is bounded through ASAN_OPTIONS (ulimit -v does not work
 under ASan). Prints one line per failure and the closing line "fuzz-replay: N passed, N failed";
 exit status 1 if any failed.
@@ -96,7 +97,7 @@ def main():
     parser.add_argument("pt")
     parser.add_argument("corpus")
     parser.add_argument("-j", type=int, default=2)
-    parser.add_argument("--timeout", type=float, default=20)
+    parser.add_argument("--timeout", type=float, default=300)
     parser.add_argument("--only", default="")
     parser.add_argument("-v", action="store_true", help="print stderr of failing cases")
     a = parser.parse_args()
