@@ -250,7 +250,8 @@ void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras
     copy_path(to->name, "map_Pr", extras.folder, from.roughness_texname, to->map_pr);
     copy_path(to->name, "map_Pm", extras.folder, from.metallic_texname, to->map_pm);
     copy_path(to->name, "map_d", extras.folder, from.alpha_texname, to->map_d);
-    copy_path(to->name, norm ? "norm" : "map_Bump", extras.folder,
+    snprintf(to->normal_statement, sizeof to->normal_statement, "%s", norm ? "norm" : "map_Bump");
+    copy_path(to->name, to->normal_statement, extras.folder,
               norm ? from.normal_texname : from.bump_texname, to->map_normal);
 }
 

@@ -28,6 +28,7 @@ typedef struct {
     char map_pr[1024], map_pm[1024];
     char map_d[1024];
     char map_normal[1024]; /* norm, else map_Bump / bump */
+    char normal_statement[12]; /* which of them: "norm" or "map_Bump" */
 } ObjMaterial;
 
 typedef struct {

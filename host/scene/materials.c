@@ -155,7 +155,8 @@ static bool load_obj_textures(const ObjMaterial *m, TextureSet *textures, const 
         !load_texture(textures, m->map_pr, linear, "map_Pr", m, obj_path, &tex->pr, err) ||
         !load_texture(textures, m->map_pm, linear, "map_Pm", m, obj_path, &tex->pm, err) ||
         !load_texture(textures, m->map_d, linear, "map_d", m, obj_path, &tex->d, err) ||
-        !load_texture(textures, m->map_normal, linear, "normal map", m, obj_path, &tex->normal, err))
+        !load_texture(textures, m->map_normal, linear, m->normal_statement, m, obj_path, &tex->normal,
+                      err))
         return false;
     tex->kd_alpha = tex->kd != NO_TEXTURE && textures->stats[tex->kd].alpha_below_one;
     /* A grey map_Bump is a height map (classic MTL bump), an rgb one a normal map. */
