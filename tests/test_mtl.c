@@ -308,12 +308,9 @@ Test(mtl_mapping, opacity_from_map_d_d_and_rgba_map_kd)
 
 /* Loads an MTL with unused statements and options in two materials, printing warnings to a file;
  * returns what was printed. */
-static char *unused_warnings(void)
+static char *unused_warnings(const char *mtl)
 {
-    test_write_file(g_dir[0] ? g_dir : in_dir(""), "u.mtl",
-                    "newmtl a\nKa 1 1 1\nKd 1 1 1\nsharpness 60\nmap_Kd -s 2 2 1 -o -0.5 0 n.png\n"
-                    "newmtl b\nKa 0 0 0\nmap_Ka n.png\nmap_Kd -s 1 1 1 -clamp on n.png\n"
-                    "norm -bm 0.5 n.png\n");
+    test_write_file(g_dir[0] ? g_dir : in_dir(""), "u.mtl", mtl);
     write_images();
     const char *obj = test_write_file(g_dir, "u.obj", "mtllib u.mtl\n" TRIANGLE_V "usemtl a\nf 1 2 3\n");
     char log_path[300];
@@ -346,7 +343,9 @@ static int count(const char *text, const char *needle)
 
 Test(mtl_mapping, unused_statements_and_options_are_named_once_per_file)
 {
-    char *printed = unused_warnings();
+    char *printed = unused_warnings("newmtl a\nKa 1 1 1\nKd 1 1 1\nsharpness 60\n"
+                                    "map_Kd -s 2 2 1 -o -0.5 0 n.png\nnewmtl b\nKa 0 0 0\n"
+                                    "map_Ka n.png\nmap_Kd -s 1 1 1 -clamp on n.png\nnorm -bm 0.5 n.png\n");
     cr_assert(printed);
     cr_expect_eq(count(printed, "pt: warning:"), 6, "Ka, map_Ka, sharpness, -s, -o, -clamp:\n%s", printed);
     cr_expect_eq(count(printed, "'Ka'"), 1, "Ka once for two materials:\n%s", printed);
@@ -368,9 +367,22 @@ Test(mtl_mapping, quiet_silences_unused_statement_warnings)
     Options o;
     Error err = {0};
     cr_assert(cli_parse(4, argv, &o, &err), "%s", err.message);
-    char *printed = unused_warnings();
+    char *printed = unused_warnings("newmtl a\nKa 1 1 1\nmap_Kd -s 2 2 1 n.png\n");
     cr_assert(printed);
     cr_expect(!strstr(printed, "not used by pt"), "--quiet: %s", printed);
     free(printed);
     obj_loader_set_quiet(false);
+}
+
+Test(mtl_mapping, a_junk_mtl_gets_16_names_and_a_count)
+{
+    char mtl[2048] = "newmtl a\n";
+    for (int i = 0; i < 30; i++)
+        snprintf(mtl + strlen(mtl), sizeof mtl - strlen(mtl), "junk%02d\xff 1\n", i);
+    char *printed = unused_warnings(mtl);
+    cr_assert(printed);
+    cr_expect_eq(count(printed, "pt: warning:"), 17, "%s", printed);
+    cr_expect(strstr(printed, "14 more statements"), "%s", printed);
+    cr_expect(strstr(printed, "'junk00?'"), "non-printable bytes as '?': %s", printed);
+    free(printed);
 }

@@ -55,17 +55,42 @@ void note_texture_options(const std::string &name, std::istringstream &args, Unu
     }
 }
 
-/* Warns once per statement name and per texture option of one MTL file. */
+/* A name as it may be printed: at most 40 characters, bytes outside printable ASCII as '?'. */
+std::string printable(const std::string &name)
+{
+    std::string out = name.substr(0, 40);
+    for (char &c : out)
+        if (c < 0x20 || c > 0x7e)
+            c = '?';
+    return name.size() > 40 ? out + "..." : out;
+}
+
+/* Warns once per statement name and per texture option of one MTL file; a file full of junk gets
+ * the first 16 names and a count of the rest, not a warning per junk line. */
 void warn_unused(const std::string &path, const UnusedNames &unused)
 {
+    const int limit = 16;
+    int shown = 0, rest = 0;
     if (quiet_unused)
         return;
-    for (const auto &s : unused.statements)
+    for (const auto &s : unused.statements) {
+        if (shown++ >= limit) {
+            rest++;
+            continue;
+        }
         warn("%s: statement '%s' is not used by pt (ignored %d time%s)", path.c_str(),
-             s.first.c_str(), s.second, s.second == 1 ? "" : "s");
-    for (const auto &o : unused.options)
+             printable(s.first).c_str(), s.second, s.second == 1 ? "" : "s");
+    }
+    for (const auto &o : unused.options) {
+        if (shown++ >= limit) {
+            rest++;
+            continue;
+        }
         warn("%s: texture option %s is not used by pt (ignored %d time%s)", path.c_str(),
-             o.first.c_str(), o.second, o.second == 1 ? "" : "s");
+             printable(o.first).c_str(), o.second, o.second == 1 ? "" : "s");
+    }
+    if (rest > 0)
+        warn("%s: %d more statements or texture options not used by pt", path.c_str(), rest);
 }
 
 /* Which materials of one MTL gave illum and Tf/Kt, in the order tinyobj::LoadMtl appends them: a
