@@ -81,7 +81,7 @@ Test(cli, bad_command_line)
     expect_clean_error(run_pt(NULL, "render scenes/cornell-box --spp lots"), "spp text", "lots", NULL);
     expect_clean_error(run_pt(NULL, "render scenes/cornell-box --bogus"), "unknown option", "--bogus", NULL);
     expect_clean_error(run_pt(NULL, "render scenes/cornell-box --aov shiny"), "bad aov", "shiny", NULL);
-    expect_clean_error(run_pt(NULL, "render scenes/cornell-box -o image.tiff"), "bad format", "image.tiff", NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box -o image.tiff --quiet"), "bad format", "image.tiff", NULL);
 }
 
 Test(cli, bad_scene_files)

@@ -97,7 +97,7 @@ Test(view, camera_option_gives_the_render_of_that_pose)
     cr_expect(moved > 10.0 * noise, "the pose changed the view: %g vs noise %g", moved, noise);
     stbi_image_free(posed.rgb), stbi_image_free(scene_pose.rgb);
 
-    Run bad = run_pt("view scenes/cornell-box --frames 1 --camera '{\"eye\": [0, 1]}'");
+    Run bad = run_pt("view scenes/cornell-box --quiet --frames 1 --camera '{\"eye\": [0, 1]}'");
     cr_expect_eq(bad.exit_code, 1, "bad --camera: exit %d", bad.exit_code);
     cr_expect(strstr(bad.err, "camera.eye") && one_line(bad.err), "one line naming the key: %s", bad.err);
 }
