@@ -15,6 +15,10 @@
 #include "support.h"
 
 #define BSDF_PI 3.14159265358979323846
+/* BsdfSample.flags, as cl/material/bsdf_common.cl defines them (kernel-only). */
+#define SAMPLE_REFLECTION 1u
+#define SAMPLE_TRANSMISSION 2u
+#define SAMPLE_DELTA 4u
 
 typedef struct {
     Device *dev;

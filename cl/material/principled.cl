@@ -2,13 +2,19 @@
 /* principled.cl: glTF 2.0 metallic-roughness with KHR_materials_specular (glTF 2.0 spec, appendix
  * B "BRDF Implementation"; the KHR_materials_specular extension's fresnel_mix):
  *   specular_brdf = D G2 / (4 |n.l| |n.v|)    GGX, height-correlated Smith G2 (microfacet.cl)
- *   dielectric    = (1 - specular max(Fd)) base_color / pi + specular Fd specular_brdf,
+ *   dielectric    = W base_color / pi + specular Fd specular_brdf,
  *                   Fd = F0d + (1 - F0d) (1 - |v.h|)^5, F0d = min(((ior - 1) / (ior + 1))^2
  *                   specular_color, 1)
  *   metal         = Fm specular_brdf, Fm = base_color + (1 - base_color) (1 - |v.h|)^5
  *   f             = mix(dielectric, metal, metallic).
- * The diffuse base loses what the specular layer takes (1 - specular max(Fd)), so the sum stays
- * within 1 apart from Fresnel's spread over the lobe. Reflection only: wi.z > 0. */
+ * One deliberate departure: glTF's fresnel_mix weights the base by W = 1 - specular max(Fd(v.h)),
+ * which is not energy-conserving (a white smooth dielectric seen at 85 degrees returns 1.59: the
+ * mirror takes F(n.v) while the diffuse directions, whose half vectors face the viewer, keep
+ * nearly all). Here W = (1 - specular max(Fd(n.v))) (1 - specular max(Fd(n.l))), the same
+ * Schlick Fresnel evaluated at the macro-normal on the way in and out (as Kelemen and
+ * Szirmay-Kalos 2001 and Ashikhmin-Shirley 2000 couple their layers): reciprocal, within 1 for a
+ * smooth coat, and equal to glTF's at normal view and light up to F^2 terms. Reflection only:
+ * wi.z > 0. */
 
 /* Roughness 0 is not a delta here (bsdf_is_delta): keep GGX evaluable. */
 inline float principled_alpha(float alpha) { return fmax(alpha, BSDF_SMOOTH_ALPHA); }
@@ -62,8 +68,10 @@ inline float3 principled_eval(const Bsdf *b, float3 wo, float3 wi, float *pdf_w)
     float3 fd0 = principled_f0_dielectric(b);
     float3 fd = fd0 + (1.0f - fd0) * w;
     float3 fm = b->base + (1.0f - b->base) * w;
-    float3 dielectric = (1.0f - b->specular * max3(fd)) * b->base * (wi.z * PT_INV_PI) +
-                        b->specular * fd * spec_cos;
+    /* The diffuse base keeps what the specular layer leaves on the way in and on the way out. */
+    float3 fd_o = fd0 + (1.0f - fd0) * schlick_weight(wo.z), fd_i = fd0 + (1.0f - fd0) * schlick_weight(wi.z);
+    float base_weight = (1.0f - b->specular * max3(fd_o)) * (1.0f - b->specular * max3(fd_i));
+    float3 dielectric = base_weight * b->base * (wi.z * PT_INV_PI) + b->specular * fd * spec_cos;
     float3 metal = fm * spec_cos;
     float p_spec = principled_specular_probability(b, wo.z);
     /* pdf of the VNDF reflection: D_wo(h) / (4 wo.h) = G1(wo) D / (4 wo.z). */
