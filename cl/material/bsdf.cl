@@ -3,10 +3,10 @@
  * pdf and sample to its lobes (diffuse.cl, conductor.cl, dielectric.cl, principled.cl). All in
  * the local shading frame of bsdf_common.cl. */
 
-/* A scalar parameter: the constant, or its texture's red channel. */
-inline float material_scalar(const SceneView *scene, uint texture, float value, float2 uv)
+/* A scalar parameter: the material's value, or its texture's red channel. */
+inline float material_scalar(const SceneView *scene, uint texture, float fallback, float2 uv)
 {
-    return texture == NO_TEXTURE ? value : texture_sample(scene, texture, uv).x;
+    return texture == NO_TEXTURE ? fallback : texture_sample(scene, texture, uv).x;
 }
 
 /* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
@@ -59,8 +59,10 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv)
 /* True when every lobe is a delta (no light sample can meet it: next-event estimation is skipped). */
 inline bool bsdf_is_delta(const Bsdf *b)
 {
-    if (b->type == MATERIAL_CONDUCTOR || b->type == MATERIAL_DIELECTRIC)
-        return fmax(b->alpha_x, b->alpha_y) < BSDF_SMOOTH_ALPHA;
+    if (b->type == MATERIAL_CONDUCTOR)
+        return microfacet_smooth(b->alpha_x, b->alpha_y);
+    if (b->type == MATERIAL_DIELECTRIC)
+        return dielectric_is_smooth(b);
     return false;
 }
 
