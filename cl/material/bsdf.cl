@@ -4,9 +4,9 @@
  * the local shading frame of bsdf_common.cl. */
 
 /* A scalar parameter: the constant, or its texture's red channel. */
-inline float material_scalar(const SceneView *scene, uint texture, float constant, float2 uv)
+inline float material_scalar(const SceneView *scene, uint texture, float value, float2 uv)
 {
-    return texture == NO_TEXTURE ? constant : texture_sample(scene, texture, uv).x;
+    return texture == NO_TEXTURE ? value : texture_sample(scene, texture, uv).x;
 }
 
 /* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
