@@ -22,7 +22,7 @@ static const double PI = 3.14159265358979323846;
 #define BLOCK 8
 #define STRENGTH 4.0
 
-static const char *write_scene(const char *dir)
+static const char *write_scene_with(const char *dir, const char *lamp)
 {
     /* 16 x 1: texels 0..7 white, 8..15 black (u < 1/2 lit); bilinear filtering keeps the mean 1/2. */
     unsigned char half[16 * 3];
@@ -43,13 +43,21 @@ static const char *write_scene(const char *dir)
              "{\"camera\": {\"eye\": [0, 0.9, 0], \"target\": [0, 0, 0], \"up\": [0, 0, -1], "
              "\"fov_y\": %.9g},\n \"film\": {\"width\": %d, \"height\": %d},\n"
              " \"textures\": {\"half\": {\"file\": \"half.png\", \"encoding\": \"linear\"}},\n"
-             " \"materials\": {\"lamp\": {\"type\": \"diffuse\", \"albedo\": 0, \"emission\": \"half\", "
-             "\"emission_strength\": %g},\n"
+             " \"materials\": {\"lamp\": %s,\n"
              "               \"lamp2\": {\"type\": \"diffuse\", \"albedo\": 0, \"emission\": [2, 2, 2]}},\n"
              " \"objects\": [{\"obj\": \"floor.obj\"}, {\"obj\": \"lamp.obj\", \"material\": \"lamp\"},\n"
              "             {\"obj\": \"lamp2.obj\", \"material\": \"lamp2\"}]}\n",
-             2.0 * atan(2.0) * 180.0 / PI, RES, RES, STRENGTH);
+             2.0 * atan(2.0) * 180.0 / PI, RES, RES, lamp);
     return test_write_file(dir, "scene.json", text);
+}
+
+static const char *write_scene(const char *dir)
+{
+    char lamp[256];
+    snprintf(lamp, sizeof lamp,
+             "{\"type\": \"diffuse\", \"albedo\": 0, \"emission\": \"half\", \"emission_strength\": %g}",
+             STRENGTH);
+    return write_scene_with(dir, lamp);
 }
 
 static float *render(const char *scene, int spp, bool no_nee)
@@ -71,9 +79,9 @@ static double block_mean(const float *rgb, int bx, int by)
     return sum / (BLOCK * BLOCK);
 }
 
-Test(emission_texture, nee_with_mis_and_bsdf_sampling_agree, .timeout = 300)
+/* Block means of NEE+MIS and BSDF-only renders agree within 4% of the brightest block. */
+static void expect_estimators_agree(const char *scene, float **nee_out)
 {
-    const char *scene = write_scene(test_temp_dir());
     float *nee = render(scene, 64, false);
     float *bsdf = render(scene, 1024, true);
     int n = RES / BLOCK;
@@ -88,12 +96,31 @@ Test(emission_texture, nee_with_mis_and_bsdf_sampling_agree, .timeout = 300)
             cr_expect(fabs(a - b) < 0.04 * peak, "block (%d, %d): NEE+MIS %g, BSDF-only %g (peak %g)",
                       bx, by, a, b, peak);
         }
+    free(bsdf);
+    *nee_out = nee;
+}
+
+Test(emission_texture, nee_with_mis_and_bsdf_sampling_agree, .timeout = 300)
+{
+    float *nee;
+    expect_estimators_agree(write_scene(test_temp_dir()), &nee);
     /* Under the white half (x < 0: the left middle blocks) against under the black half. */
     double left = block_mean(nee, 1, 1) + block_mean(nee, 1, 2);
     double right = block_mean(nee, 2, 1) + block_mean(nee, 2, 2);
     cr_expect(left > 1.2 * right, "floor under the white half %g, under the black half %g", left, right);
     free(nee);
-    free(bsdf);
+}
+
+/* A cut-out emitter is met with probability opacity: light sampling must weigh its emission by
+ * the opacity as BSDF sampling does. */
+Test(emission_texture, a_half_open_emitter_gives_the_same_light_both_ways, .timeout = 300)
+{
+    float *nee;
+    expect_estimators_agree(
+        write_scene_with(test_temp_dir(),
+                         "{\"type\": \"diffuse\", \"albedo\": 0, \"emission\": [4, 4, 4], \"opacity\": 0.5}"),
+        &nee);
+    free(nee);
 }
 
 Test(emission_texture, light_table_weighs_the_texture_mean)
