@@ -61,11 +61,16 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     }
     Material m = materials[material_ids[entry.triangle]];
     ls.radiance = xyz(m.emission);
-    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE) {
+    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE || (m.flags & MATERIAL_FLAG_CUTOUT)) {
         float2 uv = (float2)(b.x, b.y);
         if (tri.w & TRIANGLE_HAS_UVS)
             uv = (1.0f - b.x - b.y) * scene->uvs[tri.x] + b.x * scene->uvs[tri.y] + b.y * scene->uvs[tri.z];
-        ls.radiance *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
+        if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+            ls.radiance *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, ls.position));
+        /* A ray meets a cut-out emitter with probability opacity (the rest pass through), so
+         * what BSDF sampling sees on average is emission x opacity: light sampling agrees. */
+        if (m.flags & MATERIAL_FLAG_CUTOUT)
+            ls.radiance *= material_opacity(scene, m, uv, ls.position);
     }
     ls.pdf_w = entry.pdf * (2.0f / double_area) * dist2 / cos_light;
     return ls;

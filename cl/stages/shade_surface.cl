@@ -9,13 +9,13 @@
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
 inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Material m, float2 uv,
-                            float t, float cos_light, float prev_pdf_w, uint depth)
+                            float3 position, float t, float cos_light, float prev_pdf_w, uint depth)
 {
     if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
     float3 L = xyz(m.emission);
     if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
-        L *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
+        L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, position));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
         return L;
@@ -80,7 +80,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
         ns = ng;
 
-    float3 L = emission_seen(p, scene, m, surf.uv, h.x, cos_o_geometric, dir4.w, depth);
+    float3 L = emission_seen(p, scene, m, surf.uv, surf.position, h.x, cos_o_geometric, dir4.w,
+                             depth);
     float3 gathered = beta * L;
 
     bool path_continues = depth < p->max_depth;
@@ -92,10 +93,15 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
          * a mix resolves to. */
         Material leaf = m.type == MATERIAL_MIX
-                            ? material_resolve_mix(scene, m, surf.uv, rng_bounce(key, bounce, DIM_MIX))
+                            ? material_resolve_mix(scene, m, surf.uv, surf.position,
+                                                   rng_bounce(key, bounce, DIM_MIX))
                             : m;
-        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv);
-        Frame frame = frame_from_normal(ns);
+        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.position);
+        /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
+         * materials keep the cheap one. */
+        Frame frame = surface_needs_tangents(m, leaf)
+                          ? surface_detail_frame(scene, prim, surf, m, wo, front, ng)
+                          : frame_from_normal(ns);
         float3 wo_local = frame_to_local(frame, wo);
 
         /* Next-event estimation for every non-delta lobe. */
@@ -132,7 +138,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                     to_target = (target - origin) / dist;
                 }
                 shadow_origin[slot] = (float4)(origin, dist);
-                shadow_direction[slot] = (float4)(to_target, 0.0f);
+                shadow_direction[slot] = (float4)(to_target, as_float(bounce));
                 shadow_contribution[slot] = (float4)(contribution, 1.0f);
                 queued = true;
             }
