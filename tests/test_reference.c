@@ -137,3 +137,4 @@ Test(reference_materials, rough_glass_with_absorption, .timeout = 300) { compare
 Test(reference_materials, normal_map_at_grazing_light, .timeout = 300) { compare_with_reference("normalmap", 128, 16384); }
 Test(reference_materials, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout = 300) { compare_with_reference("mix", 256, 12288); }
 Test(reference_materials, environment_map_rough_gold, .timeout = 300) { compare_with_reference("envmap", 256, 4096); }
+Test(reference_materials, environment_map_diffuse_only, .timeout = 300) { compare_with_reference("envmap-diffuse", 256, 4096); }

@@ -9,6 +9,7 @@ reference by tests/test_reference_materials.c.
   normalmap/    a wall with a generated normal map (known pattern) lit at a grazing angle
   mix/          mix of diffuse and rough conductor (weight 0.3) and a Fresnel-1 mirror cube
   envmap/       a generated HDR sky (gradient + soft sun), rotation 30, rough gold and a diffuse cube
+  envmap-diffuse/  the same with MTL (diffuse) materials only: the map apart from the materials
 
 Deterministic, plain Python. The JSON materials replace the MTL materials of the same name.
 """
@@ -256,10 +257,26 @@ def write_envmap(out):
         "environment": {"file": "sky.hdr", "scale": 1.0, "rotation": 30}})
 
 
+def write_envmap_diffuse(out):
+    """envmap/ with MTL materials only (all diffuse): the map's orientation, rotation and sampling
+    checked apart from the JSON materials."""
+    os.makedirs(out, exist_ok=True)
+    write_hdr(os.path.join(out, "sky.hdr"), sky_texels())
+    obj = Obj("envmap-diffuse.mtl")
+    add_floor(obj, "floor", 2.0)
+    add_icosphere(obj, "a", [-0.5, 0.6, 0.0], 0.6)
+    add_box(obj, "b", [0.85, 0.35, 0.3], [0.7, 0.7, 0.7], 20)
+    mtl = ("newmtl floor\nillum 2\nKd 0.45 0.45 0.45\nnewmtl a\nillum 2\nKd 0.8 0.6 0.3\n"
+           "newmtl b\nillum 2\nKd 0.2 0.4 0.7\n")
+    write(out, "envmap-diffuse", mtl, obj, {
+        "camera": CAMERA, "film": {"width": 80, "height": 80}, "render": {"spp": 64, "max_depth": 6},
+        "environment": {"file": "sky.hdr", "scale": 1.0, "rotation": 30}})
+
+
 def write_all(out):
     """Writes every scene under out/ and checks the OBJ files; returns the scene names."""
     writers = {"conductors": write_conductors, "glass": write_glass, "normalmap": write_normalmap,
-               "mix": write_mix, "envmap": write_envmap}
+               "mix": write_mix, "envmap": write_envmap, "envmap-diffuse": write_envmap_diffuse}
     for name, writer in writers.items():
         writer(os.path.join(out, name))
         lights = ("light",) if name != "normalmap" else ()

@@ -7,6 +7,8 @@ if one does not hold (tests/references/README.md "Conventions").
      shows what DESIGN's mapping puts in each direction (u = 0.5 + (atan2(x, -z) + theta)/2 pi,
      v = acos(y)/pi, v = 0 the top row). A 64 x 32 map with coloured marks is rendered through a
      narrow camera looking along several directions, theta = 0 and 90.
+     The converted map's bilinear lookup is then compared with ours (texel centres at
+     ((i + 0.5)/W, (j + 0.5)/H), wrapping in u, clamped in v) at 2000 random directions.
   2. Tangent frame and normal map: on a mesh with UVs Mitsuba's shading frame is s = dp/du and
      t = n x s, which points along increasing OBJ v for UVs that are not mirrored; its normalmap
      tilts toward s for red > 0.5 and toward t for green > 0.5 (DESIGN: OpenGL, +x along u, +y
@@ -58,6 +60,41 @@ def check_environment(mi, np):
     return ok
 
 
+def check_environment_filter(mi, np, folder):
+    """Mitsuba's envmap made by mitsuba_materials.environment_emitter against our bilinear lookup
+    (cl/light/light_env.cl env_bilinear, in Python) at random directions, rotation 30."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from mitsuba_materials import environment_emitter
+    rng = np.random.default_rng(1)
+    w, h = 16, 8
+    texels = rng.uniform(0.1, 2.0, (h, w, 3)).astype(np.float32)
+    mi.Bitmap(texels).write(os.path.join(folder, "map.exr"))
+    theta = 30.0
+    scene = mi.load_dict({"type": "scene", "env": environment_emitter(
+        {"file": "map.exr", "rotation": theta}, folder, mi, np)})
+    worst = 0.0
+    for _ in range(2000):
+        d = rng.normal(size=3)
+        d /= np.linalg.norm(d)
+        u = (0.5 + (math.atan2(d[0], -d[2]) + math.radians(theta)) / (2 * math.pi)) % 1
+        v = math.acos(max(-1.0, min(1.0, d[1]))) / math.pi
+        x, y = u * w - 0.5, v * h - 0.5
+        i0, j0 = math.floor(x), math.floor(y)
+        fx, fy = x - i0, y - j0
+        i1, i0 = (i0 + 1) % w, i0 % w
+        j1, j0 = min(j0 + 1, h - 1), max(j0, 0)
+        ours = ((1 - fy) * ((1 - fx) * texels[j0, i0] + fx * texels[j0, i1]) +
+                fy * ((1 - fx) * texels[j1, i0] + fx * texels[j1, i1]))
+        si = mi.SurfaceInteraction3f()
+        si.wi = mi.Vector3f(-d)
+        theirs = np.array(scene.environment().eval(si))
+        worst = max(worst, float(np.max(np.abs(theirs - ours) / ours)))
+    good = worst < 1e-3
+    print(f"envmap filter: Mitsuba's lookup of the converted map against our bilinear one, 2000 "
+          f"directions: largest relative difference {worst:.2e} {'ok' if good else 'WRONG'}")
+    return good
+
+
 def check_tangent_frame(mi, np, folder):
     import drjit as dr
     ok = True
@@ -102,7 +139,8 @@ def main():
     import numpy as np
     mi.set_variant("scalar_rgb")
     with tempfile.TemporaryDirectory(prefix="mitsuba-conventions-") as folder:
-        ok = check_environment(mi, np) & check_tangent_frame(mi, np, folder)
+        ok = (check_environment(mi, np) & check_environment_filter(mi, np, folder) &
+              check_tangent_frame(mi, np, folder))
     print("mitsuba_conventions:", "all hold" if ok else "SOME DO NOT HOLD")
     return 0 if ok else 1
 

@@ -20,9 +20,9 @@
   emission x emission_strength            'area' emitter
   non-dielectrics                         wrapped in twosided (ours shade the side a ray arrives from)
   environment file, scale, rotation t     envmap, scale, to_world = rotation about +y by 180 + t
-                                          degrees (Mitsuba puts u = 0 where we put u = 0.5); the map is
-                                          upsampled by repeating texels so that Mitsuba's bilinear
-                                          lookup sees our piecewise-constant map
+                                          degrees (Mitsuba puts u = 0 where we put u = 0.5); the rows
+                                          resampled so that Mitsuba's bilinear lookup gives ours
+                                          exactly (mitsuba_rows)
 
 principled is not translated: Mitsuba's 'principled' is Disney's BRDF, not glTF's model, so no
 reference of ours would test what DESIGN defines. Neither are textured roughness/weight maps,
@@ -173,6 +173,21 @@ class JsonMaterials:
         return bsdf, medium, emission
 
 
+def mitsuba_rows(texels, np):
+    """Our H rows resampled into the 2H + 1 rows Mitsuba's envmap needs to show the same bilinear
+    radiance. Ours puts row j at v = (j + 0.5)/H (clamped at the poles), Mitsuba puts row r at
+    v = r/(rows - 1) (row 0 on the north pole): with 2H + 1 rows, the odd ones are ours and the even
+    ones the midpoints between ours, so every kink of our piecewise-bilinear function is one of
+    Mitsuba's knots and its interpolation reproduces ours exactly. Columns need nothing: both put
+    column i at u = (i + 0.5)/W and wrap (u itself is turned by to_world)."""
+    h = texels.shape[0]
+    out = np.empty((2 * h + 1,) + texels.shape[1:], dtype=np.float32)
+    out[1::2] = texels
+    out[0], out[-1] = texels[0], texels[-1]
+    out[2:-1:2] = 0.5 * (texels[:-1] + texels[1:])
+    return out
+
+
 def environment_emitter(env, base_dir, mi, np):
     """Our environment block as a Mitsuba envmap (see the table above)."""
     path = os.path.join(base_dir, env["file"])
@@ -180,11 +195,7 @@ def environment_emitter(env, base_dir, mi, np):
         raise SceneError(f"environment.file: {path} not found")
     bitmap = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32,
                                      srgb_gamma=False)
-    texels = np.array(bitmap)
-    # Nearest-neighbour upsampling: Mitsuba interpolates between texel centres, we do not; with each
-    # texel repeated k x k times the two differ only in a band of 1/k of a texel at each edge.
-    k = max(1, min(8, 4096 // texels.shape[1]))
-    texels = np.repeat(np.repeat(texels, k, axis=0), k, axis=1)
+    texels = mitsuba_rows(np.array(bitmap), np)
     return {"type": "envmap", "bitmap": mi.Bitmap(np.ascontiguousarray(texels, dtype=np.float32)),
             "scale": float(env.get("scale", 1.0)),
             "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], 180.0 + float(env.get("rotation", 0.0)))}
