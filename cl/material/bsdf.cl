@@ -3,10 +3,10 @@
  * pdf and sample to its lobes (diffuse.cl, conductor.cl, dielectric.cl, principled.cl). All in
  * the local shading frame of bsdf_common.cl. */
 
-/* A scalar parameter: the constant, or its texture's red channel. */
-inline float material_scalar(const SceneView *scene, uint texture, float constant, float2 uv)
+/* A scalar parameter: the material's value, or its texture's red channel. */
+inline float material_scalar(const SceneView *scene, uint texture, float fallback, float2 uv)
 {
-    return texture == NO_TEXTURE ? constant : texture_sample(scene, texture, uv).x;
+    return texture == NO_TEXTURE ? fallback : texture_sample(scene, texture, uv).x;
 }
 
 /* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
