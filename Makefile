@@ -34,7 +34,7 @@ CL_SOURCES := cl/shared.h \
               cl/core/util.cl cl/core/rng.cl cl/core/sampling.cl cl/core/camera.cl \
               cl/geometry/intersect_triangle.cl cl/geometry/bvh_traverse.cl cl/geometry/bvh_traverse_wide.cl \
               cl/geometry/ray_offset.cl cl/geometry/surface.cl cl/material/texture.cl \
-              cl/material/bsdf_common.cl cl/material/microfacet.cl cl/material/diffuse.cl \
+              cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \
               cl/material/bsdf.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
               cl/parallel/scan.cl cl/parallel/sort_materials.cl \

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* surface.cl: what a hit means: position, geometric and shading normals, uv, material. */
+/* surface.cl: what a hit means: position, geometric and shading normals, uv, material; and the
+ * triangle's uv parameterisation (dp/du, dp/dv) for the materials that need a tangent frame. */
 
 typedef struct {
     float3 position;
@@ -32,4 +33,43 @@ PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit)
         s.uv = (float2)(hit.u, hit.v);
     s.material = scene->material_ids[hit.prim];
     return s;
+}
+
+/* The uv and position of barycentrics (u, v) on triangle prim (what surface_at computes, for the
+ * stages that need only these: the cut-out test during traversal). */
+inline float2 surface_uv_at(const SceneView *scene, uint prim, float u, float v, float3 *position)
+{
+    uint4 tri = scene->triangles[prim].v;
+    float w0 = 1.0f - u - v;
+    *position = w0 * xyz(scene->positions[tri.x]) + u * xyz(scene->positions[tri.y]) +
+                v * xyz(scene->positions[tri.z]);
+    if (tri.w & TRIANGLE_HAS_UVS)
+        return w0 * scene->uvs[tri.x] + u * scene->uvs[tri.y] + v * scene->uvs[tri.z];
+    return (float2)(u, v);
+}
+
+/* dp/du and dp/dv of triangle prim, constant over it (pbrt's Triangle::Intersect). A triangle
+ * without uvs uses its barycentrics as uv, so dp/du = p1 - p0 and dp/dv = p2 - p0: an arbitrary but
+ * fixed frame (DESIGN "Conventions"). Degenerate uvs (zero or non-finite determinant) fall back to
+ * an orthonormal basis around the geometric normal. */
+inline void surface_uv_derivatives(const SceneView *scene, uint prim, float3 geometric_normal,
+                                   float3 *dpdu, float3 *dpdv)
+{
+    uint4 tri = scene->triangles[prim].v;
+    float3 p0 = xyz(scene->positions[tri.x]);
+    float3 e1 = xyz(scene->positions[tri.y]) - p0, e2 = xyz(scene->positions[tri.z]) - p0;
+    float2 d1 = (float2)(1.0f, 0.0f), d2 = (float2)(0.0f, 1.0f);
+    if (tri.w & TRIANGLE_HAS_UVS) {
+        float2 uv0 = scene->uvs[tri.x];
+        d1 = scene->uvs[tri.y] - uv0;
+        d2 = scene->uvs[tri.z] - uv0;
+    }
+    float det = d1.x * d2.y - d1.y * d2.x;
+    float inv = 1.0f / det;
+    if (!(fabs(det) > 1e-20f) || !isfinite(inv)) {
+        make_basis(geometric_normal, dpdu, dpdv);
+        return;
+    }
+    *dpdu = (d2.y * e1 - d1.y * e2) * inv;
+    *dpdv = (d1.x * e2 - d2.x * e1) * inv;
 }

@@ -45,3 +45,83 @@ float4 texture_sample(const SceneView *scene, uint index, float2 uv)
     float4 bottom = mix(texel_fetch(texels, info, x0, y1), texel_fetch(texels, info, x1, y1), ax);
     return mix(top, bottom, ay);
 }
+
+/* ---- Procedural noise (TEXTURE_NOISE) ------------------------------------------------------ */
+
+#ifndef TEXTURE_NOISE /* cl/shared.h defines it with the host's JSON textures */
+#define TEXTURE_NOISE 2u
+#endif
+#define NOISE_MAX_OCTAVES 16u
+
+/* Improved Perlin noise (Perlin 2002, "Improving Noise"): the 12 edge gradients, chosen per lattice
+ * corner by a hash of (x, y, z, seed) instead of a permutation table, so that every seed is its own
+ * noise and nothing but the texel buffer is read. tests/test_noise_texture.c has a C copy. */
+inline float noise_gradient(uint h, float x, float y, float z)
+{
+    h &= 15u;
+    float u = h < 8u ? x : y;
+    float v = h < 4u ? y : (h == 12u || h == 14u ? x : z);
+    return ((h & 1u) ? -u : u) + ((h & 2u) ? -v : v);
+}
+
+inline uint noise_corner_hash(int x, int y, int z, uint seed)
+{
+    return hash_pcg((uint)x ^ hash_pcg((uint)y ^ hash_pcg((uint)z ^ seed)));
+}
+
+inline float noise_fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+
+/* In about [-1, 1]; p within +-2^24 (texture_noise clamps). */
+inline float perlin_noise(float3 p, uint seed)
+{
+    float3 f = floor(p);
+    int x = (int)f.x, y = (int)f.y, z = (int)f.z;
+    float3 r = p - f;
+    float n000 = noise_gradient(noise_corner_hash(x, y, z, seed), r.x, r.y, r.z);
+    float n100 = noise_gradient(noise_corner_hash(x + 1, y, z, seed), r.x - 1.0f, r.y, r.z);
+    float n010 = noise_gradient(noise_corner_hash(x, y + 1, z, seed), r.x, r.y - 1.0f, r.z);
+    float n110 = noise_gradient(noise_corner_hash(x + 1, y + 1, z, seed), r.x - 1.0f, r.y - 1.0f, r.z);
+    float n001 = noise_gradient(noise_corner_hash(x, y, z + 1, seed), r.x, r.y, r.z - 1.0f);
+    float n101 = noise_gradient(noise_corner_hash(x + 1, y, z + 1, seed), r.x - 1.0f, r.y, r.z - 1.0f);
+    float n011 = noise_gradient(noise_corner_hash(x, y + 1, z + 1, seed), r.x, r.y - 1.0f, r.z - 1.0f);
+    float n111 = noise_gradient(noise_corner_hash(x + 1, y + 1, z + 1, seed), r.x - 1.0f, r.y - 1.0f,
+                                r.z - 1.0f);
+    float u = noise_fade(r.x), v = noise_fade(r.y), w = noise_fade(r.z);
+    float nx00 = n000 + u * (n100 - n000), nx10 = n010 + u * (n110 - n010);
+    float nx01 = n001 + u * (n101 - n001), nx11 = n011 + u * (n111 - n011);
+    float nxy0 = nx00 + v * (nx10 - nx00), nxy1 = nx01 + v * (nx11 - nx01);
+    return nxy0 + w * (nxy1 - nxy0);
+}
+
+/* fBm: octave i has frequency frequency * 2^i, amplitude 2^-i and seed seed + i; the sum over the
+ * amplitudes' sum, mapped from [-1, 1] to the blend factor [0, 1] between color0 and color1.
+ * Evaluated at the hit's world position: objects have no transforms of their own yet, so object
+ * space is world space. */
+inline float4 texture_noise(const global uint *texels, TextureInfo info, float3 position)
+{
+    const global uint *q = texels + info.offset;
+    float3 c0 = (float3)(as_float(q[0]), as_float(q[1]), as_float(q[2]));
+    float3 c1 = (float3)(as_float(q[3]), as_float(q[4]), as_float(q[5]));
+    float frequency = as_float(q[6]);
+    uint octaves = min(q[7], NOISE_MAX_OCTAVES), seed = q[8];
+    float sum = 0.0f, norm = 0.0f, amplitude = 1.0f;
+    for (uint i = 0u; i < octaves; i++) {
+        float3 x = position * frequency;
+        if (all(isfinite(x)))
+            sum += amplitude * perlin_noise(clamp(x, -16777216.0f, 16777216.0f), seed + i);
+        norm += amplitude;
+        amplitude *= 0.5f;
+        frequency *= 2.0f;
+    }
+    float t = clamp(0.5f + 0.5f * (norm > 0.0f ? sum / norm : 0.0f), 0.0f, 1.0f);
+    return (float4)(c0 + t * (c1 - c0), 1.0f);
+}
+
+/* Any texture at a hit: image textures at uv (texture_sample), procedural ones at the position. */
+inline float4 texture_eval(const SceneView *scene, uint index, float2 uv, float3 position)
+{
+    TextureInfo info = scene->textures[index];
+    if (info.format == TEXTURE_NOISE)
+        return texture_noise(scene->texels, info, position);
+    return texture_sample(scene, index, uv);
+}

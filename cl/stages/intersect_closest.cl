@@ -5,7 +5,8 @@
  * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group).
  * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
  * the test that it renders the same image): a kernel of its own, so that the production kernel
- * carries no brute-force branch. */
+ * carries no brute-force branch. With PT_FEATURE_CUTOUT, hits on cut-out materials may be passed
+ * through (trace_closest_through): a pass-through is not a bounce, path_depth stays. */
 
 #define INTERSECT_CLOSEST_PARAMS                                                                   \
     constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \
@@ -25,10 +26,19 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     if (i < n_active && path_depth[slot]) {
         atomic_inc(group_rays);
         float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
+#if PT_FEATURE_CUTOUT
+        /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
+         * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
+        uint k = sample_id[slot];
+        RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        Hit h = trace_closest_through(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, brute_force,
+                                      rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
+#else
         Hit h = brute_force ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, o, d, 0.0f,
                                                 INFINITY, false)
                             : trace_closest(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, o,
                                             d, 0.0f, INFINITY);
+#endif
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
     }
     /* Every work item reaches this barrier: no early return above. */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_shadow: resolves the next-event shadow rays that shade_surface queued.
- * Reads: active[0..n_active), shadow_origin, shadow_direction, shadow_contribution (w = 1: a ray
- * waits), sample_id. Writes: radiance[sample_id] += contribution when unoccluded;
+ * Reads: active[0..n_active), shadow_origin, shadow_direction (w: as_float of the bounce that
+ * queued it, for the cut-out decisions), shadow_contribution (w = 1: a ray waits), sample_id. Writes: radiance[sample_id] += contribution when unoccluded;
  * shadow_contribution.w = 0.
  * Runs before compaction: a path killed by Russian roulette may still have a shadow ray.
  * Launched over the active list; with RENDER_SHADOW_QUEUE only the first shadow_count[0] items
@@ -33,12 +33,23 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
             atomic_inc(group_rays);
             float4 origin = shadow_origin[slot];
             float3 d = xyz(shadow_direction[slot]);
+#if PT_FEATURE_CUTOUT
+            /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY
+             * stream decides the cut-out pass-throughs. */
+            uint k = sample_id[slot];
+            RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+            uint bounce = as_uint(shadow_direction[slot].w);
+            bool occluded = trace_occluded_through(scene, p->num_bvh_prims, xyz(origin), d, origin.w,
+                                                   brute_force,
+                                                   rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
+#else
             bool occluded =
                 brute_force
                     ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f,
                                         origin.w, true).prim != HIT_NONE
                     : trace_any(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, xyz(origin), d,
                                 0.0f, origin.w);
+#endif
             if (!occluded)
                 radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
             shadow_contribution[slot] = (float4)(0.0f);

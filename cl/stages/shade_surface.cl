@@ -95,7 +95,11 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                             ? material_resolve_mix(scene, m, surf.uv, rng_bounce(key, bounce, DIM_MIX))
                             : m;
         Bsdf bsdf = bsdf_at(scene, leaf, surf.uv);
-        Frame frame = frame_from_normal(ns);
+        /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
+         * materials keep the cheap one. */
+        Frame frame = surface_needs_tangents(m, leaf)
+                          ? surface_detail_frame(scene, prim, surf, m, wo, front, ng)
+                          : frame_from_normal(ns);
         float3 wo_local = frame_to_local(frame, wo);
 
         /* Next-event estimation for every non-delta lobe. */
@@ -132,7 +136,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                     to_target = (target - origin) / dist;
                 }
                 shadow_origin[slot] = (float4)(origin, dist);
-                shadow_direction[slot] = (float4)(to_target, 0.0f);
+                shadow_direction[slot] = (float4)(to_target, as_float(bounce));
                 shadow_contribution[slot] = (float4)(contribution, 1.0f);
                 queued = true;
             }

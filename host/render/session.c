@@ -28,9 +28,15 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
  * PT_CL_OPTIONS) keep every feature, which is always correct. */
 static void specialise_program(Device *dev, const SceneData *data)
 {
-    char features[64];
-    snprintf(features, sizeof features, " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d",
-             data->environment.width > 0, data->num_analytic > 0);
+    /* Cut-out materials (cl/material/surface_detail.cl) add a material read per hit to both
+     * intersect stages: only scenes that have one pay for it. */
+    bool cutout = false;
+    for (uint32_t i = 0; i < data->num_materials && !cutout; i++)
+        cutout = (data->materials[i].flags & MATERIAL_FLAG_CUTOUT) != 0;
+    char features[96];
+    snprintf(features, sizeof features,
+             " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d",
+             data->environment.width > 0, data->num_analytic > 0, cutout);
     size_t used = strlen(dev->build_options);
     if (used + strlen(features) < sizeof dev->build_options)
         memcpy(dev->build_options + used, features, strlen(features) + 1);
