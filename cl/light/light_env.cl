@@ -2,9 +2,16 @@
 /* light_env.cl: the environment map (host/scene/environment.h): what an escaped ray sees and its
  * importance sampling. Mapping (shared/DESIGN.md "Environment"): direction d, +y up,
  * u = 0.5 + (atan2(d.x, -d.z) + theta) / 2 pi, v = acos(d.y) / pi, v = 0 the image's top row; texel
- * (i, j) covers [i/W, (i+1)/W) x [j/H, (j+1)/H). The radiance is piecewise constant (the texel the
- * direction falls in, no bilinear filter): exactly the function env_sample draws from, so env_pdf is
- * the density of env_sample's directions and MIS weights are exact. */
+ * (i, j) covers [i/W, (i+1)/W) x [j/H, (j+1)/H) and its value sits at its centre.
+ *
+ * Radiance is the bilinear interpolation of the four texel centres around the direction (wrapping
+ * in u, clamped in v), everywhere: escaped rays and next-event estimation see the same function.
+ * Sampling is piecewise constant per texel cell, with each texel's weight the largest luminance of
+ * the 3 x 3 texels around it (the only texels bilinear filtering reads inside its cell) x sin(theta
+ * of its row): the density is > 0 wherever the bilinear radiance is > 0 (except at the two poles,
+ * a set of measure zero). env_pdf_w is exactly the density env_sample draws from, so NEE divides by
+ * the true pdf of its samples and the MIS weights of both strategies sum to 1 for every direction:
+ * NEE + MIS and BSDF-only sampling are both unbiased for the bilinear radiance. */
 
 typedef struct {
     const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
@@ -21,16 +28,24 @@ inline EnvMap env_map(constant RenderParams *p, const SceneView *scene)
     return env;
 }
 
-/* The texel index of direction d (unit length). */
-inline uint env_texel_of(const EnvMap *env, float3 d)
+/* Map coordinates (u, v) in [0, 1) of direction d (unit length). */
+inline float2 env_uv(const EnvMap *env, float3 d)
 {
     float u = 0.5f + atan2(d.x, -d.z) * (0.5f * M_1_PI_F) + env->rotation;
     u -= floor(u);
-    float v = acos(clamp(d.y, -1.0f, 1.0f)) * M_1_PI_F;
-    uint i = min((uint)(u * (float)env->width), env->width - 1u);
-    uint j = min((uint)(v * (float)env->height), env->height - 1u);
+    return (float2)(u, acos(clamp(d.y, -1.0f, 1.0f)) * M_1_PI_F);
+}
+
+/* The index of the texel whose cell holds (u, v). */
+inline uint env_texel_at(const EnvMap *env, float2 uv)
+{
+    uint i = min((uint)(uv.x * (float)env->width), env->width - 1u);
+    uint j = min((uint)(uv.y * (float)env->height), env->height - 1u);
     return j * env->width + i;
 }
+
+/* The texel index of direction d (unit length). */
+inline uint env_texel_of(const EnvMap *env, float3 d) { return env_texel_at(env, env_uv(env, d)); }
 
 /* Solid-angle pdf of direction d from the texel's uv pdf: the map covers 2 pi x pi radians, and a
  * uv cell at polar angle t spans sin(t) of its area in solid angle. */
@@ -39,13 +54,32 @@ inline float env_pdf_w(float pdf_uv, float sin_theta)
     return sin_theta > 0.0f ? pdf_uv / (2.0f * M_PI_F * M_PI_F * sin_theta) : 0.0f;
 }
 
-/* Radiance seen along d; *pdf_w: env_sample's solid-angle density of d. */
+/* Bilinear radiance at map coordinates (u, v) in [0, 1): texel centres at ((i + 0.5) / W,
+ * (j + 0.5) / H), wrapping across u = 0 and clamped at the poles' rows. */
+inline float3 env_bilinear(const EnvMap *env, float u, float v)
+{
+    float x = u * (float)env->width - 0.5f, y = v * (float)env->height - 0.5f;
+    float fx0 = floor(x), fy0 = floor(y);
+    float fx = x - fx0, fy = y - fy0;
+    int w = (int)env->width, h = (int)env->height;
+    int i0 = (int)fx0, j0 = (int)fy0;
+    int i1 = i0 + 1 >= w ? i0 + 1 - w : i0 + 1;
+    i0 = i0 < 0 ? i0 + w : i0;
+    int j1 = min(j0 + 1, h - 1);
+    j0 = max(j0, 0);
+    const global float4 *t = env->texels;
+    float3 top = (1.0f - fx) * xyz(t[j0 * w + i0]) + fx * xyz(t[j0 * w + i1]);
+    float3 bottom = (1.0f - fx) * xyz(t[j1 * w + i0]) + fx * xyz(t[j1 * w + i1]);
+    return (1.0f - fy) * top + fy * bottom;
+}
+
+/* Radiance seen along d (bilinear); *pdf_w: env_sample's solid-angle density of d. */
 inline float3 env_lookup(const EnvMap *env, float3 d, float *pdf_w)
 {
-    float4 texel = env->texels[env_texel_of(env, d)];
+    float2 uv = env_uv(env, d);
     float sin_theta = sqrt(fmax(0.0f, 1.0f - d.y * d.y));
-    *pdf_w = env_pdf_w(texel.w, sin_theta);
-    return xyz(texel);
+    *pdf_w = env_pdf_w(env->texels[env_texel_at(env, uv)].w, sin_theta);
+    return env_bilinear(env, uv.x, uv.y);
 }
 
 /* The index k in [0, n) with cdf[k] <= x < cdf[k + 1] (cdf[0] = 0, cdf[n] = 1, x in [0, 1)): a
@@ -69,8 +103,9 @@ typedef struct {
     float pdf_w;
 } EnvSample;
 
-/* A direction in proportion to luminance x sin(theta) of the texel row: a row by the marginal CDF,
- * a column by the row's conditional CDF, then uniformly within the texel's uv cell. */
+/* A direction in proportion to each texel's weight (the 3 x 3 neighbourhood's largest luminance x
+ * sin(theta) of the row): a row by the marginal CDF, a column by the row's conditional CDF, then
+ * uniformly within the texel's uv cell. */
 inline EnvSample env_sample(const EnvMap *env, float u1, float u2)
 {
     uint j = env_cdf_find(env->marginal, env->height, u1);

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* environment.h: the environment map (shared/DESIGN.md "Environment"): an equirectangular HDR or
  * EXR image, its radiance per texel (times scale) and the 2-D piecewise-constant distribution that
- * next-event estimation samples it from (marginal CDF over rows, one conditional CDF per row, each
- * texel weighted by luminance x sin(theta of its row centre)). Escaped rays and the sampler see the
- * same piecewise-constant radiance (nearest texel, no bilinear filter), so the pdf matches exactly
- * what is evaluated. Kernels: cl/light/light_env.cl. */
+ * next-event estimation samples it from (marginal CDF over rows, one conditional CDF per row). The
+ * radiance is evaluated bilinearly everywhere; each texel's sampling weight is the largest
+ * luminance of its 3 x 3 neighbourhood x sin(theta of its row centre), so the pdf is > 0 wherever
+ * the bilinear radiance is, and texels[].w is exactly the density the sampler draws from: MIS with
+ * it is unbiased (cl/light/light_env.cl says why). */
 #ifndef PT_ENVIRONMENT_H
 #define PT_ENVIRONMENT_H
 
@@ -15,8 +16,8 @@
 
 typedef struct {
     uint32_t width, height;   /* 0 x 0: no map (the constant background is the environment) */
-    float4 *texels;           /* width * height, row 0 at the top: rgb radiance x scale; w: pdf
-                                 of the texel's (u, v) cell per unit uv area */
+    float4 *texels;           /* width * height, row 0 at the top: rgb radiance x scale; w: the
+                                 sampling pdf in the texel's (u, v) cell per unit uv area */
     float *marginal;          /* height + 1: CDF over rows, marginal[height] = 1 */
     float *conditional;       /* height * (width + 1): per row the CDF over its columns */
     float rotation;           /* DESIGN's theta as a fraction of a turn */

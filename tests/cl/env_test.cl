@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* env_test.cl: kernels for tests/test_environment.c. */
+/* env_test.cl: kernels for tests/test_environment_sampling.c. */
 
 #define ENV_TEST_PARAMS                                                                            \
     const global float4 *texels, const global float *marginal, const global float *conditional,   \
@@ -27,14 +27,16 @@ kernel void env_test_sample(ENV_TEST_PARAMS, uint samples_per_item, uint seed,
     }
 }
 
-/* pdf[i] = env_lookup's solid-angle pdf of directions[i]. */
-kernel void env_test_pdf(ENV_TEST_PARAMS, const global float4 *directions, uint n, global float *pdf)
+/* out[i] = env_lookup of directions[i]: rgb the radiance an escaped ray sees, w its solid-angle
+ * pdf. */
+kernel void env_test_lookup(ENV_TEST_PARAMS, const global float4 *directions, uint n,
+                            global float4 *out)
 {
     EnvMap env = ENV_TEST_MAP;
     uint i = get_global_id(0);
     if (i >= n)
         return;
     float p;
-    env_lookup(&env, xyz(directions[i]), &p);
-    pdf[i] = p;
+    float3 L = env_lookup(&env, xyz(directions[i]), &p);
+    out[i] = (float4)(L, p);
 }
