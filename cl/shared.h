@@ -191,6 +191,9 @@ typedef struct {
 
 #define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */
 #define TEXTURE_RGBA32F 1u    /* four uints per texel (float bits), linear */
+/* Procedural fBm Perlin noise in object space: `offset` points to 9 uints, color0 rgb, color1 rgb,
+ * frequency (float bits), octaves, seed (uint); width = height = 1. */
+#define TEXTURE_NOISE 2u
 
 typedef struct {
     uint offset; /* first uint of the texture in the texel buffer */

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 static float luminance3(const float c[3])
 {
@@ -63,8 +64,17 @@ Material material_default(void)
     return material_from_obj(&grey, NO_TEXTURE);
 }
 
+static uint32_t find_named(const NamedMaterials *named, const char *name)
+{
+    for (uint32_t i = 0; named && i < named->count; i++)
+        if (strcmp(named->names[i], name) == 0)
+            return i;
+    return NO_MATERIAL;
+}
+
 bool materials_append_obj(Material **materials, uint32_t *num_materials, TextureSet *textures,
-                          const ObjMesh *mesh, const char *obj_path, Error *err)
+                          const ObjMesh *mesh, const char *obj_path, const NamedMaterials *named,
+                          uint32_t *mesh_to_scene, Error *err)
 {
     if (mesh->num_materials > (size_t)UINT32_MAX - 1 - *num_materials) {
         error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: too many materials", obj_path);
@@ -79,6 +89,8 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
     *materials = grown;
     for (size_t i = 0; i < mesh->num_materials; i++) {
         const ObjMaterial *m = &mesh->materials[i];
+        if ((mesh_to_scene[i] = find_named(named, m->name)) != NO_MATERIAL)
+            continue;
         uint32_t map_kd = NO_TEXTURE;
         if (m->map_kd[0]) {
             Error texture_err = {0};
@@ -92,6 +104,7 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
                 return false;
             }
         }
+        mesh_to_scene[i] = *num_materials;
         (*materials)[(*num_materials)++] = material_from_obj(m, map_kd);
     }
     return true;

@@ -12,6 +12,15 @@
 #include "io/obj_loader.h"
 #include "scene/texture.h"
 
+/* The JSON materials, which are the scene's materials 0..count-1 and replace MTL materials of the
+ * same name everywhere. */
+#define NO_MATERIAL 0xffffffffu
+
+typedef struct {
+    const char *const *names;
+    uint32_t count;
+} NamedMaterials;
+
 /* A material of `type` with DESIGN's defaults and no textures. */
 Material material_blank(uint32_t type);
 /* Maps one MTL material onto the kernels' Material (see README "Materials"). */
@@ -19,9 +28,12 @@ Material material_from_obj(const ObjMaterial *m, uint32_t map_kd);
 /* The material of triangles that name none: diffuse grey 0.8. */
 Material material_default(void);
 /* Appends the mesh's materials to *materials (*num_materials of them so far) and loads their
- * textures into `textures`. A missing texture file is a warning (the material keeps its Kd); a
- * corrupt one is an error naming the material and obj_path. */
+ * textures into `textures`; mesh_to_scene[i] (mesh->num_materials entries) receives the scene index
+ * of the mesh's material i: a material named like one of `named` (may be NULL) maps to it and is
+ * not loaded. A missing texture file is a warning (the material keeps its Kd); a corrupt one is an
+ * error naming the material and obj_path. */
 bool materials_append_obj(Material **materials, uint32_t *num_materials, TextureSet *textures,
-                          const ObjMesh *mesh, const char *obj_path, Error *err);
+                          const ObjMesh *mesh, const char *obj_path, const NamedMaterials *named,
+                          uint32_t *mesh_to_scene, Error *err);
 
 #endif

@@ -86,11 +86,13 @@ bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
         return parse_json_file(out, err) || (scene_desc_free(out), false);
     /* A bare OBJ: one object, default settings, camera framed later on the bounds. */
     out->objects = calloc(1, sizeof *out->objects);
-    if (!out->objects) {
+    out->object_options = calloc(1, sizeof *out->object_options);
+    if (!out->objects || !out->object_options) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
         return false;
     }
     snprintf(out->objects[0], sizeof out->objects[0], "%s", out->path);
+    out->object_options[0] = (ObjectOptions){.material = NO_MATERIAL};
     out->num_objects = 1;
     return true;
 }
@@ -99,10 +101,42 @@ void scene_desc_free(SceneDesc *desc)
 {
     free(desc->objects);
     desc->objects = NULL;
+    free(desc->object_options);
+    desc->object_options = NULL;
+    free(desc->textures);
+    desc->textures = NULL;
+    desc->num_textures = 0;
+    free(desc->materials);
+    desc->materials = NULL;
+    desc->num_materials = 0;
     free(desc->lights);
     desc->lights = NULL;
     desc->num_lights = 0;
     desc->num_objects = 0;
+}
+
+/* The JSON textures and materials, which become the scene's first materials (0..n-1: a mix's
+ * indices and objects' "material" need no remapping); *names lists them for MTL replacement. */
+static bool load_json_materials(Scene *s, const char ***names, Error *err)
+{
+    const SceneDesc *d = &s->desc;
+    int nt = d->num_textures, nm = d->num_materials;
+    uint32_t *indices = malloc((nt ? (size_t)nt : 1) * sizeof *indices);
+    *names = malloc((nm ? (size_t)nm : 1) * sizeof **names);
+    s->data.materials = malloc((nm ? (size_t)nm : 1) * sizeof *s->data.materials);
+    bool ok = indices && *names && s->data.materials;
+    if (!ok)
+        error_set(err, ERR_TOO_LARGE, d->path, 0, "%s: out of memory for materials", d->path);
+    ok = ok && textures_load(d->textures, nt, &s->data.textures, indices, d->path, err) &&
+         materials_load(d->materials, nm, d->textures, &s->data.textures, indices, 0,
+                        s->data.materials, d->path, err);
+    if (ok) {
+        for (int i = 0; i < nm; i++)
+            (*names)[i] = d->materials[i].name;
+        s->data.num_materials = (uint32_t)nm;
+    }
+    free(indices);
+    return ok;
 }
 
 bool scene_load(const char *path, Scene *out, Error *err)
@@ -111,17 +145,27 @@ bool scene_load(const char *path, Scene *out, Error *err)
     scene_data_init(&out->data);
     if (!scene_desc_load(path, &out->desc, err))
         return false;
+    const char **names = NULL;
+    if (!load_json_materials(out, &names, err)) {
+        free(names);
+        scene_free(out);
+        return false;
+    }
+    NamedMaterials named = {names, out->data.num_materials};
     for (int i = 0; i < out->desc.num_objects; i++) {
         ObjMesh mesh;
         memset(&mesh, 0, sizeof mesh);
         bool ok = obj_load(out->desc.objects[i], &mesh, err) &&
-                  scene_data_append_obj(&out->data, &mesh, out->desc.objects[i], err);
+                  scene_data_append_object(&out->data, &mesh, out->desc.objects[i],
+                                           &out->desc.object_options[i], &named, err);
         obj_free(&mesh);
         if (!ok) {
+            free(names);
             scene_free(out);
             return false;
         }
     }
+    free(names);
     if (!scene_data_finish(&out->data, out->desc.path, err)) {
         scene_free(out);
         return false;

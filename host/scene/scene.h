@@ -8,7 +8,9 @@
 
 #include "base/error.h"
 #include "scene/camera.h"
+#include "scene/material_json.h"
 #include "scene/scene_data.h"
+#include "scene/texture_json.h"
 
 /* The limits of the film and of path depth, for the scene file and the command line alike. */
 #define FILM_SIZE_LIMIT 65536
@@ -28,6 +30,11 @@ typedef struct {
     int num_lights;
     int num_objects;
     char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
+    ObjectOptions *object_options; /* per object; material indexes `materials` */
+    TextureDesc *textures;   /* the "textures" block */
+    int num_textures;
+    MaterialDesc *materials; /* the "materials" block; scene material i is materials[i] */
+    int num_materials;
 } SceneDesc;
 
 /* Reads a scene description. path: a .json scene, a bare .obj, or a folder holding scene.json.

@@ -94,8 +94,8 @@ static bool corner_valid(const ObjMesh *mesh, const int32_t c[3])
 /* Writes the mesh's triangles (vertex indices offset by the vertices already present) and records,
  * for each new unified vertex, the corner that first used it. */
 static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_path,
-                          uint32_t material_base, uint32_t *first_corner, uint32_t *num_new,
-                          Error *err)
+                          const uint32_t *mesh_to_scene, uint32_t object_material,
+                          uint32_t *first_corner, uint32_t *num_new, Error *err)
 {
     CornerMap map;
     if (!corner_map_init(&map, 3 * mesh->num_triangles)) {
@@ -128,7 +128,9 @@ static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_
         data->triangles[t].v = (uint4){{v[0], v[1], v[2], flags}};
         int32_t m = mesh->material_ids[tri];
         bool has_material = m >= 0 && (size_t)m < mesh->num_materials;
-        data->material_ids[t] = has_material ? material_base + (uint32_t)m : DEFAULT_MATERIAL_PENDING;
+        data->material_ids[t] = object_material != NO_MATERIAL ? object_material
+                                : has_material               ? mesh_to_scene[m]
+                                                             : DEFAULT_MATERIAL_PENDING;
     }
     free(map.slots);
     *num_new = count;
@@ -207,6 +209,13 @@ static void note_faceless(SceneData *data, const ObjMesh *mesh, const char *obj_
 
 bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
 {
+    ObjectOptions defaults = {.material = NO_MATERIAL};
+    return scene_data_append_object(data, mesh, obj_path, &defaults, NULL, err);
+}
+
+bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+                              const ObjectOptions *options, const NamedMaterials *named, Error *err)
+{
     note_faceless(data, mesh, obj_path);
     /* Every corner may become a vertex: both counts must stay below 2^32 - 1 for uint indices. */
     size_t max_new_vertices = 3 * mesh->num_triangles;
@@ -216,21 +225,32 @@ bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj
                   obj_path, mesh->num_triangles);
         return false;
     }
-    uint32_t material_base = data->num_materials;
-    if (!materials_append_obj(&data->materials, &data->num_materials, &data->textures, mesh,
-                              obj_path, err))
+    /* An object given one material does not load its MTL materials (nor their textures). */
+    uint32_t *mesh_to_scene = calloc(mesh->num_materials ? mesh->num_materials : 1, sizeof(uint32_t));
+    if (!mesh_to_scene) {
+        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
         return false;
+    }
+    if (options->material == NO_MATERIAL &&
+        !materials_append_obj(&data->materials, &data->num_materials, &data->textures, mesh,
+                              obj_path, named, mesh_to_scene, err)) {
+        free(mesh_to_scene);
+        return false;
+    }
     size_t num_triangles = data->num_triangles + mesh->num_triangles;
     uint32_t *first_corner = malloc((max_new_vertices ? max_new_vertices : 1) * sizeof *first_corner);
     if (!first_corner || !grow((void **)&data->triangles, num_triangles, sizeof(Triangle)) ||
         !grow((void **)&data->material_ids, num_triangles, sizeof(uint32_t))) {
         free(first_corner);
+        free(mesh_to_scene);
         error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
         return false;
     }
     uint32_t num_new = 0;
     bool normals_ok = true;
-    bool ok = unify_corners(data, mesh, obj_path, material_base, first_corner, &num_new, err);
+    bool ok = unify_corners(data, mesh, obj_path, mesh_to_scene, options->material, first_corner,
+                            &num_new, err);
+    free(mesh_to_scene);
     size_t num_vertices = (size_t)data->num_vertices + num_new;
     if (ok && !(grow((void **)&data->positions, num_vertices, sizeof(float4)) &&
                 grow((void **)&data->normals, num_vertices, sizeof(float4)) &&

@@ -38,9 +38,19 @@ typedef struct {
     char faceless_reason[128];
 } SceneData;
 
+/* How one object of the scene is added. */
+typedef struct {
+    uint32_t material; /* a scene material index for every triangle (JSON objects[i].material);
+                          NO_MATERIAL: the OBJ's own (MTL) materials */
+    bool smooth;       /* meshes without vn get area- and angle-weighted vertex normals */
+} ObjectOptions;
+
 void scene_data_init(SceneData *data);
 /* Appends one loaded OBJ: vertices, triangles (indices offset), materials (ids offset), textures. */
 bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err);
+/* The same with the object's options; `named` (NULL: none) are the JSON materials. */
+bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+                              const ObjectOptions *options, const NamedMaterials *named, Error *err);
 /* Finishes: bounds, emissive table; ERR_NO_TRIANGLES for an empty scene (names scene_path, and the
  * first OBJ without faces and why). */
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err);

@@ -41,20 +41,29 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
                               &d->max_depth);
 }
 
-/* Joins a path from the scene file onto the scene file's folder (absolute paths stay as they are). */
-static bool resolve_path(JsonParser *p, const char *key, const char *relative, char out[1024])
+/* objects[i].material: a JSON material's name, given to every triangle of the object. */
+static bool parse_object_material(JsonParser *p, const cJSON *e, int i, SceneDesc *d)
 {
-    const char *slash = strrchr(p->file, '/');
-    int folder_len = relative[0] == '/' || !slash ? 0 : (int)(slash - p->file) + 1;
-    int n = snprintf(out, 1024, "%.*s%s", folder_len, p->file, relative);
-    if (n < 0 || n >= 1024)
-        return json_fail(p, ERR_JSON_VALUE, key, "path \"%s\" is too long", relative);
+    ObjectOptions *o = &d->object_options[i];
+    o->material = NO_MATERIAL;
+    const cJSON *item = json_member(e, "material");
+    if (!item)
+        return true;
+    char key[64];
+    snprintf(key, sizeof key, "objects[%d].material", i);
+    if (!cJSON_IsString(item))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected a material name (string)");
+    int index = material_desc_find(d->materials, d->num_materials, item->valuestring);
+    if (index < 0)
+        return json_fail(p, ERR_JSON_VALUE, key, "unknown material \"%s\" (not in \"materials\")",
+                         item->valuestring);
+    o->material = (uint32_t)index;
     return true;
 }
 
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj", NULL};
+    static const char *const keys[] = {"obj", "material", NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -63,7 +72,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
     if (count == 0)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     d->objects = calloc((size_t)count, sizeof *d->objects);
-    if (!d->objects)
+    d->object_options = calloc((size_t)count, sizeof *d->object_options);
+    if (!d->objects || !d->object_options)
         return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
     int i = 0;
     for (const cJSON *e = array->child; e; e = e->next, i++) {
@@ -79,7 +89,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
             return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
         if (!obj->valuestring[0])
             return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
-        if (!resolve_path(p, key, obj->valuestring, d->objects[i]))
+        if (!scene_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
+            !parse_object_material(p, e, i, d))
             return false;
         d->num_objects = i + 1;
     }
@@ -109,7 +120,7 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
         return json_fail(p, ERR_JSON_TYPE, "environment.file", "expected a file name (string)");
     if (!file->valuestring[0])
         return json_fail(p, ERR_JSON_VALUE, "environment.file", "empty file name");
-    if (!resolve_path(p, "environment.file", file->valuestring, d->environment))
+    if (!scene_path_resolve(p, "environment.file", file->valuestring, d->environment))
         return false;
     if ((item = json_member(obj, "scale"))) {
         if (!json_read_float(p, item, "environment.scale", &d->environment_scale))
@@ -124,8 +135,8 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
 
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
 {
-    static const char *const keys[] = {"camera",     "film",        "render", "objects",
-                                       "background", "environment", "lights",     NULL};
+    static const char *const keys[] = {"camera",      "film",   "render",   "objects",   "background",
+                                       "environment", "lights", "textures", "materials", NULL};
     if (!json_check_object(p, root, "", keys))
         return false;
     const cJSON *item;
@@ -142,6 +153,13 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
         return false;
     if ((item = json_member(root, "lights")) &&
         !analytic_lights_from_json(p, item, &d->lights, &d->num_lights))
+        return false;
+    /* Textures before the materials that name them, materials before the objects that do. */
+    if ((item = json_member(root, "textures")) &&
+        !textures_from_json(p, item, &d->textures, &d->num_textures))
+        return false;
+    if ((item = json_member(root, "materials")) &&
+        !materials_from_json(p, item, d->textures, d->num_textures, &d->materials, &d->num_materials))
         return false;
     return parse_objects(p, json_member(root, "objects"), d);
 }

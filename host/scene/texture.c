@@ -3,13 +3,16 @@
 #include "scene/texture.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <stb_image.h>
 
+#include "base/fs.h"
 #include "io/image_checks.h"
+#include "io/image_io.h"
 #include "io/input_file.h"
 
 /* Every offset and texel index is a uint in the kernel (and RGBA32F indices are multiplied by 4),
@@ -32,14 +35,43 @@ static uint32_t find_texture(const TextureSet *set, const char *key)
 /* Decoded image, before packing: either 8-bit RGBA or float RGBA (stb expands grey and grey-alpha
  * to RGBA and fills a missing alpha with opaque). */
 typedef struct {
-    int width, height;
+    int width, height, channels;
     unsigned char *rgba8;
     float *rgba32f;
 } DecodedImage;
 
+/* An OpenEXR image through io/exr_read.c (the reader the environment map uses): rgb, opaque. */
+static bool decode_exr(const char *path, DecodedImage *img, Error *err)
+{
+    float *rgb = NULL;
+    Error read_err = {0};
+    if (!image_read_exr(path, &rgb, &img->width, &img->height, &read_err)) {
+        error_set(err, read_err.code == ERR_FILE_MISSING ? ERR_FILE_MISSING : ERR_TEXTURE, path, 0,
+                  "%s", read_err.message);
+        return false;
+    }
+    size_t texels = (size_t)img->width * (size_t)img->height;
+    if ((uint64_t)texels > TEXTURE_MAX_TEXELS || !(img->rgba32f = malloc(texels * 4 * sizeof(float)))) {
+        free(rgb);
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: %dx%d texture is over the limit of %llu texels",
+                  path, img->width, img->height, (unsigned long long)TEXTURE_MAX_TEXELS);
+        return false;
+    }
+    for (size_t i = 0; i < texels; i++) {
+        for (int c = 0; c < 3; c++)
+            img->rgba32f[4 * i + c] = rgb[3 * i + c];
+        img->rgba32f[4 * i + 3] = 1.0f;
+    }
+    free(rgb);
+    img->channels = 3;
+    return true;
+}
+
 static bool decode_image(const char *path, DecodedImage *img, Error *err)
 {
     memset(img, 0, sizeof *img);
+    if (fs_has_suffix(path, ".exr") || fs_has_suffix(path, ".EXR"))
+        return decode_exr(path, img, err);
     char *file = NULL;
     size_t size = 0;
     Error read_err = {0};
@@ -77,6 +109,7 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
             img->rgba8 = stbi_load_from_memory(bytes, length, &img->width, &img->height,
                                                &channels, 4);
         ok = img->rgba32f || img->rgba8;
+        img->channels = channels;
         if (!ok)
             error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
                       stbi_failure_reason());
@@ -85,26 +118,85 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
     return ok;
 }
 
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Brings the image to the encoding it is stored with: 8-bit sRGB stays 8-bit (the kernel decodes);
+ * 8-bit linear becomes float (the kernel's 8-bit format is sRGB only); float read as sRGB is
+ * decoded here. */
+static bool apply_encoding(DecodedImage *img, TextureEncoding encoding, const char *path, Error *err)
+{
+    size_t n = 4 * (size_t)img->width * (size_t)img->height;
+    if (img->rgba8 && encoding == TEXTURE_ENCODING_LINEAR) {
+        float *f = malloc(n * sizeof *f);
+        if (!f) {
+            error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for a linear %dx%d texture",
+                      path, img->width, img->height);
+            return false;
+        }
+        for (size_t i = 0; i < n; i++)
+            f[i] = img->rgba8[i] / 255.0f;
+        free(img->rgba8); /* stbi_image_free is free() here: stb uses the default allocator */
+        img->rgba8 = NULL;
+        img->rgba32f = f;
+    } else if (img->rgba32f && encoding == TEXTURE_ENCODING_SRGB) {
+        for (size_t i = 0; i < n; i++)
+            if (i % 4 != 3)
+                img->rgba32f[i] = srgb_to_linear(img->rgba32f[i]);
+    }
+    return true;
+}
+
+/* What the host's material checks need: channels, cut-out alpha, the mean linear colour. */
+static TextureStats image_stats(const DecodedImage *img)
+{
+    TextureStats st = {.channels = img->channels};
+    size_t texels = (size_t)img->width * (size_t)img->height;
+    double sum[3] = {0.0, 0.0, 0.0};
+    float srgb[256];
+    for (int i = 0; i < 256; i++)
+        srgb[i] = srgb_to_linear(i / 255.0f);
+    for (size_t i = 0; i < texels; i++) {
+        for (int c = 0; c < 3; c++) {
+            float v = img->rgba8 ? srgb[img->rgba8[4 * i + c]] : img->rgba32f[4 * i + c];
+            sum[c] += isfinite(v) && v > 0.0f ? v : 0.0f;
+        }
+        float alpha = img->rgba8 ? img->rgba8[4 * i + 3] / 255.0f : img->rgba32f[4 * i + 3];
+        st.alpha_below_one |= alpha < 1.0f;
+    }
+    for (int c = 0; c < 3; c++)
+        st.mean[c] = texels ? (float)(sum[c] / (double)texels) : 0.0f;
+    return st;
+}
+
+/* Makes room for `uints` more entries in the texel buffer; returns where they go. */
+static uint32_t *reserve_texels(TextureSet *set, size_t uints, const char *path, Error *err)
+{
+    if (uints > TEXEL_BUFFER_LIMIT - set->num_texels) {
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: texture takes the texture buffer over 2^31 entries",
+                  path);
+        return NULL;
+    }
+    uint32_t *grown = realloc(set->texels, (set->num_texels + uints) * sizeof *grown);
+    if (!grown) {
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for a texture", path);
+        return NULL;
+    }
+    set->texels = grown;
+    return grown + set->num_texels;
+}
+
 /* Appends the decoded texels in the kernel's layout (cl/shared.h TEXTURE_*). */
 static bool pack_texels(TextureSet *set, const char *path, const DecodedImage *img,
                         TextureInfo *info, Error *err)
 {
     size_t texels = (size_t)img->width * (size_t)img->height;
     size_t uints = img->rgba32f ? 4 * texels : texels;
-    if (uints > TEXEL_BUFFER_LIMIT - set->num_texels) {
-        error_set(err, ERR_TOO_LARGE, path, 0,
-                  "%s: %dx%d texture takes the texture buffer over 2^31 entries", path, img->width,
-                  img->height);
+    uint32_t *dst = reserve_texels(set, uints, path, err);
+    if (!dst)
         return false;
-    }
-    uint32_t *grown = realloc(set->texels, (set->num_texels + uints) * sizeof *grown);
-    if (!grown) {
-        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for %dx%d texture", path,
-                  img->width, img->height);
-        return false;
-    }
-    set->texels = grown;
-    uint32_t *dst = grown + set->num_texels;
     if (img->rgba32f) {
         memcpy(dst, img->rgba32f, uints * sizeof *dst); /* float bits, linear */
     } else {
@@ -124,29 +216,36 @@ static bool pack_texels(TextureSet *set, const char *path, const DecodedImage *i
     return true;
 }
 
-static bool append_info(TextureSet *set, const TextureInfo *info, const char *key)
+static bool append_info(TextureSet *set, const TextureInfo *info, const TextureStats *stats,
+                        const char *key)
 {
     TextureInfo *infos = realloc(set->infos, (set->count + 1) * sizeof *infos);
     if (infos)
         set->infos = infos;
+    TextureStats *all_stats = realloc(set->stats, (set->count + 1) * sizeof *all_stats);
+    if (all_stats)
+        set->stats = all_stats;
     char **paths = realloc(set->paths, (set->count + 1) * sizeof *paths);
     if (paths)
         set->paths = paths;
     char *copy = strdup(key);
-    if (!infos || !paths || !copy) {
+    if (!infos || !all_stats || !paths || !copy) {
         free(copy);
         return false;
     }
     set->infos[set->count] = *info;
+    set->stats[set->count] = *stats;
     set->paths[set->count] = copy;
     set->count++;
     return true;
 }
 
-uint32_t texture_set_add(TextureSet *set, const char *path, Error *err)
+uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncoding encoding,
+                                 Error *err)
 {
-    char resolved[4096];
-    const char *key = realpath(path, resolved) ? resolved : path;
+    char resolved[4096], key[4200];
+    static const char *const suffix[] = {"", "\n(srgb)", "\n(linear)"};
+    snprintf(key, sizeof key, "%s%s", realpath(path, resolved) ? resolved : path, suffix[encoding]);
     uint32_t found = find_texture(set, key);
     if (found != NO_TEXTURE)
         return found;
@@ -158,16 +257,59 @@ uint32_t texture_set_add(TextureSet *set, const char *path, Error *err)
     if (!decode_image(path, &img, err))
         return NO_TEXTURE;
     TextureInfo info;
-    bool ok = pack_texels(set, path, &img, &info, err);
-    stbi_image_free(img.rgba8);
-    stbi_image_free(img.rgba32f);
+    TextureStats stats = {0};
+    bool ok = apply_encoding(&img, encoding, path, err);
+    if (ok) {
+        stats = image_stats(&img);
+        ok = pack_texels(set, path, &img, &info, err);
+    }
+    free(img.rgba8);
+    free(img.rgba32f);
     if (!ok)
         return NO_TEXTURE;
-    if (!append_info(set, &info, key)) {
+    if (!append_info(set, &info, &stats, key)) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
         return NO_TEXTURE;
     }
     return set->count - 1;
+}
+
+uint32_t texture_set_add(TextureSet *set, const char *path, Error *err)
+{
+    return texture_set_add_encoded(set, path, TEXTURE_ENCODING_DEFAULT, err);
+}
+
+uint32_t texture_set_add_noise(TextureSet *set, const TextureNoise *noise, const char *name,
+                               Error *err)
+{
+    uint32_t *dst = reserve_texels(set, 9, name, err);
+    if (!dst)
+        return NO_TEXTURE;
+    float floats[7] = {noise->color0[0], noise->color0[1], noise->color0[2], noise->color1[0],
+                       noise->color1[1], noise->color1[2], noise->frequency};
+    memcpy(dst, floats, sizeof floats);
+    dst[7] = noise->octaves;
+    dst[8] = noise->seed;
+    TextureInfo info = {.offset = (uint32_t)set->num_texels, .width = 1, .height = 1,
+                        .format = TEXTURE_NOISE};
+    TextureStats stats = {.channels = 3};
+    for (int c = 0; c < 3; c++)
+        stats.mean[c] = 0.5f * (noise->color0[c] + noise->color1[c]);
+    set->num_texels += 9;
+    /* A key no file can have: noise textures are never shared by path. */
+    char key[64];
+    snprintf(key, sizeof key, "\n(noise %u)", set->count);
+    if (!append_info(set, &info, &stats, key)) {
+        error_set(err, ERR_TOO_LARGE, name, 0, "%s: out of memory", name);
+        return NO_TEXTURE;
+    }
+    return set->count - 1;
+}
+
+float texture_mean_luminance(const TextureSet *set, uint32_t index)
+{
+    const float *m = set->stats[index].mean;
+    return 0.2126f * m[0] + 0.7152f * m[1] + 0.0722f * m[2];
 }
 
 void texture_set_free(TextureSet *set)
@@ -176,6 +318,7 @@ void texture_set_free(TextureSet *set)
         free(set->paths[i]);
     free(set->paths);
     free(set->infos);
+    free(set->stats);
     free(set->texels);
     memset(set, 0, sizeof *set);
 }

@@ -1,27 +1,55 @@
 /* SPDX-License-Identifier: MIT */
-/* texture.h: textures (stb_image) packed into one texel buffer with per-texture offset, size and
- * format (cl/shared.h TextureInfo). 8-bit images stay sRGB-encoded (the kernel decodes when
- * sampling); HDR images (.hdr) are stored linear as 32-bit floats. */
+/* texture.h: textures packed into one texel buffer with per-texture offset, size and format
+ * (cl/shared.h TextureInfo). 8-bit images (stb_image) with sRGB encoding stay 8-bit and the kernel
+ * decodes when sampling; 8-bit images read as linear, .hdr (stb_image) and .exr (io/image_io.h)
+ * are stored as linear 32-bit floats. Procedural noise textures store their parameters. Beside
+ * the kernel's TextureInfo, the host keeps what material checks need (TextureStats). */
 #ifndef PT_TEXTURE_H
 #define PT_TEXTURE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "base/error.h"
 #include "base/shared_types.h"
 
+/* shared/DESIGN.md "Textures": the default is sRGB for 8-bit images and linear for .hdr/.exr. */
+typedef enum { TEXTURE_ENCODING_DEFAULT, TEXTURE_ENCODING_SRGB, TEXTURE_ENCODING_LINEAR } TextureEncoding;
+
 typedef struct {
-    uint32_t *texels; /* see TEXTURE_RGBA8_SRGB / TEXTURE_RGBA32F */
+    int channels;         /* in the file (1 grey, 2 grey-alpha, 3 rgb, 4 rgba); noise: 3 */
+    bool alpha_below_one; /* some texel's alpha is below 1 (an RGBA map_Kd with cut-outs) */
+    float mean[3];        /* linear rgb averaged over the texels (noise: the colours' midpoint) */
+} TextureStats;
+
+typedef struct {
+    float color0[3], color1[3];
+    float frequency;
+    uint32_t octaves, seed;
+} TextureNoise;
+
+typedef struct {
+    uint32_t *texels; /* see TEXTURE_RGBA8_SRGB / TEXTURE_RGBA32F / TEXTURE_NOISE */
     size_t num_texels; /* in uints */
     TextureInfo *infos;
+    TextureStats *stats; /* per texture, host only */
     uint32_t count;
-    char **paths; /* for de-duplication */
+    char **paths; /* for de-duplication: resolved path and encoding */
 } TextureSet;
 
-/* Adds the image at path (or finds it if already added) and returns its index. A missing file is
- * ERR_FILE_MISSING, an unreadable or corrupt one ERR_TEXTURE; both return NO_TEXTURE. */
+/* Adds the image at path with its default encoding (or finds it if already added) and returns its
+ * index. A missing file is ERR_FILE_MISSING, an unreadable or corrupt one ERR_TEXTURE; both return
+ * NO_TEXTURE. */
 uint32_t texture_set_add(TextureSet *set, const char *path, Error *err);
+/* The same with an explicit encoding; the same file with two encodings is stored twice. */
+uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncoding encoding,
+                                 Error *err);
+/* Adds a noise texture (never shared). `name` is for messages. */
+uint32_t texture_set_add_noise(TextureSet *set, const TextureNoise *noise, const char *name,
+                               Error *err);
+/* Luminance of the texture's mean colour (the emission weight of a textured emitter). */
+float texture_mean_luminance(const TextureSet *set, uint32_t index);
 void texture_set_free(TextureSet *set);
 
 #endif

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+/* texture_json.c: the "textures" block: checking each entry and loading it. */
+#include "scene/texture_json.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+bool scene_path_resolve(JsonParser *p, const char *key, const char *relative, char out[1024])
+{
+    const char *slash = strrchr(p->file, '/');
+    int folder_len = relative[0] == '/' || !slash ? 0 : (int)(slash - p->file) + 1;
+    int n = snprintf(out, 1024, "%.*s%s", folder_len, p->file, relative);
+    if (n < 0 || n >= 1024)
+        return json_fail(p, ERR_JSON_VALUE, key, "path \"%s\" is too long", relative);
+    return true;
+}
+
+static bool read_noise_colour(JsonParser *p, const cJSON *e, const char *name, const char *prefix,
+                              float out[3])
+{
+    char key[300];
+    snprintf(key, sizeof key, "%s.%s", prefix, name);
+    const cJSON *item = json_member(e, name);
+    if (!item)
+        return true;
+    if (cJSON_IsNumber(item)) {
+        if (!json_read_float(p, item, key, &out[0]))
+            return false;
+        out[1] = out[2] = out[0];
+    } else if (!json_read_vec3(p, item, key, out)) {
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        if (!(out[i] >= 0.0f))
+            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be >= 0", out[0], out[1],
+                             out[2]);
+    return true;
+}
+
+/* type "noise": color0 (default 0), color1 (default 1), frequency > 0 (default 1), octaves in
+ * 1..16 (default 4), seed >= 0 (default 0). */
+static bool read_noise(JsonParser *p, const cJSON *e, const char *prefix, TextureDesc *t)
+{
+    static const char *const keys[] = {"type", "color0", "color1", "frequency", "octaves", "seed", NULL};
+    t->is_noise = true;
+    t->noise = (TextureNoise){.color1 = {1.0f, 1.0f, 1.0f}, .frequency = 1.0f, .octaves = 4};
+    if (!json_check_object(p, e, prefix, keys) ||
+        !read_noise_colour(p, e, "color0", prefix, t->noise.color0) ||
+        !read_noise_colour(p, e, "color1", prefix, t->noise.color1))
+        return false;
+    char key[300];
+    const cJSON *item;
+    if ((item = json_member(e, "frequency"))) {
+        snprintf(key, sizeof key, "%s.frequency", prefix);
+        if (!json_read_float(p, item, key, &t->noise.frequency))
+            return false;
+        if (!(t->noise.frequency > 0.0f))
+            return json_fail(p, ERR_JSON_VALUE, key, "%g must be > 0", t->noise.frequency);
+    }
+    int v;
+    if ((item = json_member(e, "octaves"))) {
+        snprintf(key, sizeof key, "%s.octaves", prefix);
+        if (!json_read_int(p, item, key, &v))
+            return false;
+        if (v < 1 || v > 16)
+            return json_fail(p, ERR_JSON_VALUE, key, "%d is out of range [1, 16]", v);
+        t->noise.octaves = (uint32_t)v;
+    }
+    if ((item = json_member(e, "seed"))) {
+        snprintf(key, sizeof key, "%s.seed", prefix);
+        if (!json_read_int(p, item, key, &v))
+            return false;
+        if (v < 0)
+            return json_fail(p, ERR_JSON_VALUE, key, "%d must be >= 0", v);
+        t->noise.seed = (uint32_t)v;
+    }
+    return true;
+}
+
+static bool read_file_texture(JsonParser *p, const cJSON *e, const char *prefix, TextureDesc *t)
+{
+    static const char *const keys[] = {"type", "file", "encoding", NULL};
+    if (!json_check_object(p, e, prefix, keys))
+        return false;
+    char key[300];
+    snprintf(key, sizeof key, "%s.file", prefix);
+    const cJSON *file = json_member(e, "file");
+    if (!file)
+        return json_fail(p, ERR_JSON_VALUE, key, "missing");
+    if (!cJSON_IsString(file))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
+    if (!file->valuestring[0])
+        return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
+    if (!scene_path_resolve(p, key, file->valuestring, t->path))
+        return false;
+    const cJSON *encoding = json_member(e, "encoding");
+    if (!encoding)
+        return true;
+    snprintf(key, sizeof key, "%s.encoding", prefix);
+    if (!cJSON_IsString(encoding))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected \"srgb\" or \"linear\"");
+    if (strcmp(encoding->valuestring, "srgb") == 0)
+        t->encoding = TEXTURE_ENCODING_SRGB;
+    else if (strcmp(encoding->valuestring, "linear") == 0)
+        t->encoding = TEXTURE_ENCODING_LINEAR;
+    else
+        return json_fail(p, ERR_JSON_VALUE, key, "\"%s\" is not \"srgb\" or \"linear\"",
+                         encoding->valuestring);
+    return true;
+}
+
+bool textures_from_json(JsonParser *p, const cJSON *obj, TextureDesc **out, int *count)
+{
+    *out = NULL;
+    *count = 0;
+    if (!cJSON_IsObject(obj))
+        return json_fail(p, ERR_JSON_TYPE, "textures", "expected an object of named textures");
+    int n = cJSON_GetArraySize(obj);
+    TextureDesc *descs = calloc(n ? (size_t)n : 1, sizeof *descs);
+    if (!descs)
+        return json_fail(p, ERR_TOO_LARGE, "textures", "out of memory");
+    *out = descs;
+    for (const cJSON *e = obj->child; e; e = e->next) {
+        char prefix[256];
+        snprintf(prefix, sizeof prefix, "textures.%s", e->string);
+        if (!e->string[0] || strlen(e->string) >= SCENE_NAME_LIMIT)
+            return json_fail(p, ERR_JSON_VALUE, prefix, "a name must have 1 to %d characters",
+                             SCENE_NAME_LIMIT - 1);
+        if (texture_desc_find(descs, *count, e->string) >= 0)
+            return json_fail(p, ERR_JSON_SYNTAX, prefix, "duplicate texture name");
+        TextureDesc *t = &descs[*count];
+        snprintf(t->name, sizeof t->name, "%s", e->string);
+        if (!cJSON_IsObject(e))
+            return json_fail(p, ERR_JSON_TYPE, prefix, "expected an object");
+        const cJSON *type = json_member(e, "type");
+        char key[300];
+        snprintf(key, sizeof key, "%s.type", prefix);
+        if (type && !cJSON_IsString(type))
+            return json_fail(p, ERR_JSON_TYPE, key, "expected \"noise\" or no type (an image file)");
+        if (type && strcmp(type->valuestring, "noise") != 0)
+            return json_fail(p, ERR_JSON_VALUE, key, "\"%s\" is not a texture type (known: noise)",
+                             type->valuestring);
+        if (!(type ? read_noise(p, e, prefix, t) : read_file_texture(p, e, prefix, t)))
+            return false;
+        (*count)++;
+    }
+    return true;
+}
+
+int texture_desc_find(const TextureDesc *descs, int count, const char *name)
+{
+    for (int i = 0; i < count; i++)
+        if (strcmp(descs[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+bool textures_load(const TextureDesc *descs, int count, TextureSet *set, uint32_t *indices,
+                   const char *scene_path, Error *err)
+{
+    for (int i = 0; i < count; i++) {
+        const TextureDesc *t = &descs[i];
+        Error load_err = {0};
+        indices[i] = t->is_noise ? texture_set_add_noise(set, &t->noise, t->name, &load_err)
+                                 : texture_set_add_encoded(set, t->path, t->encoding, &load_err);
+        if (indices[i] == NO_TEXTURE) {
+            error_set(err, load_err.code, scene_path, 0, "%s: textures.%s.file: %s", scene_path,
+                      t->name, load_err.message);
+            return false;
+        }
+    }
+    return true;
+}
