@@ -6,6 +6,7 @@ reference by tests/test_reference_materials.c.
   conductors/   rough gold (eta/k, r 0.3) and anisotropic rough copper (r 0.35, a 0.8) on a diffuse
                 floor, area light
   glass/        rough glass (r 0.2) sphere and slab with Beer absorption, area light and a grey sky
+  glass-clear/  the same without absorption: the rough dielectric apart from the medium
   normalmap/    a wall with a generated normal map (known pattern) lit at a grazing angle
   mix/          mix of diffuse and rough conductor (weight 0.3) and a Fresnel-1 mirror cube
   envmap/       a generated HDR sky (gradient + soft sun), rotation 30, rough gold and a diffuse cube
@@ -131,17 +132,21 @@ def write_conductors(out):
         "background": [0.12, 0.12, 0.15]})
 
 
-def write_glass(out):
-    obj = Obj("glass.mtl")
+def write_glass(out, absorption=(0.1, 0.6, 1.4)):
+    name = os.path.basename(out)
+    obj = Obj(f"{name}.mtl")
     add_floor(obj, "floor", 2.5)
     add_icosphere(obj, "a", [-0.55, 0.62, 0.1], 0.6)
     add_box(obj, "a", [0.8, 0.45, -0.2], [0.3, 0.9, 1.2], -30)
     add_light(obj, (-0.2, 0.2), 0.75, 3.0)
-    write(out, "glass", PLAIN_MTL + MTL_LIGHT.format(6), obj, {
+    glass = {"type": "dielectric", "ior": 1.5, "roughness": 0.2}
+    if any(absorption):
+        glass["absorption"] = list(absorption)
+    write(out, name, PLAIN_MTL + MTL_LIGHT.format(6), obj, {
         "camera": CAMERA, "film": {"width": 80, "height": 80}, "render": {"spp": 64, "max_depth": 8},
         "materials": {
             "floor": {"type": "diffuse", "albedo": [0.6, 0.55, 0.5]},
-            "a": {"type": "dielectric", "ior": 1.5, "roughness": 0.2, "absorption": [0.1, 0.6, 1.4]}},
+            "a": glass},
         "background": [0.3, 0.3, 0.32]})
 
 
@@ -276,7 +281,7 @@ def write_envmap_diffuse(out):
 def write_all(out):
     """Writes every scene under out/ and checks the OBJ files; returns the scene names."""
     writers = {"conductors": write_conductors, "glass": write_glass, "normalmap": write_normalmap,
-               "mix": write_mix, "envmap": write_envmap, "envmap-diffuse": write_envmap_diffuse}
+               "glass-clear": lambda out: write_glass(out, (0, 0, 0)), "mix": write_mix, "envmap": write_envmap, "envmap-diffuse": write_envmap_diffuse}
     for name, writer in writers.items():
         writer(os.path.join(out, name))
         lights = ("light",) if name != "normalmap" else ()

@@ -16,7 +16,8 @@
                                           integrator becomes volpath
   mix a, b, weight w                      blendbsdf(a, b, weight w): (1 - w) a + w b
   normal_map                              normalmap (raw texels, n = 2 t - 1; its frame is (dp/du,
-                                          n x dp/du, n): DESIGN's for UVs that are not mirrored)
+                                          n x dp/du, n): DESIGN's for UVs that are not mirrored),
+                                          use_shadowing_function false (DESIGN: no terminator term)
   emission x emission_strength            'area' emitter
   non-dielectrics                         wrapped in twosided (ours shade the side a ray arrives from)
   environment file, scale, rotation t     envmap, scale, to_world = rotation about +y by 180 + t
@@ -151,7 +152,10 @@ class JsonMaterials:
             bsdf = {"type": "blendbsdf", "weight": self.scalar(m.get("weight"), key + ".weight", 0.5),
                     "bsdf_0": parts[0], "bsdf_1": parts[1]}
         if "normal_map" in m:
-            bsdf = {"type": "normalmap", "bsdf": bsdf,
+            # Mitsuba >= 3.7.1 multiplies by Conty Estevez et al.'s shadow-terminator term unless
+            # told not to; DESIGN has none. (Its flip_invalid_normals, on, only acts where the
+            # camera sees the back of the perturbed normal.)
+            bsdf = {"type": "normalmap", "bsdf": bsdf, "use_shadowing_function": False,
                     "normalmap": self.texture(m["normal_map"], key + ".normal_map", linear=True)}
         return bsdf, medium
 
