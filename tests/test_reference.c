@@ -134,7 +134,7 @@ Test(reference, furnace, .timeout = 300) { compare_with_reference("furnace", 32,
 /* The JSON materials (tools/make_material_scenes.py; DESIGN.md "Materials", "Environment"). */
 Test(reference_materials, rough_conductors_gold_and_anisotropic_copper, .timeout = 300) { compare_with_reference("conductors", 1024, 8192); }
 Test(reference_materials, rough_glass_with_absorption, .timeout = 300) { compare_with_reference("glass", 256, 8192); }
-Test(reference_materials, normal_map_at_grazing_light, .timeout = 300) { compare_with_reference("normalmap", 128, 16384); }
+Test(reference_materials, normal_map_at_grazing_light, .timeout = 300) { compare_with_reference("normalmap", 1024, 16384); }
 Test(reference_materials, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout = 300) { compare_with_reference("mix", 1024, 12288); }
-Test(reference_materials, environment_map_rough_gold, .timeout = 300) { compare_with_reference("envmap", 256, 4096); }
-Test(reference_materials, environment_map_diffuse_only, .timeout = 300) { compare_with_reference("envmap-diffuse", 256, 4096); }
+Test(reference_materials, environment_map_rough_gold, .timeout = 300) { compare_with_reference("envmap", 1024, 4096); }
+Test(reference_materials, environment_map_diffuse_only, .timeout = 300) { compare_with_reference("envmap-diffuse", 1024, 4096); }
