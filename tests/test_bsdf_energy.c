@@ -275,3 +275,25 @@ Test(bsdf_energy, conductor_fresnel_matches_reference)
     }
     bsdf_harness_close(&h);
 }
+
+/* Rough glass of index 1 lets light through unchanged (a delta lobe, weight = tint): the half
+ * vector of the rough model is undefined there, and every sample would otherwise be lost. */
+Test(bsdf_energy, index_matched_glass_is_transparent)
+{
+    BsdfHarness h;
+    bsdf_harness_open(&h);
+    Material m = bsdf_dielectric(1.0f, 0.5f, 0.0f);
+    m.base = (float4){{0.5f, 0.7f, 0.9f, 0}};
+    enum { N = 256 };
+    static cl_float4 wi_pdf[N], weight_flags[N];
+    cl_float4 wo = bsdf_dir(40, 10, 1);
+    bsdf_harness_sample(&h, &m, wo, 3u, N, wi_pdf, weight_flags);
+    for (int i = 0; i < N; i++) {
+        cr_assert_eq((cl_uint)weight_flags[i].s[3], SAMPLE_TRANSMISSION | SAMPLE_DELTA, "sample %d", i);
+        for (int k = 0; k < 3; k++) {
+            cr_assert(fabs(wi_pdf[i].s[k] + wo.s[k]) < 1e-5f, "sample %d: wi is not -wo", i);
+            cr_assert(fabs(weight_flags[i].s[k] - m.base.s[k]) < 1e-5f, "sample %d: weight", i);
+        }
+    }
+    bsdf_harness_close(&h);
+}

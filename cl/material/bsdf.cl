@@ -59,8 +59,10 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv)
 /* True when every lobe is a delta (no light sample can meet it: next-event estimation is skipped). */
 inline bool bsdf_is_delta(const Bsdf *b)
 {
-    if (b->type == MATERIAL_CONDUCTOR || b->type == MATERIAL_DIELECTRIC)
-        return fmax(b->alpha_x, b->alpha_y) < BSDF_SMOOTH_ALPHA;
+    if (b->type == MATERIAL_CONDUCTOR)
+        return microfacet_smooth(b->alpha_x, b->alpha_y);
+    if (b->type == MATERIAL_DIELECTRIC)
+        return dielectric_is_smooth(b);
     return false;
 }
 

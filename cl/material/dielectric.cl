@@ -8,6 +8,13 @@
 /* eta_t / eta_i for light crossing from wo's side: `front` = wo outside the glass. */
 inline float dielectric_eta(const Bsdf *b, bool front) { return front ? b->ior : 1.0f / b->ior; }
 
+/* Delta lobes: a smooth surface, or an index-matched one (ior 1), which the generalised half
+ * vector cannot describe (wo + wi = 0 for the only transmitted direction); pbrt-v4 does the same. */
+inline bool dielectric_is_smooth(const Bsdf *b)
+{
+    return b->ior == 1.0f || microfacet_smooth(b->alpha_x, b->alpha_y);
+}
+
 /* Reflection: f = F D G / (4 |cos_o cos_i|), pdf = D_wo(m) / (4 wo.m) * F (Walter eq. 20, 14).
  * Transmission (Walter eq. 21, 17), with eta = eta_t / eta_i, m = -normalize(wo + eta wi):
  *   f = (1 - F) D G |wi.m| |wo.m| / (|cos_o cos_i| (wi.m + wo.m / eta)^2) / eta^2,
@@ -18,7 +25,7 @@ inline float dielectric_eta(const Bsdf *b, bool front) { return front ? b->ior :
 inline float3 dielectric_eval(const Bsdf *b, float3 wo, float3 wi, bool front, float *pdf_w)
 {
     *pdf_w = 0.0f;
-    if (microfacet_smooth(b->alpha_x, b->alpha_y) || !(wo.z > 0.0f) || wi.z == 0.0f)
+    if (dielectric_is_smooth(b) || !(wo.z > 0.0f) || wi.z == 0.0f)
         return (float3)(0.0f);
     float eta = dielectric_eta(b, front);
     bool reflect = wi.z > 0.0f;
@@ -59,7 +66,7 @@ inline BsdfSample dielectric_sample(const Bsdf *b, float3 wo, bool front, float 
     BsdfSample s;
     float eta = dielectric_eta(b, front);
     float cos_t;
-    if (microfacet_smooth(b->alpha_x, b->alpha_y)) {
+    if (dielectric_is_smooth(b)) {
         float reflectance = fresnel_dielectric(wo.z, eta, &cos_t);
         s.pdf_w = 0.0f;
         if (u_lobe < reflectance) {
