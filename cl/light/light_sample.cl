@@ -65,7 +65,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         float2 uv = (float2)(b.x, b.y);
         if (tri.w & TRIANGLE_HAS_UVS)
             uv = (1.0f - b.x - b.y) * scene->uvs[tri.x] + b.x * scene->uvs[tri.y] + b.y * scene->uvs[tri.z];
-        ls.radiance *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
+        ls.radiance *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, ls.position));
     }
     ls.pdf_w = entry.pdf * (2.0f / double_area) * dist2 / cos_light;
     return ls;

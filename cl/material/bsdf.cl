@@ -3,20 +3,23 @@
  * pdf and sample to its lobes (diffuse.cl, conductor.cl, dielectric.cl, principled.cl). All in
  * the local shading frame of bsdf_common.cl. */
 
-/* A scalar parameter: the material's value, or its texture's red channel. */
-inline float material_scalar(const SceneView *scene, uint texture, float fallback, float2 uv)
+/* A scalar parameter: the constant, or its texture's red channel. Textures are looked up at uv,
+ * procedural ones at the hit's position (texture_eval). */
+inline float material_scalar(const SceneView *scene, uint texture, float value, float2 uv,
+                             float3 position)
 {
-    return texture == NO_TEXTURE ? fallback : texture_sample(scene, texture, uv).x;
+    return texture == NO_TEXTURE ? value : texture_eval(scene, texture, uv, position).x;
 }
 
 /* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
  * the expected BSDF is then (1 - w) f_a + w f_b, and next-event estimation and BSDF sampling at
  * this vertex both use the chosen leaf, so MIS stays consistent. u is reused (rescaled) per
  * level; the host bounds the nesting (MATERIAL_MIX_DEPTH_LIMIT) and refuses cycles. */
-inline Material material_resolve_mix(const SceneView *scene, Material m, float2 uv, float u)
+inline Material material_resolve_mix(const SceneView *scene, Material m, float2 uv, float3 position,
+                                     float u)
 {
     for (uint level = 0u; m.type == MATERIAL_MIX && level < MATERIAL_MIX_DEPTH_LIMIT; level++) {
-        float w = clamp(material_scalar(scene, m.tex[MATERIAL_TEX_WEIGHT], m.weight, uv), 0.0f, 1.0f);
+        float w = clamp(material_scalar(scene, m.tex[MATERIAL_TEX_WEIGHT], m.weight, uv, position), 0.0f, 1.0f);
         if (u < w) {
             u = u / w;
             m = scene->materials[m.mix_b];
@@ -29,15 +32,15 @@ inline Material material_resolve_mix(const SceneView *scene, Material m, float2 
     return m;
 }
 
-/* The leaf material m (not a mix) at uv, textures looked up. */
-inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv)
+/* The leaf material m (not a mix) at uv and position, textures looked up. */
+inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv, float3 position)
 {
     Bsdf b;
     b.type = m.type;
     b.flags = m.flags;
     b.base = xyz(m.base);
     if (m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
-        b.base *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_BASE], uv));
+        b.base *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_BASE], uv, position));
     b.eta = xyz(m.eta);
     b.k = xyz(m.k);
     b.specular_color = xyz(m.specular_color);
@@ -46,9 +49,9 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv)
     b.specular = m.specular;
     float r = m.roughness, aniso = m.anisotropy;
     if (m.tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
-        r = clamp(texture_sample(scene, m.tex[MATERIAL_TEX_ROUGHNESS], uv).x, 0.0f, 1.0f);
+        r = clamp(texture_eval(scene, m.tex[MATERIAL_TEX_ROUGHNESS], uv, position).x, 0.0f, 1.0f);
     if (m.tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE)
-        b.metallic = clamp(texture_sample(scene, m.tex[MATERIAL_TEX_METALLIC], uv).x, 0.0f, 1.0f);
+        b.metallic = clamp(texture_eval(scene, m.tex[MATERIAL_TEX_METALLIC], uv, position).x, 0.0f, 1.0f);
     /* DESIGN: alpha = r^2; anisotropy a stretches it along u and shrinks it along v. */
     float alpha = r * r, stretch = aniso > 0.0f ? sqrt(1.0f - 0.9f * aniso) : 1.0f;
     b.alpha_x = alpha / stretch;

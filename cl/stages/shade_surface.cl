@@ -9,13 +9,13 @@
 
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
 inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Material m, float2 uv,
-                            float t, float cos_light, float prev_pdf_w, uint depth)
+                            float3 position, float t, float cos_light, float prev_pdf_w, uint depth)
 {
     if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
     float3 L = xyz(m.emission);
     if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
-        L *= xyz(texture_sample(scene, m.tex[MATERIAL_TEX_EMISSION], uv));
+        L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, position));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
         return L;
@@ -80,7 +80,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
         ns = ng;
 
-    float3 L = emission_seen(p, scene, m, surf.uv, h.x, cos_o_geometric, dir4.w, depth);
+    float3 L = emission_seen(p, scene, m, surf.uv, surf.position, h.x, cos_o_geometric, dir4.w,
+                             depth);
     float3 gathered = beta * L;
 
     bool path_continues = depth < p->max_depth;
@@ -92,9 +93,10 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
          * a mix resolves to. */
         Material leaf = m.type == MATERIAL_MIX
-                            ? material_resolve_mix(scene, m, surf.uv, rng_bounce(key, bounce, DIM_MIX))
+                            ? material_resolve_mix(scene, m, surf.uv, surf.position,
+                                                   rng_bounce(key, bounce, DIM_MIX))
                             : m;
-        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv);
+        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.position);
         /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
          * materials keep the cheap one. */
         Frame frame = surface_needs_tangents(m, leaf)

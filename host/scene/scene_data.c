@@ -7,6 +7,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "scene/vertex_normals.h"
+
 /* Triangles that use the default material carry this id until scene_data_finish appends the one
  * default material of the scene and patches them. */
 #define DEFAULT_MATERIAL_PENDING 0xffffffffu
@@ -259,15 +261,19 @@ bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *
         ok = false;
     }
     ok = ok && fill_vertices(data, mesh, obj_path, first_corner, num_new, &normals_ok, err);
+    uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
+    if (ok) {
+        data->num_vertices = (uint32_t)num_vertices;
+        data->num_triangles = (uint32_t)num_triangles;
+        if (!normals_ok)
+            drop_bad_normals(data, first_triangle);
+        ok = !options->smooth ||
+             vertex_normals_smooth(mesh, data->positions, data->normals, data->triangles,
+                                   first_triangle, data->num_triangles, first_vertex, first_corner,
+                                   err);
+    }
     free(first_corner);
-    if (!ok)
-        return false;
-    uint32_t first_triangle = data->num_triangles;
-    data->num_vertices = (uint32_t)num_vertices;
-    data->num_triangles = (uint32_t)num_triangles;
-    if (!normals_ok)
-        drop_bad_normals(data, first_triangle);
-    return true;
+    return ok;
 }
 
 /* ---- Finishing ------------------------------------------------------------------------------ */

@@ -41,15 +41,23 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
                               &d->max_depth);
 }
 
-/* objects[i].material: a JSON material's name, given to every triangle of the object. */
-static bool parse_object_material(JsonParser *p, const cJSON *e, int i, SceneDesc *d)
+/* objects[i].smooth (default false: a mesh without vn is shaded flat) and objects[i].material (a
+ * JSON material's name, given to every triangle of the object). */
+static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc *d)
 {
     ObjectOptions *o = &d->object_options[i];
     o->material = NO_MATERIAL;
-    const cJSON *item = json_member(e, "material");
+    char key[64];
+    const cJSON *item = json_member(e, "smooth");
+    if (item) {
+        snprintf(key, sizeof key, "objects[%d].smooth", i);
+        if (!cJSON_IsBool(item))
+            return json_fail(p, ERR_JSON_TYPE, key, "expected true or false");
+        o->smooth = cJSON_IsTrue(item);
+    }
+    item = json_member(e, "material");
     if (!item)
         return true;
-    char key[64];
     snprintf(key, sizeof key, "objects[%d].material", i);
     if (!cJSON_IsString(item))
         return json_fail(p, ERR_JSON_TYPE, key, "expected a material name (string)");
@@ -63,7 +71,7 @@ static bool parse_object_material(JsonParser *p, const cJSON *e, int i, SceneDes
 
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj", "material", NULL};
+    static const char *const keys[] = {"obj", "material", "smooth", NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -90,7 +98,7 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         if (!obj->valuestring[0])
             return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
         if (!scene_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
-            !parse_object_material(p, e, i, d))
+            !parse_object_options(p, e, i, d))
             return false;
         d->num_objects = i + 1;
     }
