@@ -79,7 +79,7 @@ static inline float *one_texel_map(int w, int h, int bi, int bj)
 static inline const char *write_scene(const char *dir, const char *name, const char *objects,
                                       const char *env_file, float rotation, const char *camera)
 {
-    char text[2048];
+    char text[8192];
     snprintf(text, sizeof text,
              "{\"camera\": %s, \"objects\": %s,\n"
              " \"environment\": {\"file\": \"%s\", \"scale\": 1, \"rotation\": %g}}\n",

@@ -65,28 +65,20 @@ static void block_means(const float *rgb, double out[NB])
                 out[((y / BLOCK) * (SIDE / BLOCK) + x / BLOCK) * 3 + c] += rgb[3 * (y * SIDE + x) + c] / (BLOCK * BLOCK);
 }
 
-/* A diffuse sphere on a floor under a map with a small bright sun: NEE + MIS (the map sampled,
- * escaped rays weighted) and BSDF-only sampling converge to the same image. Each block's mean is
- * compared with the spread of that mean over independent seeds. `objects` is the scene's object
- * list (the ball and floor, plus anything else). */
-static void check_nee_against_bsdf_sampling(const char *dir, const char *objects)
+/* NEE + MIS (the map sampled, escaped rays weighted) and BSDF-only sampling converge to the same
+ * image of `scene`: each block's mean is compared with the spread of that mean over independent
+ * seeds (with a floor of `error_floor` x the mean on its standard error), and the image means
+ * agree within `image_tolerance` (relative). */
+static void check_nee_against_bsdf_sampling(const char *scene, int spp_nee, int spp_bsdf,
+                                            double error_floor, double image_tolerance)
 {
-    int w = 64, h = 32;
-    float *rgb = contrast_map(w, h);
-    char hdr[512];
-    snprintf(hdr, sizeof hdr, "%s/sky.hdr", dir);
-    cr_assert(stbi_write_hdr(hdr, w, h, 3, rgb));
-    free(rgb);
-    write_ball_obj(dir, true);
-    const char *scene = write_scene(dir, "scene.json", objects, "sky.hdr", 20.0f,
-                                    "{\"eye\": [0, 1, 4], \"target\": [0, -0.3, 0], \"fov_y\": 45}");
     RenderFixture f;
     render_fixture_open(&f, scene, SIDE, SIDE);
     enum { SEEDS = 8 };
     static double mean[2][SEEDS][NB];
     for (int no_nee = 0; no_nee < 2; no_nee++)
         for (int s = 0; s < SEEDS; s++) {
-            RenderSettings rs = {.spp = no_nee ? 2048 : 256, .max_depth = 4, .seed = 11 + 7 * s + no_nee, .no_nee = no_nee};
+            RenderSettings rs = {.spp = no_nee ? spp_bsdf : spp_nee, .max_depth = 4, .seed = 11 + 7 * s + no_nee, .no_nee = no_nee};
             float *img = render_fixture_render(&f, rs, NULL);
             block_means(img, mean[no_nee][s]);
             free(img);
@@ -103,21 +95,38 @@ static void check_nee_against_bsdf_sampling(const char *dir, const char *objects
             total[k] += m[k];
         }
         /* A floor on the standard error: blocks of pure sky have no noise at all. */
-        double z = fabs(m[0] - m[1]) / sqrt(var[0] + var[1] + 1e-5 * m[1] * m[1] + 1e-12);
+        double floor = error_floor * m[1];
+        double z = fabs(m[0] - m[1]) / sqrt(var[0] + var[1] + floor * floor + 1e-12);
         worst = fmax(worst, z);
         if (z > 3.0)
             cr_log_info("block %d channel %d: NEE %.4f +- %.4f, BSDF-only %.4f +- %.4f (z = %.1f)", b / 3, b % 3, m[0], sqrt(var[0]), m[1], sqrt(var[1]), z);
         cr_expect(z < 5.0, "block %d channel %d: NEE %.4f, BSDF-only %.4f (z = %.1f)", b / 3, b % 3, m[0], m[1], z);
     }
     cr_log_info("worst block z %.2f; image means NEE %.4f, BSDF-only %.4f", worst, total[0] / NB, total[1] / NB);
-    cr_expect(fabs(total[0] - total[1]) < 0.01 * total[1], "image means NEE %.4f, BSDF-only %.4f",
+    cr_expect(fabs(total[0] - total[1]) < image_tolerance * total[1], "image means NEE %.4f, BSDF-only %.4f",
               total[0] / NB, total[1] / NB);
     render_fixture_close(&f);
 }
 
+/* A diffuse sphere on a floor under a generated map with a small bright sun, a black row and a
+ * noisy sky; `objects` is the scene's object list (the ball and floor, plus anything else). */
+static void check_contrast_map(const char *dir, const char *objects)
+{
+    int w = 64, h = 32;
+    float *rgb = contrast_map(w, h);
+    char hdr[512];
+    snprintf(hdr, sizeof hdr, "%s/sky.hdr", dir);
+    cr_assert(stbi_write_hdr(hdr, w, h, 3, rgb));
+    free(rgb);
+    write_ball_obj(dir, true);
+    const char *scene = write_scene(dir, "scene.json", objects, "sky.hdr", 20.0f,
+                                    "{\"eye\": [0, 1, 4], \"target\": [0, -0.3, 0], \"fov_y\": 45}");
+    check_nee_against_bsdf_sampling(scene, 256, 2048, 0.003, 0.01);
+}
+
 Test(environment, nee_with_mis_agrees_with_bsdf_sampling, .timeout = 300)
 {
-    check_nee_against_bsdf_sampling(test_temp_dir(), "[{\"obj\": \"ball.obj\"}]");
+    check_contrast_map(test_temp_dir(), "[{\"obj\": \"ball.obj\"}]");
 }
 
 /* The same with a small lamp (two emissive triangles facing down) above the ball: triangles and
@@ -130,5 +139,15 @@ Test(environment, nee_with_mis_agrees_with_a_lamp_in_the_same_light_table, .time
     test_write_file(dir, "lamp.obj",
                     "mtllib lamp.mtl\nusemtl lamp\nv -0.3 2.5 -0.3\nv 0.3 2.5 -0.3\nv 0.3 2.5 0.3\n"
                     "v -0.3 2.5 0.3\nf 1 2 3\nf 1 3 4\n");
-    check_nee_against_bsdf_sampling(dir, "[{\"obj\": \"ball.obj\"}, {\"obj\": \"lamp.obj\"}]");
+    check_contrast_map(dir, "[{\"obj\": \"ball.obj\"}, {\"obj\": \"lamp.obj\"}]");
+}
+
+/* The issue's unbiasedness check on a real map: the diffuse sphere on a floor of scenes/venice
+ * (the Venice sunset HDR, CC0, in the repository) through NEE + MIS and BSDF-only, on the bilinear
+ * map. The sun makes BSDF-only heavy-tailed (rare hits), so 8 seeds' spread underestimates its
+ * error: a 1% floor on the blocks' standard error (at 4x the spp the worst block is at z < 2
+ * without it), and the image means within 0.5%. */
+Test(environment, nee_with_mis_agrees_with_bsdf_sampling_under_venice_sunset, .timeout = 300)
+{
+    check_nee_against_bsdf_sampling("scenes/venice/sphere.json", 128, 1024, 0.01, 0.005);
 }

@@ -145,3 +145,65 @@ Test(view, film_at_n_spp_is_pt_render_bit_for_bit)
                  first < n ? view[first] : 0.0f, first < n ? render[first] : 0.0f);
     free(view), free(render);
 }
+
+/* Reads dir/name (an EXR film) into *rgb; its size must be width x height. */
+static float *read_film(const char *dir, const char *name, int width, int height)
+{
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    float *rgb;
+    int w, h;
+    Error e = {0};
+    cr_assert(image_read_exr(path, &rgb, &w, &h, &e), "%s", e.message);
+    cr_assert(w == width && h == height, "%s is %dx%d", name, w, h);
+    return rgb;
+}
+
+/* '.' and ',' turn the environment map by +15 and -15 degrees (the scene's environment.rotation):
+ * seven '.' and one ',' end at 90, and the film after them is 'pt render' of the scene with
+ * rotation 90 bit for bit (and not the scene's own rotation 0). */
+Test(view, environment_rotation_keys_give_the_render_of_that_rotation)
+{
+    require_display();
+    const char *dir = test_temp_dir();
+    char root[PATH_MAX];
+    cr_assert(getcwd(root, sizeof root));
+    const char *size = "--width 48 --height 32 --spp 4 --seed 3";
+    ViewSession s;
+    session_start(&s, dir, "view '%s/scenes/venice/sphere.json' %s --events --screenshot view.exr",
+                  root, size);
+    size_t at = session_wait(&s, 0, "event: ready 48x32");
+    session_find_window(&s);
+    char expected[64];
+    for (int step = 1; step <= 7; step++) {
+        snprintf(expected, sizeof expected, "event: environment rotation %d", 15 * step);
+        at = session_send(&s, at, "key period", expected);
+    }
+    at = session_send(&s, at, "key comma", "event: environment rotation 90");
+    at = session_wait(&s, at, "event: converged 4 spp");
+    int exit_code = session_quit(&s);
+    char err[8192];
+    slurp(s.err_path, err, sizeof err);
+    cr_assert_eq(exit_code, 0, "pt view: %s", err);
+
+    char scene[PATH_MAX];
+    snprintf(scene, sizeof scene, "%s/rotated.json", dir);
+    FILE *f = fopen(scene, "w");
+    cr_assert(f, "cannot write %s", scene);
+    fprintf(f, "{\"camera\": {\"eye\": [0, 0.6, 4.5], \"target\": [0, -0.2, 0], \"fov_y\": 40},\n"
+               " \"render\": {\"max_depth\": 6},\n"
+               " \"objects\": [{\"obj\": \"%s/scenes/venice/sphere.obj\"}],\n"
+               " \"environment\": {\"file\": \"%s/scenes/venice/venice_sunset_1k.hdr\", \"rotation\": 90}}\n",
+            root, root);
+    fclose(f);
+    Run r = run_pt("render %s %s -q -o %s/rotated.exr", scene, size, dir);
+    cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
+    r = run_pt("render scenes/venice/sphere.json %s -q -o %s/unrotated.exr", size, dir);
+    cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
+    float *view = read_film(dir, "view.exr", 48, 32), *rotated = read_film(dir, "rotated.exr", 48, 32);
+    float *unrotated = read_film(dir, "unrotated.exr", 48, 32);
+    size_t n = (size_t)48 * 32 * 3;
+    cr_expect(memcmp(view, rotated, n * sizeof *view) == 0, "the film is not pt render at rotation 90");
+    cr_expect(memcmp(view, unrotated, n * sizeof *view) != 0, "the film is still at rotation 0");
+    free(view), free(rotated), free(unrotated);
+}

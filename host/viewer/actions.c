@@ -3,6 +3,7 @@
  * cursor, change the aperture, save the film, print the camera. */
 #include "viewer/actions.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,6 +69,26 @@ void viewer_change_aperture(Viewer *v, int steps)
     for (; steps < 0; steps++)
         c->aperture = c->aperture / 1.5f < smallest * 0.99f ? 0.0f : c->aperture / 1.5f;
     printf("aperture %.4g (focus distance %.4g)\n", c->aperture, c->focus_distance);
+}
+
+bool viewer_turn_environment(Viewer *v, int steps)
+{
+    SceneDesc *d = &v->session.scene.desc;
+    if (v->session.buffers.env_width == 0) {
+        printf("environment: the scene has no environment map to turn\n");
+        return false;
+    }
+    double degrees = fmod((double)d->environment_rotation + 15.0 * steps, 360.0);
+    if (degrees < 0.0)
+        degrees += 360.0;
+    d->environment_rotation = (float)degrees;
+    /* What the kernels read (RenderParams.env_rotation, a fraction of a turn, as
+     * environment_build stores it); the sampling tables do not depend on the rotation. */
+    v->session.buffers.env_rotation = (float)(degrees / 360.0);
+    v->session.scene.data.environment.rotation = v->session.buffers.env_rotation;
+    printf("environment rotation %g degrees\n", degrees);
+    viewer_print_event(&v->input, "environment rotation %g", degrees);
+    return true;
 }
 
 bool viewer_is_exr_name(const char *path)

@@ -11,6 +11,10 @@
 bool viewer_focus_under_cursor(Viewer *v);
 /* [ and ]: the aperture shrinks or grows by factors of 1.5 (steps < 0 or > 0), down to 0. */
 void viewer_change_aperture(Viewer *v, int steps);
+/* , and .: the environment map's rotation changes by 15 degrees per step (the scene's
+ * environment.rotation, DESIGN's sense); false (and a message) when the scene has no map. The
+ * caller restarts the film with the new rotation. */
+bool viewer_turn_environment(Viewer *v, int steps);
 /* S: PNG + EXR of the film as out/<scene>-view-N, N the first free number; prints the names. */
 void viewer_save_film(Viewer *v);
 /* The linear film (the mean per pixel, as 'pt render -o FILE.exr' writes it) as an EXR. */

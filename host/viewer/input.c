@@ -72,7 +72,7 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
     viewer_input_key(in, key, action, mods);
 }
 
-/* + - [ ] by the character typed (their keys move between layouts); auto-repeat applies. */
+/* + - [ ] , . by the character typed (their keys move between layouts); auto-repeat applies. */
 static void on_char(GLFWwindow *window, unsigned int codepoint)
 {
     ViewerInput *in = input_of(window);
@@ -82,6 +82,8 @@ static void on_char(GLFWwindow *window, unsigned int codepoint)
     case '-': case '_': in->exposure_steps--; break;
     case ']': in->aperture_steps++; break;
     case '[': in->aperture_steps--; break;
+    case '.': case '>': in->environment_steps++; break;
+    case ',': case '<': in->environment_steps--; break;
     default: break;
     }
 }
@@ -143,7 +145,7 @@ void viewer_input_attach(GLFWwindow *window, ViewerInput *input, bool print_even
 void viewer_input_clear(ViewerInput *in)
 {
     in->actions = 0;
-    in->exposure_steps = in->aperture_steps = 0;
+    in->exposure_steps = in->aperture_steps = in->environment_steps = 0;
     in->orbit_dx = in->orbit_dy = in->pan_dx = in->pan_dy = in->dolly_steps = 0.0;
     in->resized = false;
 }
@@ -179,6 +181,8 @@ void viewer_input_print_help(FILE *out)
           "  + / -           exposure up / down half a stop\n"
           "  F               focus on the point under the cursor (thin lens)\n"
           "  [ / ]           aperture smaller / larger (0 = pinhole)\n"
+          "  , / .           turn the environment map 15 degrees clockwise / counter-clockwise\n"
+          "                  seen from above (its rotation -15 / +15)\n"
           "  Ctrl+S          save the film as PNG + EXR (out/<scene>-view-N, never overwriting)\n"
           "  C               print the camera as JSON to paste into a scene\n"
           "  H               this list\n"

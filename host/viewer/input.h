@@ -24,6 +24,7 @@ typedef struct {
     unsigned actions;            /* VIEWER_* bits */
     int exposure_steps;          /* +/-: half stops */
     int aperture_steps;          /* ]/[: lens wider or narrower */
+    int environment_steps;       /* . / ,: the environment map turned by 15 degrees */
     double orbit_dx, orbit_dy;   /* left drag, window pixels */
     double pan_dx, pan_dy;       /* right drag, window pixels */
     double dolly_steps;          /* scroll, positive = closer */

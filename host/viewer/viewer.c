@@ -128,6 +128,11 @@ static void apply_input(Viewer *v, double seconds)
         moved = true;
     if (moved)
         apply_camera(v);
+    /* A new rotation is a new scene for the film: the wavefront takes it at creation. */
+    if (in->environment_steps && viewer_turn_environment(v, in->environment_steps)) {
+        create_film(v, wavefront_stats(v->wavefront)->window_size);
+        v->paused = false;
+    }
     if (in->exposure_steps) {
         v->exposure += 0.5f * (float)in->exposure_steps;
         printf("exposure %+.1f EV\n", v->exposure);
