@@ -205,50 +205,52 @@ Test(flatten, non_finite_position_is_rejected)
 Test(flatten, materials_map_from_mtl)
 {
     ObjMaterial m = obj_material("m", 0.5f, 0.25f, 0.125f);
-    Material out = material_from_obj(&m, 7);
+    ObjTextures none = obj_textures_none(), kd = none;
+    kd.kd = 7;
+    Material out = material_from_obj(&m, &kd);
     cr_expect_eq(out.type, MATERIAL_DIFFUSE);
     cr_expect_eq(out.base.s[1], 0.25f);
     cr_expect_eq(out.tex[MATERIAL_TEX_BASE], 7);
 
     m.ni = 1.5f; /* Cornell box walls: Ni 1.5 without d < 1 stays diffuse */
-    cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_DIFFUSE);
+    cr_expect_eq(material_from_obj(&m, &none).type, MATERIAL_DIFFUSE);
 
     m.illum = 3; /* mirror illum without Ks: diffuse */
-    cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_DIFFUSE);
+    cr_expect_eq(material_from_obj(&m, &none).type, MATERIAL_DIFFUSE);
     m.ks[0] = m.ks[1] = m.ks[2] = 0.9f;
-    out = material_from_obj(&m, NO_TEXTURE);
+    out = material_from_obj(&m, &none);
     cr_expect_eq(out.type, MATERIAL_CONDUCTOR);
     cr_expect_eq(out.base.s[0], 0.9f);
     m.illum = 5;
-    cr_expect_eq(material_from_obj(&m, NO_TEXTURE).type, MATERIAL_CONDUCTOR);
+    cr_expect_eq(material_from_obj(&m, &none).type, MATERIAL_CONDUCTOR);
 
     ObjMaterial glass = obj_material("glass", 0, 0, 0);
     glass.illum = 7;
     glass.ni = 2.5f;
-    out = material_from_obj(&glass, NO_TEXTURE);
+    out = material_from_obj(&glass, &none);
     cr_expect_eq(out.type, MATERIAL_DIELECTRIC);
     cr_expect_eq(out.ior, 2.5f);
     cr_expect_eq(out.base.s[0], 1.0f, "absent Tf means untinted");
     glass.illum = 4;
     glass.ni = 1.0f;
-    out = material_from_obj(&glass, NO_TEXTURE);
+    out = material_from_obj(&glass, &none);
     cr_expect_eq(out.type, MATERIAL_DIELECTRIC);
     cr_expect_eq(out.ior, 1.5f, "Ni <= 1 on a dielectric: 1.5");
     glass.tf[0] = 0.1f, glass.tf[1] = 0.2f, glass.tf[2] = 0.3f;
-    cr_expect_eq(material_from_obj(&glass, NO_TEXTURE).base.s[2], 0.3f);
+    cr_expect_eq(material_from_obj(&glass, &none).base.s[2], 0.3f);
 
     ObjMaterial water = obj_material("water", 0.5f, 0.5f, 0.5f);
     water.ni = 1.33f;
     water.d = 0.5f;
-    out = material_from_obj(&water, NO_TEXTURE);
+    out = material_from_obj(&water, &none);
     cr_expect_eq(out.type, MATERIAL_DIELECTRIC, "Ni > 1 with d < 1");
     cr_expect_eq(out.ior, 1.33f);
     water.ni = 1.0f;
-    cr_expect_eq(material_from_obj(&water, NO_TEXTURE).type, MATERIAL_DIFFUSE, "d < 1 alone is not glass");
+    cr_expect_eq(material_from_obj(&water, &none).type, MATERIAL_DIFFUSE, "d < 1 alone is not glass");
 
     ObjMaterial light = obj_material("light", 0.78f, 0.78f, 0.78f);
     light.ke[0] = 17, light.ke[1] = 12, light.ke[2] = 4;
-    out = material_from_obj(&light, NO_TEXTURE);
+    out = material_from_obj(&light, &none);
     cr_expect_eq(out.emission.s[0], 17.0f);
     cr_expect(fabsf(out.emission.s[3] - (0.2126f * 17 + 0.7152f * 12 + 0.0722f * 4)) < 1e-4f);
 }

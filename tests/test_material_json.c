@@ -313,6 +313,8 @@ Test(material_json, out_of_range_values_name_key_and_value)
                  "materials.gold.roughness", "-0.25");
     expect_error(MAT("{\"type\": \"dielectric\", \"ior\": -1.5}"), ERR_JSON_VALUE,
                  "materials.gold.ior", "-1.5");
+    expect_error(MAT("{\"type\": \"principled\", \"ior\": 0}"), ERR_JSON_VALUE,
+                 "materials.gold.ior", "0 must be > 0");
     expect_error(MAT("{\"type\": \"dielectric\", \"ior\": 1e999}"), ERR_JSON_VALUE,
                  "materials.gold.ior", "inf");
     expect_error(MAT("{\"type\": \"conductor\", \"eta\": [0.1, -0.2, 1]}"), ERR_JSON_VALUE,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "app/cli.h"
 
+#include "io/obj_loader.h"
 #include "scene/scene.h"
 
 #include <errno.h>
@@ -159,7 +160,10 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             o->aov = v;
         } else {
             takes_value = false;
-            if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) o->quiet = true;
+            if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+                o->quiet = true;
+                obj_loader_set_quiet(true); /* MTL statements pt does not use: no warnings */
+            }
             else if (!strcmp(a, "--preview")) o->preview = true;
             else if (!strcmp(a, "--progress")) o->progress = true;
             else if (!strcmp(a, "--no-nee")) o->no_nee = true;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 #include <sstream>
 
 extern "C" {
@@ -16,11 +17,61 @@ extern "C" {
 
 namespace mtl_reader {
 
+bool quiet_unused = false;
+
 namespace {
+
+/* The statements pt's material mapping reads (README "Materials"); any other is warned about. */
+const std::set<std::string> &used_statements()
+{
+    static const std::set<std::string> used = {
+        "newmtl", "Kd", "Ks", "Ke", "Ni", "d", "Tr", "Tf", "Kt", "illum", "Ns", "Pr", "Pm",
+        "map_Kd", "map_Ke", "map_Pr", "map_Pm", "map_d", "norm", "map_Bump", "map_bump", "bump"};
+    return used;
+}
+
+bool is_texture_statement(const std::string &name)
+{
+    return name.compare(0, 4, "map_") == 0 || name == "bump" || name == "norm" || name == "disp" ||
+           name == "decal" || name == "refl";
+}
+
+/* Statement and texture option names pt does not use, each with how often it occurs. */
+struct UnusedNames {
+    std::map<std::string, int> statements, options;
+};
+
+/* The texture options of a texture statement's arguments ("-s 2 2 1 -bm 0.5 file.png"); -bm is
+ * used on normal maps only. A token like "-0.5" is a value, not an option. */
+void note_texture_options(const std::string &name, std::istringstream &args, UnusedNames *unused)
+{
+    bool bump = name == "norm" || name == "bump" || name == "map_Bump" || name == "map_bump";
+    std::string token;
+    while (args >> token) {
+        if (token.size() < 2 || token[0] != '-' || isdigit((unsigned char)token[1]) || token[1] == '.')
+            continue;
+        if (!(bump && token == "-bm"))
+            unused->options[token + " (" + name + ")"]++;
+    }
+}
+
+/* Warns once per statement name and per texture option of one MTL file. */
+void warn_unused(const std::string &path, const UnusedNames &unused)
+{
+    if (quiet_unused)
+        return;
+    for (const auto &s : unused.statements)
+        warn("%s: statement '%s' is not used by pt (ignored %d time%s)", path.c_str(),
+             s.first.c_str(), s.second, s.second == 1 ? "" : "s");
+    for (const auto &o : unused.options)
+        warn("%s: texture option %s is not used by pt (ignored %d time%s)", path.c_str(),
+             o.first.c_str(), o.second, o.second == 1 ? "" : "s");
+}
 
 /* Which materials of one MTL gave illum and Tf/Kt, in the order tinyobj::LoadMtl appends them: a
  * block is appended when the next newmtl starts if it has a name, and the last block always. */
-std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &folder)
+std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &folder,
+                                                 UnusedNames *unused)
 {
     struct Block {
         bool named;
@@ -48,7 +99,22 @@ std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const 
             blocks.back().extras.has_illum = true;
         } else if (keyword("Tf") || keyword("Kt")) {
             blocks.back().extras.has_tf = true;
+        } else if (keyword("Ns")) {
+            blocks.back().extras.has_ns = true;
+        } else if (keyword("Pr")) {
+            blocks.back().extras.has_pr = true;
+        } else if (keyword("Pm")) {
+            blocks.back().extras.has_pm = true;
         }
+        if (record[0] == '#')
+            continue;
+        std::istringstream words(record);
+        std::string name;
+        words >> name;
+        if (!used_statements().count(name))
+            unused->statements[name]++;
+        else if (is_texture_statement(name))
+            note_texture_options(name, words, unused);
     }
     std::vector<MaterialExtras> appended;
     for (size_t i = 0; i < blocks.size(); i++)
@@ -135,11 +201,27 @@ bool MaterialLibraryReader::operator()(const std::string &name,
     std::string mtl_warnings;
     tinyobj::LoadMtl(names, materials, &stream, &mtl_warnings, errors);
     warn_lines(path, mtl_warnings);
-    std::vector<MaterialExtras> found = scan_material_blocks(text, folder_of(path));
+    UnusedNames unused;
+    std::vector<MaterialExtras> found = scan_material_blocks(text, folder_of(path), &unused);
+    warn_unused(path, unused);
     if (found.size() != materials->size() - before) /* keep tinyobj's values as they are */
         found.assign(materials->size() - before, MaterialExtras(folder_of(path)));
     extras.insert(extras.end(), found.begin(), found.end());
     return true;
+}
+
+/* A texture path resolved against the MTL's folder into a 1024-byte field ("" when none). */
+static void copy_path(const char *material, const char *statement, const std::string &folder,
+                      const std::string &name, char out[1024])
+{
+    out[0] = '\0';
+    if (name.empty())
+        return;
+    std::string path = join_path(folder, name);
+    if (path.size() >= 1024)
+        warn("material %s: %s path longer than 1023 characters ignored", material, statement);
+    else
+        snprintf(out, 1024, "%s", path.c_str());
 }
 
 void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to)
@@ -154,12 +236,25 @@ void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras
     to->ni = from.ior;
     to->d = from.dissolve;
     to->illum = extras.has_illum ? from.illum : -1;
-    std::string map_kd = join_path(extras.folder, from.diffuse_texname);
-    if (map_kd.size() >= sizeof to->map_kd)
-        warn("material %s: map_Kd path longer than %zu characters ignored", to->name,
-             sizeof to->map_kd - 1);
-    else
-        snprintf(to->map_kd, sizeof to->map_kd, "%s", map_kd.c_str());
+    to->ns = from.shininess;
+    to->pr = from.roughness;
+    to->pm = from.metallic;
+    to->has_ns = extras.has_ns;
+    to->has_pr = extras.has_pr;
+    to->has_pm = extras.has_pm;
+    /* DESIGN: norm, else map_Bump / bump, is the normal map; -bm scales its xy. */
+    bool norm = !from.normal_texname.empty();
+    to->bump_scale = norm ? from.normal_texopt.bump_multiplier : from.bump_texopt.bump_multiplier;
+    copy_path(to->name, "map_Kd", extras.folder, from.diffuse_texname, to->map_kd);
+    copy_path(to->name, "map_Ke", extras.folder, from.emissive_texname, to->map_ke);
+    copy_path(to->name, "map_Pr", extras.folder, from.roughness_texname, to->map_pr);
+    copy_path(to->name, "map_Pm", extras.folder, from.metallic_texname, to->map_pm);
+    copy_path(to->name, "map_d", extras.folder, from.alpha_texname, to->map_d);
+    snprintf(to->normal_statement, sizeof to->normal_statement, "%s", norm ? "norm" : "map_Bump");
+    copy_path(to->name, to->normal_statement, extras.folder,
+              norm ? from.normal_texname : from.bump_texname, to->map_normal);
 }
 
 } // namespace mtl_reader
+
+void obj_loader_set_quiet(bool quiet) { mtl_reader::quiet_unused = quiet; }

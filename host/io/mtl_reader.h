@@ -27,15 +27,19 @@ extern "C" {
 
 namespace mtl_reader {
 
-/* What tinyobj::material_t cannot tell: whether illum and Tf were given, and the MTL's folder. */
+/* What tinyobj::material_t cannot tell: whether illum, Tf, Ns, Pr and Pm were given, and the
+ * MTL's folder. */
 struct MaterialExtras {
     std::string folder;
-    bool has_illum, has_tf;
+    bool has_illum, has_tf, has_ns = false, has_pr = false, has_pm = false;
     explicit MaterialExtras(const std::string &folder_, bool has_illum_ = true, bool has_tf_ = true)
         : folder(folder_), has_illum(has_illum_), has_tf(has_tf_)
     {
     }
 };
+
+/* Silences the warnings about unused statements and texture options (obj_loader_set_quiet). */
+extern bool quiet_unused;
 
 /* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. One that
  * exists but cannot be read as a material library (a folder, /dev/zero, too large) is an error,
@@ -54,8 +58,8 @@ class MaterialLibraryReader : public tinyobj::MaterialReader {
     std::string folder_;
 };
 
-/* One tinyobjloader material as an ObjMaterial: absent illum -1, absent Tf 1 1 1, map_Kd resolved
- * against the MTL's folder. */
+/* One tinyobjloader material as an ObjMaterial: absent illum -1, absent Tf 1 1 1, texture paths
+ * resolved against the MTL's folder. */
 void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to);
 
 /* The folder part of a path ("" for none, "/" for the root) and a name resolved against one. */

@@ -18,7 +18,17 @@ typedef struct {
     float ni;       /* index of refraction, 1 when absent */
     float d;        /* dissolve, 1 when absent */
     int illum;      /* illumination model, -1 when absent */
-    char map_kd[1024]; /* path resolved against the MTL's folder, "" when none */
+    float ns;       /* specular exponent */
+    float pr, pm;   /* PBR extension: roughness, metallic */
+    bool has_ns, has_pr, has_pm; /* whether Ns, Pr, Pm were given */
+    float bump_scale; /* -bm of the normal map, 1 when absent */
+    /* Texture paths resolved against the MTL's folder, "" when none. */
+    char map_kd[1024];
+    char map_ke[1024];
+    char map_pr[1024], map_pm[1024];
+    char map_d[1024];
+    char map_normal[1024]; /* norm, else map_Bump / bump */
+    char normal_statement[12]; /* which of them: "norm" or "map_Bump" */
 } ObjMaterial;
 
 typedef struct {
@@ -45,6 +55,9 @@ typedef struct {
  * fewer than 3 corners (skipped). Faces with a repeated corner may give fewer than n - 2
  * triangles (zero-area ones are dropped). On failure *out is left empty. */
 bool obj_load(const char *path, ObjMesh *out, Error *err);
+/* MTL statements and texture options pt does not use are warned about once per name per file;
+ * quiet (pt render --quiet) silences those warnings. */
+void obj_loader_set_quiet(bool quiet);
 void obj_free(ObjMesh *mesh);
 
 #endif

@@ -212,6 +212,16 @@ static bool read_type_keys(Reader *r, const char *self)
     return false;
 }
 
+/* An ior of 0 would divide by zero in the Fresnel terms. */
+static bool check_ior(Reader *r)
+{
+    if (r->m->ior > 0.0f)
+        return true;
+    char key[300];
+    snprintf(key, sizeof key, "%s.ior", r->prefix);
+    return json_fail(r->p, ERR_JSON_VALUE, key, "%g must be > 0", r->m->ior);
+}
+
 /* Keys every type takes: emission (times emission_strength), normal and bump maps, opacity. */
 static bool read_common_keys(Reader *r)
 {
@@ -298,7 +308,7 @@ bool materials_from_json(JsonParser *p, const cJSON *obj, const TextureDesc *tex
         ok = read_type(&r, &type) && check_keys(&r, type);
         if (ok) {
             d->m = material_blank(type);
-            ok = read_type_keys(&r, d->name) && read_common_keys(&r);
+            ok = read_type_keys(&r, d->name) && check_ior(&r) && read_common_keys(&r);
         }
         (*count)++;
     }

@@ -31,37 +31,139 @@ Material material_blank(uint32_t type)
     return out;
 }
 
-Material material_from_obj(const ObjMaterial *m, uint32_t map_kd)
+ObjTextures obj_textures_none(void)
+{
+    return (ObjTextures){.kd = NO_TEXTURE, .ke = NO_TEXTURE, .pr = NO_TEXTURE, .pm = NO_TEXTURE,
+                         .d = NO_TEXTURE, .normal = NO_TEXTURE, .ke_mean_luminance = 1.0f};
+}
+
+/* The type DESIGN's "MTL mapping" gives, in its order of precedence. */
+static uint32_t obj_type(const ObjMaterial *m)
 {
     bool has_ks = m->ks[0] + m->ks[1] + m->ks[2] > 0.0f;
-    bool refracts = m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f);
-    Material out;
-    if ((m->illum == 3 || m->illum == 5) && has_ks) {
-        out = material_blank(MATERIAL_CONDUCTOR);
+    if ((m->illum == 3 || m->illum == 5) && has_ks)
+        return MATERIAL_CONDUCTOR;
+    if (m->illum == 4 || m->illum == 6 || m->illum == 7 || (m->ni > 1.0f && m->d < 1.0f))
+        return MATERIAL_DIELECTRIC;
+    if (m->has_pr || m->has_pm || (m->illum == 2 && has_ks && m->has_ns))
+        return MATERIAL_PRINCIPLED;
+    return MATERIAL_DIFFUSE;
+}
+
+static float unit(float v) { return isfinite(v) ? fminf(fmaxf(v, 0.0f), 1.0f) : 0.0f; }
+
+Material material_from_obj(const ObjMaterial *m, const ObjTextures *tex)
+{
+    Material out = material_blank(obj_type(m));
+    switch (out.type) {
+    case MATERIAL_CONDUCTOR:
         out.base = reflectance(m->ks);
         out.flags |= MATERIAL_FLAG_FRESNEL_ONE;
-    } else if (refracts) {
-        out = material_blank(MATERIAL_DIELECTRIC);
+        out.roughness = m->has_pr ? unit(m->pr) : 0.0f;
+        out.tex[MATERIAL_TEX_ROUGHNESS] = tex->pr;
+        break;
+    case MATERIAL_DIELECTRIC:
         out.base = reflectance(m->tf);
         /* An absent or black Tf would make a glass object opaque black; MTL writers mean "untinted". */
         if (out.base.s[0] + out.base.s[1] + out.base.s[2] <= 0.0f)
             out.base = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
         out.ior = isfinite(m->ni) && m->ni > 1.0f ? m->ni : 1.5f;
-    } else {
-        out = material_blank(MATERIAL_DIFFUSE);
+        out.roughness = m->has_pr ? unit(m->pr) : 0.0f;
+        out.tex[MATERIAL_TEX_ROUGHNESS] = tex->pr;
+        break;
+    case MATERIAL_PRINCIPLED:
         out.base = reflectance(m->kd);
-        out.tex[MATERIAL_TEX_BASE] = map_kd;
+        out.tex[MATERIAL_TEX_BASE] = tex->kd;
+        if (m->has_pr || m->has_pm) {
+            out.roughness = m->has_pr ? unit(m->pr) : 0.5f; /* Mitsuba's principled default */
+            out.metallic = m->has_pm ? unit(m->pm) : 0.0f;
+            out.tex[MATERIAL_TEX_ROUGHNESS] = tex->pr;
+            out.tex[MATERIAL_TEX_METALLIC] = tex->pm;
+        } else { /* illum 2 with Ks and Ns: a glossy dielectric coat over Kd */
+            float ns = isfinite(m->ns) ? fminf(fmaxf(m->ns, 0.0f), 1000.0f) : 0.0f;
+            out.roughness = 1.0f - sqrtf(ns / 1000.0f);
+        }
+        break;
+    default:
+        out.base = reflectance(m->kd);
+        out.tex[MATERIAL_TEX_BASE] = tex->kd;
+    }
+    /* An RGBA map_Kd with cut-outs: its alpha is the opacity (where it is the base texture). */
+    if (out.tex[MATERIAL_TEX_BASE] != NO_TEXTURE && tex->kd_alpha)
+        out.flags |= MATERIAL_FLAG_BASE_ALPHA | MATERIAL_FLAG_CUTOUT;
+    if (tex->d != NO_TEXTURE) {
+        out.tex[MATERIAL_TEX_OPACITY] = tex->d;
+        out.flags |= MATERIAL_FLAG_CUTOUT;
+    } else if (out.type != MATERIAL_DIELECTRIC && m->d < 1.0f) {
+        out.opacity = unit(m->d);
+        out.flags |= MATERIAL_FLAG_CUTOUT;
+    }
+    if (tex->normal != NO_TEXTURE) {
+        out.tex[tex->normal_is_height ? MATERIAL_TEX_BUMP : MATERIAL_TEX_NORMAL] = tex->normal;
+        out.bump_scale = isfinite(m->bump_scale) ? m->bump_scale : 1.0f;
     }
     for (int i = 0; i < 3; i++)
         out.emission.s[i] = isfinite(m->ke[i]) ? fmaxf(m->ke[i], 0.0f) : 0.0f;
-    out.emission.s[3] = luminance3(out.emission.s);
+    if (tex->ke != NO_TEXTURE) {
+        out.tex[MATERIAL_TEX_EMISSION] = tex->ke;
+        /* map_Ke without a Ke (or with Ke 0): the texture alone is the emitted radiance. */
+        if (luminance3(out.emission.s) <= 0.0f)
+            out.emission = (float4){{1.0f, 1.0f, 1.0f, 0.0f}};
+    }
+    out.emission.s[3] = luminance3(out.emission.s) * tex->ke_mean_luminance;
     return out;
 }
 
 Material material_default(void)
 {
     ObjMaterial grey = {.kd = {0.8f, 0.8f, 0.8f}, .ni = 1.0f, .d = 1.0f, .illum = -1};
-    return material_from_obj(&grey, NO_TEXTURE);
+    ObjTextures none = obj_textures_none();
+    return material_from_obj(&grey, &none);
+}
+
+/* One texture of an MTL material: a missing file is a warning (the material goes without it), a
+ * corrupt one an error naming the material and obj_path. */
+static bool load_texture(TextureSet *textures, const char *path, TextureEncoding encoding,
+                         const char *statement, const ObjMaterial *m, const char *obj_path,
+                         uint32_t *out, Error *err)
+{
+    *out = NO_TEXTURE;
+    if (!path[0])
+        return true;
+    Error texture_err = {0};
+    *out = texture_set_add_encoded(textures, path, encoding, &texture_err);
+    if (texture_err.code == ERR_FILE_MISSING) {
+        warn("%s: texture %s (%s) of material '%s' not found: %s", obj_path, path, statement,
+             m->name, strcmp(statement, "map_Kd") == 0 ? "using its Kd" : "ignored");
+    } else if (error_is_set(&texture_err)) {
+        error_set(err, texture_err.code, texture_err.file, 0, "%s (%s of material '%s' of %s)",
+                  texture_err.message, statement, m->name, obj_path);
+        return false;
+    }
+    return true;
+}
+
+/* DESIGN "Textures": map_Kd and map_Ke are colours (sRGB for 8-bit files); map_Pr, map_Pm, map_d
+ * and normal maps are linear. */
+static bool load_obj_textures(const ObjMaterial *m, TextureSet *textures, const char *obj_path,
+                              ObjTextures *tex, Error *err)
+{
+    *tex = obj_textures_none();
+    const TextureEncoding linear = TEXTURE_ENCODING_LINEAR, colour = TEXTURE_ENCODING_DEFAULT;
+    if (!load_texture(textures, m->map_kd, colour, "map_Kd", m, obj_path, &tex->kd, err) ||
+        !load_texture(textures, m->map_ke, colour, "map_Ke", m, obj_path, &tex->ke, err) ||
+        !load_texture(textures, m->map_pr, linear, "map_Pr", m, obj_path, &tex->pr, err) ||
+        !load_texture(textures, m->map_pm, linear, "map_Pm", m, obj_path, &tex->pm, err) ||
+        !load_texture(textures, m->map_d, linear, "map_d", m, obj_path, &tex->d, err) ||
+        !load_texture(textures, m->map_normal, linear, m->normal_statement, m, obj_path, &tex->normal,
+                      err))
+        return false;
+    tex->kd_alpha = tex->kd != NO_TEXTURE && textures->stats[tex->kd].alpha_below_one;
+    /* A grey map_Bump is a height map (classic MTL bump), an rgb one a normal map. */
+    tex->normal_is_height = tex->normal != NO_TEXTURE && textures->stats[tex->normal].channels < 3;
+    if (tex->ke != NO_TEXTURE)
+        tex->ke_mean_luminance = texture_mean_luminance(textures, tex->ke);
+    return true;
 }
 
 static uint32_t find_named(const NamedMaterials *named, const char *name)
@@ -91,21 +193,11 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
         const ObjMaterial *m = &mesh->materials[i];
         if ((mesh_to_scene[i] = find_named(named, m->name)) != NO_MATERIAL)
             continue;
-        uint32_t map_kd = NO_TEXTURE;
-        if (m->map_kd[0]) {
-            Error texture_err = {0};
-            map_kd = texture_set_add(textures, m->map_kd, &texture_err);
-            if (texture_err.code == ERR_FILE_MISSING) {
-                warn("%s: texture %s of material '%s' not found: using its Kd", obj_path, m->map_kd,
-                     m->name);
-            } else if (error_is_set(&texture_err)) {
-                error_set(err, texture_err.code, texture_err.file, 0, "%s (material '%s' of %s)",
-                          texture_err.message, m->name, obj_path);
-                return false;
-            }
-        }
+        ObjTextures tex;
+        if (!load_obj_textures(m, textures, obj_path, &tex, err))
+            return false;
         mesh_to_scene[i] = *num_materials;
-        (*materials)[(*num_materials)++] = material_from_obj(m, map_kd);
+        (*materials)[(*num_materials)++] = material_from_obj(m, &tex);
     }
     return true;
 }

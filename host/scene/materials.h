@@ -23,8 +23,18 @@ typedef struct {
 
 /* A material of `type` with DESIGN's defaults and no textures. */
 Material material_blank(uint32_t type);
-/* Maps one MTL material onto the kernels' Material (see README "Materials"). */
-Material material_from_obj(const ObjMaterial *m, uint32_t map_kd);
+/* The texture indices of one MTL material (NO_TEXTURE where none) and what the mapping needs to
+ * know about them. */
+typedef struct {
+    uint32_t kd, ke, pr, pm, d, normal;
+    bool kd_alpha;           /* map_Kd has alpha below 1 somewhere: it gives the opacity */
+    bool normal_is_height;   /* the normal map (norm, map_Bump) is grey: a bump (height) map */
+    float ke_mean_luminance; /* of map_Ke (1 without) */
+} ObjTextures;
+
+ObjTextures obj_textures_none(void);
+/* Maps one MTL material onto the kernels' Material (shared/DESIGN.md "MTL mapping"). */
+Material material_from_obj(const ObjMaterial *m, const ObjTextures *tex);
 /* The material of triangles that name none: diffuse grey 0.8. */
 Material material_default(void);
 /* Appends the mesh's materials to *materials (*num_materials of them so far) and loads their

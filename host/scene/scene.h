@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* scene.h: the scene as the user wrote it (JSON v1 of shared/DESIGN.md, or a bare .obj), and the
+/* scene.h: the scene as the user wrote it (JSON of shared/DESIGN.md, or a bare .obj), and the
  * whole scene loaded and flattened (scene_load). */
 #ifndef PT_SCENE_H
 #define PT_SCENE_H

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-/* scene_json.c: the sections of scene format v1 (shared/DESIGN.md). Each section checks its keys,
- * reads them with json.h's typed readers and checks the values' ranges. */
+/* scene_json.c: the sections of the scene format (shared/DESIGN.md). Each section checks its keys,
+ * reads them with json.h's typed readers and checks the values' ranges; "textures" and
+ * "materials" are read by texture_json.c and material_json.c. */
 #include "scene/scene_json.h"
 
 #include <limits.h>

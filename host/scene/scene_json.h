@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* scene_json.h: the sections of a JSON scene (camera, film, render, objects, background,
- * environment) read into a SceneDesc that holds the defaults. */
+ * environment, lights, textures, materials) read into a SceneDesc that holds the defaults. */
 #ifndef PT_SCENE_JSON_H
 #define PT_SCENE_JSON_H
 

@@ -17,7 +17,8 @@ Each case folder holds its input files and case.json:
           known hang).
 Deterministic: the same corpus every run (seeded), so a failure names a case that stays put.
 The cases come from one module per input kind: corpus_scene.py, corpus_obj.py (OBJ and MTL),
-corpus_texture.py, corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
+corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statements),
+corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -29,6 +30,7 @@ import sys
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 from corpus_cases import cases  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
+from corpus_materials import material_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
 from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
@@ -68,6 +70,7 @@ def main():
     cli_cases()
     env_cases()
     environment_map_cases()
+    material_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
