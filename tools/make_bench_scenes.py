@@ -190,7 +190,7 @@ def write_materials_bench(out):
             background=[0.08, 0.09, 0.11]),
         "env.json": dict(common, materials={"gold": gold, "floor": floor},
                          objects=[{"obj": dragon, "material": "gold"}, {"obj": "floor.obj"}],
-                         environment={"file": "../../../shared/assets/hdri/venice_sunset_1k.hdr",
+                         environment={"file": "../venice/venice_sunset_1k.hdr",
                                       "scale": 1.0, "rotation": 0}),
     }
     with open(os.path.join(out, "floor.obj"), "w") as f:  # the stage's floor alone, for env.json
