@@ -7,13 +7,14 @@
 #   tools/bench-vs-mitsuba.sh [SCENE...] [-o OUT]   default scenes/cornell-box, bench/results/vs-mitsuba
 # Environment: DEVICE cpu (default: pt on PoCL, Mitsuba llvm_ad_rgb) or gpu (pt on the GPU's OpenCL,
 # Mitsuba cuda_ad_rgb); VARIANT overrides the Mitsuba variant; ROUNDS (default 4), WIDTH/HEIGHT
-# (512), SPP (8), DEPTH (8), PT (build/pt).
+# (512), SPP (8), DEPTH (8), PT (build/pt), PYTHON (a python3 that imports mitsuba and numpy, e.g.
+# from wheels installed with --target; default: .venv-mitsuba, created by tools/mitsuba-venv.sh).
 # The material benchmark (bench/README.md "Materials"), on the GPU machine:
 #   DEVICE=gpu WIDTH=1024 HEIGHT=1024 SPP=16 tools/bench-vs-mitsuba.sh \
 #       scenes/bench-materials/materials.json scenes/bench-materials/env.json -o bench/results/vs-mitsuba-gpu
 set -eu
 cd "$(dirname "$0")/.."
-. tools/mitsuba-venv.sh
+if [ -n "${PYTHON:-}" ]; then VENV_PY=$PYTHON; else . tools/mitsuba-venv.sh; VENV_PY=$VENV/bin/python; fi
 out=bench/results/vs-mitsuba
 scenes=""
 while [ $# -gt 0 ]; do
@@ -32,13 +33,13 @@ rm -f "$out/mitsuba.csv" "$out/pt.csv" "$out/pt_stages.csv" "$out/pt_live.csv"
 for round in $(seq "${ROUNDS:-4}"); do
     for scene in $scenes; do
         echo "== round $round: $scene"
-        "$VENV/bin/python" tools/bench_mitsuba.py "$scene" --width "$W" --height "$H" --spp "$S" \
+        "$VENV_PY" tools/bench_mitsuba.py "$scene" --width "$W" --height "$H" --spp "$S" \
             --max-depth "$D" --reps 3 --variant "$VARIANT" --csv "$out/mitsuba.csv"
         "$PT" bench "$scene" --device "$DEVICE" --width "$W" --height "$H" --spp "$S" --max-depth "$D" \
             --csv "$out/pt.csv" | grep -E '^(mode|refill) '
     done
 done
-"$VENV/bin/python" - "$out" $scenes <<'PY'
+"$VENV_PY" - "$out" $scenes <<'PY'
 import csv, os, statistics, sys
 out, scenes = sys.argv[1], sys.argv[2:]
 mi_rows = list(csv.DictReader(open(f"{out}/mitsuba.csv")))
