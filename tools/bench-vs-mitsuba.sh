@@ -1,33 +1,60 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# pt against Mitsuba 3 on this machine's CPU, interleaved so that both see the same load (shared
-# machines drift by 20% from minute to minute): ROUNDS rounds of [Mitsuba llvm_ad_rgb, 3 timed
-# renders; pt bench on PoCL], same scene, film, spp and max depth. Prints both, and writes
-# OUT/mitsuba.csv and OUT/pt.csv.
-#   tools/bench-vs-mitsuba.sh [SCENE] [OUT]     default scenes/cornell-box, bench/results/vs-mitsuba
-# Environment: ROUNDS (default 4), WIDTH/HEIGHT (512), SPP (8), DEPTH (8), PT (build/pt).
+# pt against Mitsuba 3 on the same device kind, interleaved so that both see the same load (shared
+# machines drift by 20% from minute to minute): ROUNDS rounds of [Mitsuba, 3 timed renders; pt bench],
+# same scene, film, spp and max depth, for each scene given. Prints both, and writes
+# OUT/mitsuba.csv and OUT/pt.csv (one row per render; the scene is a column).
+#   tools/bench-vs-mitsuba.sh [SCENE...] [-o OUT]   default scenes/cornell-box, bench/results/vs-mitsuba
+# Environment: DEVICE cpu (default: pt on PoCL, Mitsuba llvm_ad_rgb) or gpu (pt on the GPU's OpenCL,
+# Mitsuba cuda_ad_rgb); VARIANT overrides the Mitsuba variant; ROUNDS (default 4), WIDTH/HEIGHT
+# (512), SPP (8), DEPTH (8), PT (build/pt), PYTHON (a python3 that imports mitsuba and numpy, e.g.
+# from wheels installed with --target; default: .venv-mitsuba, created by tools/mitsuba-venv.sh).
+# The material benchmark (bench/README.md "Materials"), on the GPU machine:
+#   DEVICE=gpu WIDTH=1024 HEIGHT=1024 SPP=16 tools/bench-vs-mitsuba.sh \
+#       scenes/bench-materials/materials.json scenes/bench-materials/env.json -o bench/results/vs-mitsuba-gpu
 set -eu
 cd "$(dirname "$0")/.."
-. tools/mitsuba-venv.sh
-scene=${1:-scenes/cornell-box}
-out=${2:-bench/results/vs-mitsuba}
+if [ -n "${PYTHON:-}" ]; then VENV_PY=$PYTHON; else . tools/mitsuba-venv.sh; VENV_PY=$VENV/bin/python; fi
+out=bench/results/vs-mitsuba
+scenes=""
+while [ $# -gt 0 ]; do
+    case $1 in
+        -o) out=$2; shift 2 ;;
+        *) scenes="$scenes $1"; shift ;;
+    esac
+done
+scenes=${scenes:-scenes/cornell-box}
 PT=${PT:-build/pt}
+DEVICE=${DEVICE:-cpu}
+if [ "$DEVICE" = gpu ]; then VARIANT=${VARIANT:-cuda_ad_rgb}; else VARIANT=${VARIANT:-llvm_ad_rgb}; fi
 W=${WIDTH:-512} H=${HEIGHT:-512} S=${SPP:-8} D=${DEPTH:-8}
 mkdir -p "$out"
 rm -f "$out/mitsuba.csv" "$out/pt.csv" "$out/pt_stages.csv" "$out/pt_live.csv"
 for round in $(seq "${ROUNDS:-4}"); do
-    echo "== round $round"
-    "$VENV/bin/python" tools/bench_mitsuba.py "$scene" --width "$W" --height "$H" --spp "$S" \
-        --max-depth "$D" --reps 3 --csv "$out/mitsuba.csv"
-    "$PT" bench "$scene" --device cpu --width "$W" --height "$H" --spp "$S" --max-depth "$D" \
-        --csv "$out/pt.csv" | grep -E '^(mode|refill) '
+    for scene in $scenes; do
+        echo "== round $round: $scene"
+        "$VENV_PY" tools/bench_mitsuba.py "$scene" --width "$W" --height "$H" --spp "$S" \
+            --max-depth "$D" --reps 3 --variant "$VARIANT" --csv "$out/mitsuba.csv"
+        "$PT" bench "$scene" --device "$DEVICE" --width "$W" --height "$H" --spp "$S" --max-depth "$D" \
+            --csv "$out/pt.csv" | grep -E '^(mode|refill) '
+    done
 done
-"$VENV/bin/python" - "$out" <<'PY'
-import csv, statistics, sys
-out = sys.argv[1]
-mi = [float(r["mpaths_per_s"]) for r in csv.DictReader(open(f"{out}/mitsuba.csv"))]
-pt = [float(r["mpaths_per_s"]) for r in csv.DictReader(open(f"{out}/pt.csv")) if r["mode"] == "refill"]
-print(f"Mpaths/s   median  best   (runs)\nmitsuba    {statistics.median(mi):6.2f} {max(mi):6.2f}  ({len(mi)})\n"
-      f"pt         {statistics.median(pt):6.2f} {max(pt):6.2f}  ({len(pt)})\n"
-      f"pt/mitsuba {statistics.median(pt) / statistics.median(mi):6.2f} (medians)")
+"$VENV_PY" - "$out" $scenes <<'PY'
+import csv, os, statistics, sys
+out, scenes = sys.argv[1], sys.argv[2:]
+mi_rows = list(csv.DictReader(open(f"{out}/mitsuba.csv")))
+pt_rows = [r for r in csv.DictReader(open(f"{out}/pt.csv")) if r["mode"] == "refill"]
+print(f"{'scene':45s} {'renderer':10s} median   best  (runs)   Mpaths/s")
+for scene in scenes:
+    mi = [float(r["mpaths_per_s"]) for r in mi_rows if r["scene"] == scene]
+    # pt bench names the scene as given, or its scene.json inside a folder
+    pt = [float(r["mpaths_per_s"]) for r in pt_rows
+          if os.path.normpath(r.get("scene", scene)).startswith(os.path.normpath(scene))]
+    if not pt:  # an older pt.csv without a recognisable scene column: one scene per run only
+        pt = [float(r["mpaths_per_s"]) for r in pt_rows] if len(scenes) == 1 else []
+    for name, v in (("mitsuba", mi), ("pt", pt)):
+        if v:
+            print(f"{scene:45s} {name:10s} {statistics.median(v):7.2f} {max(v):7.2f}  ({len(v)})")
+    if mi and pt:
+        print(f"{scene:45s} {'pt/mitsuba':10s} {statistics.median(pt) / statistics.median(mi):7.2f} (medians)")
 PY

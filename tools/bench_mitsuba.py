@@ -37,6 +37,7 @@ def main():
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv")
+    ap.add_argument("--image", help="also write the last timed render here (EXR), to compare with pt's")
     args = ap.parse_args()
     if "DRJIT_LIBLLVM_PATH" not in os.environ:
         for path in LLVM_CANDIDATES:
@@ -74,17 +75,20 @@ def main():
         img = mi.render(scene_obj, seed=seed, spp=args.spp)
         dr.eval(img)
         dr.sync_thread()
+        return img
 
     render(0)  # warm-up: kernel compilation stays out of the figures
     paths = width * height * args.spp
     rows = []
     for r in range(args.reps):
         start = time.perf_counter()
-        render(r + 1)
+        img = render(r + 1)
         seconds = time.perf_counter() - start
         rows.append(seconds)
         print(f"mitsuba {mi.__version__} {variant}: {args.scene} {width}x{height} {args.spp} spp "
               f"depth {depth}: {seconds * 1e3:.1f} ms, {paths / seconds * 1e-6:.2f} Mpaths/s")
+    if args.image:
+        mi.Bitmap(img).write(args.image)
     if args.csv:
         new = not os.path.exists(args.csv) or os.path.getsize(args.csv) == 0
         with open(args.csv, "a") as f:

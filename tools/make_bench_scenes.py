@@ -3,7 +3,8 @@
 """Writes scenes/bench/: the benchmark scenes that put a public mesh (read from ../shared/assets, not
 copied: Stanford's terms) inside a lit box sized to the mesh. The box is ours (MIT): floor, back,
 ceiling, red left and green right walls facing inward, an emissive ceiling quad facing down, open
-front. Deterministic; run again after changing it.
+front. Deterministic; run again after changing it. It also writes scenes/bench-materials/ (the
+dragon in rough gold on a normal-mapped floor behind rough glass; the same under an HDR map).
 
 With --tori DIR it writes procedural scenes instead (too large to commit; tools/bench.sh makes
 them on the fly): DIR/torus-N.json, a bumpy torus of about N triangles (N = 10^3 .. 10^6) in the
@@ -119,10 +120,94 @@ def write_tori(out):
         print(f"{out}/torus-{n}.json: {count} torus triangles")
 
 
+def tile_normals(size=128, tiles=4, bevel=0.18):
+    """A normal map of tiles with bevelled edges (rows top first, 8-bit linear): flat (0, 0, 1)
+    inside each tile, tilted 40 degrees outward across the bevel, so it tiles seamlessly."""
+    t = math.tan(math.radians(40))
+    rows = []
+    for y in range(size):
+        row = []
+        for x in range(size):
+            fx, fy = (x + 0.5) * tiles / size % 1, (y + 0.5) * tiles / size % 1
+            tx = -t if fx < bevel else (t if fx > 1 - bevel else 0.0)
+            ty = t if fy < bevel else (-t if fy > 1 - bevel else 0.0)  # row 0 = top = +v
+            n = [tx, ty, 1.0]
+            length = math.sqrt(sum(c * c for c in n))
+            row.append(tuple(round((c / length * 0.5 + 0.5) * 255) for c in n))
+        rows.append(row)
+    return rows
+
+
+def write_materials_bench(out):
+    """scenes/bench-materials/: the dragon (100k) in rough gold on a normal-mapped tiled floor,
+    seen through a rough glass slab (materials.json, an area light and a dim sky), and the same
+    dragon under the Venice sunset map (env.json, issue 17). The floor and slab are ours (MIT)."""
+    sys.path.insert(0, HERE)
+    from make_test_scenes import write_png
+    os.makedirs(out, exist_ok=True)
+    write_png(os.path.join(out, "tiles-normal.png"), 128, 128, tile_normals())
+    with open(os.path.join(out, "stage.mtl"), "w") as f:
+        f.write("# Stage of the material benchmark (tools/make_bench_scenes.py). MIT. The JSON\n"
+                "# materials of the scenes replace these.\n"
+                "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl slab\nKd 0.5 0.5 0.5\n"
+                "newmtl light\nKd 0 0 0\nKe 30 27 22\n")
+    verts, faces, uvs = [], [], []
+
+    def face(points, uv=None):
+        base = len(verts) + 1
+        verts.extend(points)
+        if uv:
+            uvs.extend(uv)
+            faces.append("f " + " ".join(f"{base + i}/{len(uvs) - len(uv) + i + 1}" for i in range(len(points))))
+        else:
+            faces.append("f " + " ".join(str(base + i) for i in range(len(points))))
+    faces.append("usemtl floor")  # 40 x 40, the tiles repeat 10 times
+    face([(-20, 0, 20), (20, 0, 20), (20, 0, -20), (-20, 0, -20)], [(0, 0), (10, 0), (10, 10), (0, 10)])
+    faces.append("usemtl slab")  # 12 wide, 7 high, 0.6 thick, between the camera and the dragon
+    x0, x1, y0, y1, z0, z1 = -6.0, 6.0, 0.0, 7.0, 5.0, 5.6
+    c = [(x0 if i & 1 == 0 else x1, y0 if i & 2 == 0 else y1, z0 if i & 4 == 0 else z1) for i in range(8)]
+    for q in [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]]:
+        face([c[k] for k in q])
+    stage = ["# Stage of the material benchmark (tools/make_bench_scenes.py). MIT.", "mtllib stage.mtl"]
+    stage += [f"v {x:.6g} {y:.6g} {z:.6g}" for x, y, z in verts]
+    stage += [f"vt {u:.6g} {v:.6g}" for u, v in uvs] + faces
+    with open(os.path.join(out, "stage.obj"), "w") as f:
+        f.write("\n".join(stage) + "\n")
+    with open(os.path.join(out, "light.obj"), "w") as f:  # 6 x 6 at y = 22, facing down
+        f.write("# Light of the material benchmark. MIT.\nmtllib stage.mtl\nusemtl light\n"
+                "v -3 22 -3\nv 3 22 -3\nv 3 22 3\nv -3 22 3\nf 1 2 3 4\n")
+    dragon = MESHES["dragon"][0]  # the same depth below the repository as scenes/bench
+    gold = {"type": "conductor", "eta": [0.143, 0.374, 1.442], "k": [3.983, 2.385, 1.603], "roughness": 0.3}
+    floor = {"type": "diffuse", "albedo": [0.55, 0.5, 0.45], "normal_map": "tiles"}
+    camera = {"eye": [4.0, 9.0, 26.0], "target": [0.0, 4.0, 0.0], "up": [0, 1, 0], "fov_y": 38.0}
+    common = {"camera": camera, "film": {"width": 1024, "height": 1024}, "render": {"spp": 16, "max_depth": 8},
+              "textures": {"tiles": {"file": "tiles-normal.png", "encoding": "linear"}}}
+    scenes = {
+        "materials.json": dict(common, materials={
+            "gold": gold, "floor": floor,
+            "slab": {"type": "dielectric", "ior": 1.5, "roughness": 0.15, "absorption": [0.05, 0.03, 0.02]}},
+            objects=[{"obj": dragon, "material": "gold"}, {"obj": "stage.obj"}, {"obj": "light.obj"}],
+            background=[0.08, 0.09, 0.11]),
+        "env.json": dict(common, materials={"gold": gold, "floor": floor},
+                         objects=[{"obj": dragon, "material": "gold"}, {"obj": "floor.obj"}],
+                         environment={"file": "../venice/venice_sunset_1k.hdr",
+                                      "scale": 1.0, "rotation": 0}),
+    }
+    with open(os.path.join(out, "floor.obj"), "w") as f:  # the stage's floor alone, for env.json
+        f.write("# Floor of the env-lit benchmark. MIT.\nmtllib stage.mtl\nusemtl floor\n"
+                "v -20 0 20\nv 20 0 20\nv 20 0 -20\nv -20 0 -20\n"
+                "vt 0 0\nvt 10 0\nvt 10 10\nvt 0 10\nf 1/1 2/2 3/3 4/4\n")
+    for name, scene in scenes.items():
+        with open(os.path.join(out, name), "w") as f:
+            json.dump(scene, f, indent=2)
+            f.write("\n")
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "--tori":
         write_tori(sys.argv[2])
         return
+    write_materials_bench(os.path.join(HERE, "..", "scenes", "bench-materials"))
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "lit-box.mtl"), "w") as f:
         f.write(MTL)

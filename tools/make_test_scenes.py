@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Writes the generated validation scenes under tests/scenes/ (textured/, furnace/).
+"""Writes the generated validation scenes under tests/scenes/ (textured/, furnace/, and the material
+scenes of tools/make_material_scenes.py).
 
 Deterministic: no randomness, no timestamps, fixed float formatting, so running it twice gives
 byte-identical files (the PNG is written with a fixed zlib level). Plain Python 3, no packages.
@@ -274,7 +275,10 @@ def main():
     for g in groups:
         expected = {"blue": 0.8 ** 3, "checker": 1.0}.get(g.material.name)
         assert expected is None or abs(signed_volume(g) - expected) < 1e-4, f"{g.material.name}: not closed/outward"
-    print(f"make_test_scenes: wrote {os.path.normpath(out)}/textured and furnace; checks passed")
+    import make_material_scenes  # noqa: E402  (imports this module's helpers)
+    names = make_material_scenes.write_all(out)
+    print(f"make_test_scenes: wrote {os.path.normpath(out)}/textured, furnace, {', '.join(names)}; "
+          "checks passed")
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ Every problem raises SceneError naming the file and line.
 """
 import os
 import struct
+import sys
 import zlib
 
 
@@ -169,8 +170,9 @@ def load_obj(path):
         elif key == "mtllib":
             for name in rest:
                 mtl = os.path.join(os.path.dirname(path), name)
-                if not os.path.exists(mtl):
-                    raise SceneError(f"{path}:{line_no}: mtllib {name} not found")
+                if not os.path.exists(mtl):  # tinyobjloader warns and goes on (the dragon's)
+                    print(f"mitsuba_obj: {path}:{line_no}: mtllib {name} not found", file=sys.stderr)
+                    continue
                 materials.update(load_mtl(mtl))
         elif key == "usemtl":
             name = tail

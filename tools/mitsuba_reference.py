@@ -23,6 +23,9 @@ the renderer's loader), and translated to a Mitsuba scene with the same conventi
   film                                        hdrfilm rgb float32, box rfilter
   background != 0                             'constant' emitter
   render.max_depth                            path integrator max_depth, hide_emitters false
+                                              (volpath when a dielectric has an absorption)
+  JSON materials (replace MTL materials of    tools/mitsuba_materials.py
+  the same name), textures, environment
 
 The image is rendered in K batches with different seeds; OUT.exr is their mean, and --stderr writes
 the per-pixel standard error of that mean (the batches' spread / sqrt(K)) as a half-float EXR, so
@@ -41,11 +44,13 @@ import time
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 # load_obj and read_png_size are also this module's API (make_test_scenes.py, bench_mitsuba.py).
 from mitsuba_obj import SceneError, load_obj, read_png_size  # noqa: E402,F401
+from mitsuba_materials import JsonMaterials, environment_emitter  # noqa: E402
 
 
 # ---- scene.json ----------------------------------------------------------------------------------
 
-SCENE_KEYS = {"camera", "film", "render", "objects", "background"}
+SCENE_KEYS = {"camera", "film", "render", "objects", "background", "materials", "textures",
+              "environment"}
 CAMERA_KEYS = {"eye", "target", "up", "fov_y", "aperture", "focus_distance"}
 
 
@@ -62,7 +67,7 @@ def load_scene(scene_path):
                 raise SceneError(f"{scene_path}: unknown key '{(key + '.') if key else ''}{k}'")
     for obj in scene.get("objects", []):
         for k in obj:
-            if k != "obj":
+            if k not in ("obj", "material"):
                 raise SceneError(f"{scene_path}: unknown key 'objects[].{k}'")
     return scene_path, scene
 
@@ -138,28 +143,40 @@ def build_scene(scene_path, scene, spp, temp_dir, mi, np):
         sensor["aperture_radius"] = aperture / 2  # our JSON has the lens diameter
         sensor["focus_distance"] = float(cam.get("focus_distance",
                                                  math.dist(eye, target)))
-    mitsuba_scene = {
-        "type": "scene",
-        "integrator": {"type": "path",
-                       "max_depth": int(scene.get("render", {}).get("max_depth", 8)),
-                       "hide_emitters": False},
-        "sensor": sensor,
-    }
-    background = scene.get("background", [0, 0, 0])
-    if any(c > 0 for c in background):
-        mitsuba_scene["background"] = {"type": "constant", "radiance": rgb(background)}
+    mitsuba_scene = {"type": "scene", "sensor": sensor}
     base = os.path.dirname(os.path.abspath(scene_path))
-    count = 0
+    json_materials = JsonMaterials(scene, base, mi, np)
+    if "environment" in scene:
+        mitsuba_scene["environment"] = environment_emitter(scene["environment"], base, mi, np)
+    else:
+        background = scene.get("background", [0, 0, 0])
+        if any(c > 0 for c in background):
+            mitsuba_scene["background"] = {"type": "constant", "radiance": rgb(background)}
+    count, has_media = 0, False
     for obj in scene.get("objects", []):
+        override = obj.get("material")
+        if override is not None and override not in json_materials:
+            raise SceneError(f"{scene_path}: objects[].material '{override}' is not a JSON material")
         for group in load_obj(os.path.join(base, obj["obj"])):
             path = os.path.join(temp_dir, f"group{count}.obj")
             write_group_obj(group, path)
-            shape = {"type": "obj", "filename": path, "face_normals": not group.has_normals,
-                     "bsdf": bsdf_for(group.material, mi, np)}
-            if group.material.emissive:
-                shape["emitter"] = {"type": "area", "radiance": rgb(group.material.ke)}
-            mitsuba_scene[f"shape{count}_{group.material.name}"] = shape
+            shape = {"type": "obj", "filename": path, "face_normals": not group.has_normals}
+            name = override or group.material.name
+            if name in json_materials:  # a JSON material replaces the MTL one of the same name
+                shape["bsdf"], medium, emission = json_materials.bsdf(name)
+                if medium:
+                    shape["interior"], has_media = medium, True
+            else:
+                shape["bsdf"] = bsdf_for(group.material, mi, np)
+                medium, emission = None, group.material.ke if group.material.emissive else None
+            if emission:
+                shape["emitter"] = {"type": "area", "radiance": rgb(emission)}
+            mitsuba_scene[f"shape{count}_{name}"] = shape
             count += 1
+    # volpath is Mitsuba's path tracer with media; without any it renders what 'path' does.
+    mitsuba_scene["integrator"] = {"type": "volpath" if has_media else "path",
+                                   "max_depth": int(scene.get("render", {}).get("max_depth", 8)),
+                                   "hide_emitters": False}
     return mitsuba_scene
 
 

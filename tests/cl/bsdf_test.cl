@@ -15,7 +15,7 @@ inline Bsdf bsdf_test_bsdf(const global Material *material)
 {
     SceneView scene = {0};
     scene.materials = material;
-    return bsdf_at(&scene, material[0], (float2)(0.0f));
+    return bsdf_at(&scene, material[0], (float2)(0.0f), (float3)(0.0f));
 }
 
 /* Sample i of wo (xyz; w != 0: front): wi and pdf, weight and flags. */
