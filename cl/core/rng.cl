@@ -42,7 +42,8 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
  * reserved so that later features do not renumber (and so re-noise) what exists:
  *   camera, 0..7: jitter x, y, lens u, v; 4 is for the shutter time (motion blur), 5..7 spare;
  *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light pick, alias coin, light u, v,
- *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity; 11..15 spare. */
+ *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
+ *   the shadow ray; 12..15 spare. */
 #define DIM_CAMERA_JITTER_X 0u
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u
@@ -60,6 +61,7 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_BSDF_W 8u     /* a third BSDF number (e.g. a lobe choice that needs u, v free) */
 #define DIM_MIX 9u        /* which leaf of a mix material */
 #define DIM_OPACITY 10u   /* alpha cut-out pass-through of the closest hit */
+#define DIM_SHADOW_OPACITY 11u /* the same along the bounce's shadow ray */
 
 inline float rng_from_key(RngKey key, uint dimension) { return uint_to_unit(rng_bits(key, dimension)); }
 

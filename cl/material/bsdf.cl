@@ -11,25 +11,30 @@ inline float material_scalar(const SceneView *scene, uint texture, float value, 
     return texture == NO_TEXTURE ? value : texture_eval(scene, texture, uv, position).x;
 }
 
-/* Resolves a mix material to one of its leaves, choosing b with probability weight at each level:
- * the expected BSDF is then (1 - w) f_a + w f_b, and next-event estimation and BSDF sampling at
- * this vertex both use the chosen leaf, so MIS stays consistent. u is reused (rescaled) per
- * level; the host bounds the nesting (MATERIAL_MIX_DEPTH_LIMIT) and refuses cycles. */
-inline Material material_resolve_mix(const SceneView *scene, Material m, float2 uv, float3 position,
-                                     float u)
+/* Resolves material `index` to one of its leaves when it is a mix, choosing b with probability
+ * weight at each level: the expected BSDF is then (1 - w) f_a + w f_b, and next-event estimation
+ * and BSDF sampling at this vertex both use the chosen leaf, so MIS stays consistent. u is reused
+ * (rescaled) per level; the host bounds the nesting (MATERIAL_MIX_DEPTH_LIMIT) and refuses cycles.
+ * Returns the leaf's index: the loop carries an index, not a 176-byte Material. */
+inline uint material_resolve_mix(const SceneView *scene, uint index, float2 uv, float3 position,
+                                 float u)
 {
-    for (uint level = 0u; m.type == MATERIAL_MIX && level < MATERIAL_MIX_DEPTH_LIMIT; level++) {
-        float w = clamp(material_scalar(scene, m.tex[MATERIAL_TEX_WEIGHT], m.weight, uv, position), 0.0f, 1.0f);
+    for (uint level = 0u; level < MATERIAL_MIX_DEPTH_LIMIT; level++) {
+        const global Material *m = &scene->materials[index];
+        if (m->type != MATERIAL_MIX)
+            break;
+        float w = clamp(material_scalar(scene, m->tex[MATERIAL_TEX_WEIGHT], m->weight, uv, position),
+                        0.0f, 1.0f);
         if (u < w) {
             u = u / w;
-            m = scene->materials[m.mix_b];
+            index = m->mix_b;
         } else {
             u = (u - w) / (1.0f - w);
-            m = scene->materials[m.mix_a];
+            index = m->mix_a;
         }
         u = fmin(u, 0x1.fffffep-1f);
     }
-    return m;
+    return index;
 }
 
 /* The leaf material m (not a mix) at uv and position, textures looked up. */

@@ -108,3 +108,12 @@ inline BsdfSample dielectric_sample(const Bsdf *b, float3 wo, bool front, float 
     s.weight = f_cos / s.pdf_w;
     return s;
 }
+
+/* Beer-Lambert transmittance exp(-sigma t) over a segment of length t inside an absorbing
+ * dielectric; t may be infinite (a ray that leaves an open mesh into nothing): channels that
+ * absorb go to 0, the others stay 1 (exp(-0 * inf) would be NaN). */
+inline float3 dielectric_transmittance(float3 sigma, float t)
+{
+    return (float3)(sigma.x > 0.0f ? exp(-sigma.x * t) : 1.0f, sigma.y > 0.0f ? exp(-sigma.y * t) : 1.0f,
+                    sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
+}

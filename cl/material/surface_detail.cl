@@ -9,9 +9,6 @@
 #define PT_FEATURE_CUTOUT 1
 #endif
 
-/* Random dimension of a bounce (rng.cl's numbering) for the cut-out decisions of the shadow ray
- * that bounce queues; the closest-hit ray that reaches the vertex uses DIM_OPACITY. */
-#define DIM_SHADOW_OPACITY 11u
 
 /* A ray passes through at most this many cut-out layers; the next one stops it (a bound for the
  * GPU's sake: foliage has a few dozen layers at most). */

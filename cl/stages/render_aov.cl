@@ -24,7 +24,7 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
             sum += (float3)(hit.t);
         } else {
             /* A mix shows its first leaf's colour: the AOV is deterministic. */
-            Material m = material_resolve_mix(&scene, materials[surf.material], surf.uv, surf.position, 1.0f);
+            Material m = materials[material_resolve_mix(&scene, surf.material, surf.uv, surf.position, 1.0f)];
             Bsdf bsdf = bsdf_at(&scene, m, surf.uv, surf.position);
             sum += bsdf_albedo(&bsdf);
         }

@@ -58,7 +58,13 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     uint k = sample_id[slot];
     float4 h = hit[slot];
     float4 dir4 = ray_direction[slot];
-    float3 beta = xyz(throughput[slot]);
+    float4 throughput4 = throughput[slot];
+    float3 beta = xyz(throughput4);
+    /* throughput.w: 1 + the absorbing dielectric the segment ran inside, 0 outside any (the
+     * camera starts outside). Beer-Lambert over the segment just traced. */
+    uint medium = as_uint(throughput4.w);
+    if (medium != 0u)
+        beta *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), h.x);
     uint prim = as_uint(h.w);
     EnvMap env = env_map(p, scene);
     if (prim == HIT_NONE) {
@@ -92,10 +98,11 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         uint bounce = depth - 1u;
         /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
          * a mix resolves to. */
-        Material leaf = m.type == MATERIAL_MIX
-                            ? material_resolve_mix(scene, m, surf.uv, surf.position,
-                                                   rng_bounce(key, bounce, DIM_MIX))
-                            : m;
+        uint leaf_index = m.type == MATERIAL_MIX
+                              ? material_resolve_mix(scene, surf.material, surf.uv, surf.position,
+                                                     rng_bounce(key, bounce, DIM_MIX))
+                              : surf.material;
+        Material leaf = m.type == MATERIAL_MIX ? scene->materials[leaf_index] : m;
         Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.position);
         /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
          * materials keep the cheap one. */
@@ -122,6 +129,11 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                 /* A delta light cannot be hit by the BSDF's rays: no MIS. */
                 float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
                 float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
+                /* A light seen from inside an absorbing medium (rare: a lamp inside glass). */
+                if (medium != 0u && wi_local.z > 0.0f)
+                    contribution *= dielectric_transmittance(
+                        xyz(scene->materials[medium - 1u].absorption),
+                        ls.at_infinity ? INFINITY : length(ls.position - surf.position));
                 float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
                 float dist = INFINITY;
                 float3 to_target = wi;
@@ -167,7 +179,11 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         if (path_continues) {
             ray_origin[slot] = (float4)(offset_ray_origin(surf.position, surf.geometric_normal, wi), 0.0f);
             ray_direction[slot] = (float4)(wi, bs.pdf_w);
-            throughput[slot] = (float4)(beta, 0.0f);
+            /* Refraction into a dielectric that absorbs starts a segment inside it; refraction out
+             * of one (wo inside, !front) ends it. Reflections keep the medium. */
+            if (bs.flags & BSDF_TRANSMISSION)
+                medium = front && max3(xyz(leaf.absorption)) > 0.0f ? leaf_index + 1u : 0u;
+            throughput[slot] = (float4)(beta, as_float(medium));
         }
     }
     add_radiance(radiance, k, gathered);
