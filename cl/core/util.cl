@@ -22,6 +22,11 @@
 #ifndef PT_FEATURE_ANALYTIC
 #define PT_FEATURE_ANALYTIC 1
 #endif
+/* The same for materials: a mask of MATERIAL_FEATURE_* (shared.h). */
+#ifndef PT_MATERIAL_FEATURES
+#define PT_MATERIAL_FEATURES MATERIAL_FEATURE_ALL
+#endif
+#define PT_HAS_MATERIAL_FEATURE(name) ((PT_MATERIAL_FEATURES & MATERIAL_FEATURE_##name) != 0u)
 
 inline float3 xyz(float4 v) { return (float3)(v.x, v.y, v.z); }
 

@@ -43,10 +43,17 @@ inline float fresnel_complex(float cos_i, float eta, float k)
  * material gave neither (MATERIAL_FLAG_FRESNEL_ONE). */
 inline float3 conductor_fresnel(const Bsdf *b, float cos_i)
 {
-    if (b->flags & MATERIAL_FLAG_FRESNEL_ONE)
+    if (!PT_HAS_MATERIAL_FEATURE(CONDUCTOR_FRESNEL) || (b->flags & MATERIAL_FLAG_FRESNEL_ONE))
         return (float3)(1.0f);
     return (float3)(fresnel_complex(cos_i, b->eta.x, b->k.x), fresnel_complex(cos_i, b->eta.y, b->k.y),
                     fresnel_complex(cos_i, b->eta.z, b->k.z));
+}
+
+/* A perfect mirror: below BSDF_SMOOTH_ALPHA, or in a program built for scenes without rough
+ * conductors. */
+inline bool conductor_is_smooth(const Bsdf *b)
+{
+    return !PT_HAS_MATERIAL_FEATURE(ROUGH_CONDUCTOR) || microfacet_smooth(b->alpha_x, b->alpha_y);
 }
 
 /* f cos_i = base F(wo.m) D(m) G1(wo) G1(wi) / (4 cos_o), m the half vector; pdf = D_wo(m) / (4 wo.m)
@@ -54,7 +61,7 @@ inline float3 conductor_fresnel(const Bsdf *b, float cos_i)
 inline float3 conductor_eval(const Bsdf *b, float3 wo, float3 wi, float *pdf_w)
 {
     *pdf_w = 0.0f;
-    if (microfacet_smooth(b->alpha_x, b->alpha_y) || !(wo.z > 0.0f) || !(wi.z > 0.0f))
+    if (conductor_is_smooth(b) || !(wo.z > 0.0f) || !(wi.z > 0.0f))
         return (float3)(0.0f);
     float3 m = wo + wi;
     float len = length(m);
@@ -71,7 +78,7 @@ inline float3 conductor_eval(const Bsdf *b, float3 wo, float3 wi, float *pdf_w)
 inline BsdfSample conductor_sample(const Bsdf *b, float3 wo, float u1, float u2)
 {
     BsdfSample s;
-    if (microfacet_smooth(b->alpha_x, b->alpha_y)) {
+    if (conductor_is_smooth(b)) {
         s.wi = (float3)(-wo.x, -wo.y, wo.z);
         s.weight = b->base * conductor_fresnel(b, wo.z);
         s.pdf_w = 0.0f;

@@ -20,8 +20,9 @@
  * anisotropic leaf. Everything else keeps frame_from_normal (no triangle reads). */
 inline bool surface_needs_tangents(Material m, Material leaf)
 {
-    return m.tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE || m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE ||
-           leaf.anisotropy != 0.0f;
+    return PT_HAS_MATERIAL_FEATURE(SURFACE_DETAIL) &&
+           (m.tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE || m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE ||
+            leaf.anisotropy != 0.0f);
 }
 
 /* Bump mapping as pbrt-v4's BumpMap: the height h = bump_scale * red(texture) displaces the

@@ -63,7 +63,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     /* throughput.w: 1 + the absorbing dielectric the segment ran inside, 0 outside any (the
      * camera starts outside). Beer-Lambert over the segment just traced. */
     uint medium = as_uint(throughput4.w);
-    if (medium != 0u)
+    if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && medium != 0u)
         beta *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), h.x);
     uint prim = as_uint(h.w);
     EnvMap env = env_map(p, scene);
@@ -98,11 +98,12 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         uint bounce = depth - 1u;
         /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
          * a mix resolves to. */
-        uint leaf_index = m.type == MATERIAL_MIX
+        bool is_mix = PT_HAS_MATERIAL_FEATURE(MIX) && m.type == MATERIAL_MIX;
+        uint leaf_index = is_mix
                               ? material_resolve_mix(scene, surf.material, surf.uv, surf.position,
                                                      rng_bounce(key, bounce, DIM_MIX))
                               : surf.material;
-        Material leaf = m.type == MATERIAL_MIX ? scene->materials[leaf_index] : m;
+        Material leaf = is_mix ? scene->materials[leaf_index] : m;
         Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.position);
         /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
          * materials keep the cheap one. */
@@ -130,7 +131,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                 float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
                 float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
                 /* A light seen from inside an absorbing medium (rare: a lamp inside glass). */
-                if (medium != 0u && wi_local.z > 0.0f)
+                if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && medium != 0u && wi_local.z > 0.0f)
                     contribution *= dielectric_transmittance(
                         xyz(scene->materials[medium - 1u].absorption),
                         ls.at_infinity ? INFINITY : length(ls.position - surf.position));
@@ -181,7 +182,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
             ray_direction[slot] = (float4)(wi, bs.pdf_w);
             /* Refraction into a dielectric that absorbs starts a segment inside it; refraction out
              * of one (wo inside, !front) ends it. Reflections keep the medium. */
-            if (bs.flags & BSDF_TRANSMISSION)
+            if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
                 medium = front && max3(xyz(leaf.absorption)) > 0.0f ? leaf_index + 1u : 0u;
             throughput[slot] = (float4)(beta, as_float(medium));
         }

@@ -22,7 +22,8 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
     return true;
 }
 
-/* Compiles out the light types the scene does not have (PT_FEATURE_* in cl/core/util.cl): their
+/* Compiles out the light types and material features the scene does not have (PT_FEATURE_* and
+ * PT_MATERIAL_FEATURES in cl/core/util.cl): their
  * branches cost 4-8% of shade_surface on the H200 in scenes without them. The kernel cache keys on
  * the options, so each combination is its own entry. Options too long for the buffer (a long
  * PT_CL_OPTIONS) keep every feature, which is always correct. */
@@ -33,10 +34,12 @@ static void specialise_program(Device *dev, const SceneData *data)
     bool cutout = false;
     for (uint32_t i = 0; i < data->num_materials && !cutout; i++)
         cutout = (data->materials[i].flags & MATERIAL_FLAG_CUTOUT) != 0;
-    char features[96];
+    char features[128];
     snprintf(features, sizeof features,
-             " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d",
-             data->environment.width > 0, data->num_analytic > 0, cutout);
+             " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d"
+             " -DPT_MATERIAL_FEATURES=%uu",
+             data->environment.width > 0, data->num_analytic > 0, cutout,
+             (unsigned)material_features(data->materials, data->num_materials));
     size_t used = strlen(dev->build_options);
     if (used + strlen(features) < sizeof dev->build_options)
         memcpy(dev->build_options + used, features, strlen(features) + 1);

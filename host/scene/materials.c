@@ -201,3 +201,43 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
     }
     return true;
 }
+
+/* Whether the kernels could treat material m as rough: its largest GGX alpha (as bsdf_at computes
+ * it) reaches half the kernels' smooth bound, or a texture sets its roughness. Erring toward rough
+ * only keeps code the material does not need; the kernels still decide per hit. */
+static bool material_may_be_rough(const Material *m)
+{
+    if (m->tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
+        return true;
+    float alpha = m->roughness * m->roughness;
+    float stretch = m->anisotropy > 0.0f ? sqrtf(1.0f - 0.9f * m->anisotropy) : 1.0f;
+    return fmaxf(alpha / stretch, alpha * stretch) >= 0.5e-3f;
+}
+
+uint32_t material_features(const Material *materials, uint32_t count)
+{
+    uint32_t features = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        const Material *m = &materials[i];
+        if (m->type == MATERIAL_CONDUCTOR && material_may_be_rough(m))
+            features |= MATERIAL_FEATURE_ROUGH_CONDUCTOR;
+        if (m->type == MATERIAL_CONDUCTOR && !(m->flags & MATERIAL_FLAG_FRESNEL_ONE))
+            features |= MATERIAL_FEATURE_CONDUCTOR_FRESNEL;
+        if (m->type == MATERIAL_DIELECTRIC && material_may_be_rough(m))
+            features |= MATERIAL_FEATURE_ROUGH_DIELECTRIC;
+        if (m->type == MATERIAL_DIELECTRIC &&
+            (m->absorption.s[0] > 0.0f || m->absorption.s[1] > 0.0f || m->absorption.s[2] > 0.0f))
+            features |= MATERIAL_FEATURE_ABSORPTION;
+        if (m->type == MATERIAL_PRINCIPLED)
+            features |= MATERIAL_FEATURE_PRINCIPLED;
+        if (m->type == MATERIAL_MIX)
+            features |= MATERIAL_FEATURE_MIX;
+        if (m->tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE || m->tex[MATERIAL_TEX_BUMP] != NO_TEXTURE ||
+            m->anisotropy != 0.0f)
+            features |= MATERIAL_FEATURE_SURFACE_DETAIL;
+        if (m->tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE || m->tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE ||
+            m->tex[MATERIAL_TEX_WEIGHT] != NO_TEXTURE)
+            features |= MATERIAL_FEATURE_TEXTURED_SCALARS;
+    }
+    return features;
+}

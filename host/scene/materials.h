@@ -46,4 +46,8 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
                           const ObjMesh *mesh, const char *obj_path, const NamedMaterials *named,
                           uint32_t *mesh_to_scene, Error *err);
 
+/* The MATERIAL_FEATURE_* mask (cl/shared.h) of what these materials use: the kernels are built
+ * for it (render/session.c). */
+uint32_t material_features(const Material *materials, uint32_t count);
+
 #endif
