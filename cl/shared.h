@@ -172,7 +172,9 @@ enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
 #define MATERIAL_FEATURE_SURFACE_DETAIL 32u   /* normal or bump map, or anisotropy */
 #define MATERIAL_FEATURE_TEXTURED_SCALARS 64u /* roughness, metallic or mix weight from a texture */
 #define MATERIAL_FEATURE_ABSORPTION 128u      /* a dielectric with Beer-Lambert absorption */
-#define MATERIAL_FEATURE_ALL 0xffu
+#define MATERIAL_FEATURE_NOISE_TEXTURE 256u   /* a procedural texture (fBm, inlined at every lookup) */
+#define MATERIAL_FEATURE_EMISSION_TEXTURE 512u
+#define MATERIAL_FEATURE_ALL 0x3ffu
 
 /* Mixes nest at most this deep (the host refuses deeper ones and cycles). */
 #define MATERIAL_MIX_DEPTH_LIMIT 8u

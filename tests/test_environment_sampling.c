@@ -63,8 +63,10 @@ static void check_samples_follow_the_weights(const float *rgb, int w, int h)
         }
     }
     /* A direction drawn on a cell's edge may round into a neighbour of weight 0: env_lookup gives
-     * it that neighbour's pdf, 0, and next-event estimation drops it (a few in 10^6). */
-    cr_expect(stray <= 1e-6 * n, "%.0f samples in texels of weight 0", stray);
+     * it that neighbour's pdf, 0, and next-event estimation drops it: a few in 10^6 on PoCL, 9 in
+     * 4.2 10^6 on the H200 (NVIDIA's atan2/acos differ by an ulp or two). A bias of that order;
+     * an unwidened table puts most of the map's samples here. */
+    cr_expect(stray <= 1e-5 * n, "%.0f samples in texels of weight 0", stray);
     if (pooled_e > 0.0)
         chi += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, bins++;
     /* Wilson-Hilferty quantile at p = 1e-6 (z = 4.75) for bins - 1 degrees of freedom. */

@@ -61,15 +61,17 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     }
     Material m = materials[material_ids[entry.triangle]];
     ls.radiance = xyz(m.emission);
-    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE || (m.flags & MATERIAL_FLAG_CUTOUT)) {
+    bool textured = PT_HAS_MATERIAL_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE;
+    bool cutout = PT_FEATURE_CUTOUT && (m.flags & MATERIAL_FLAG_CUTOUT);
+    if (textured || cutout) {
         float2 uv = (float2)(b.x, b.y);
         if (tri.w & TRIANGLE_HAS_UVS)
             uv = (1.0f - b.x - b.y) * scene->uvs[tri.x] + b.x * scene->uvs[tri.y] + b.y * scene->uvs[tri.z];
-        if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+        if (textured)
             ls.radiance *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, ls.position));
         /* A ray meets a cut-out emitter with probability opacity (the rest pass through), so
          * what BSDF sampling sees on average is emission x opacity: light sampling agrees. */
-        if (m.flags & MATERIAL_FLAG_CUTOUT)
+        if (cutout)
             ls.radiance *= material_opacity(scene, m, uv, ls.position);
     }
     ls.pdf_w = entry.pdf * (2.0f / double_area) * dist2 / cos_light;

@@ -14,7 +14,7 @@ inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Ma
     if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
     float3 L = xyz(m.emission);
-    if (m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+    if (PT_HAS_MATERIAL_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
         L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, position));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))

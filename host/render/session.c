@@ -39,7 +39,7 @@ static void specialise_program(Device *dev, const SceneData *data)
              " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d"
              " -DPT_MATERIAL_FEATURES=%uu",
              data->environment.width > 0, data->num_analytic > 0, cutout,
-             (unsigned)material_features(data->materials, data->num_materials));
+             (unsigned)material_features(data->materials, data->num_materials, &data->textures));
     size_t used = strlen(dev->build_options);
     if (used + strlen(features) < sizeof dev->build_options)
         memcpy(dev->build_options + used, features, strlen(features) + 1);

@@ -214,9 +214,12 @@ static bool material_may_be_rough(const Material *m)
     return fmaxf(alpha / stretch, alpha * stretch) >= 0.5e-3f;
 }
 
-uint32_t material_features(const Material *materials, uint32_t count)
+uint32_t material_features(const Material *materials, uint32_t count, const TextureSet *textures)
 {
     uint32_t features = 0;
+    for (uint32_t i = 0; i < textures->count; i++)
+        if (textures->infos[i].format == TEXTURE_NOISE)
+            features |= MATERIAL_FEATURE_NOISE_TEXTURE;
     for (uint32_t i = 0; i < count; i++) {
         const Material *m = &materials[i];
         if (m->type == MATERIAL_CONDUCTOR && material_may_be_rough(m))
@@ -238,6 +241,8 @@ uint32_t material_features(const Material *materials, uint32_t count)
         if (m->tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE || m->tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE ||
             m->tex[MATERIAL_TEX_WEIGHT] != NO_TEXTURE)
             features |= MATERIAL_FEATURE_TEXTURED_SCALARS;
+        if (m->tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+            features |= MATERIAL_FEATURE_EMISSION_TEXTURE;
     }
     return features;
 }

@@ -48,6 +48,6 @@ bool materials_append_obj(Material **materials, uint32_t *num_materials, Texture
 
 /* The MATERIAL_FEATURE_* mask (cl/shared.h) of what these materials use: the kernels are built
  * for it (render/session.c). */
-uint32_t material_features(const Material *materials, uint32_t count);
+uint32_t material_features(const Material *materials, uint32_t count, const TextureSet *textures);
 
 #endif
