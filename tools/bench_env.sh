@@ -8,13 +8,15 @@
 #      memory, env_build.csv;
 #   3. an 8192 x 4096 map rendered by pt on the device (64 x 64, 4 spp): that it works, pt's scene
 #      buffer size, the render time and the peak host memory, env_8k.txt.
-# Usage: tools/bench_env.sh [--pt build/pt] [--device gpu|cpu|P:D] [--quick]
+# Usage: tools/bench_env.sh [--pt build/pt] [--tools build/tools] [--device gpu|cpu|P:D] [--quick]
+# (--tools: where bench_env_variance and bench_env_build are; a bundle's bin/ holds them too)
 # (--quick: smaller reference and fewer seeds, for PoCL). Build first: make build/pt tools.
 set -euo pipefail
-pt=build/pt device= quick=
+pt=build/pt tools=build/tools device= quick=
 while [ $# -gt 0 ]; do
     case "$1" in
     --pt) pt=$2; shift 2 ;;
+    --tools) tools=$2; shift 2 ;;
     --device) device=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     *) echo "bench_env.sh: unknown option $1" >&2; exit 1 ;;
@@ -30,8 +32,8 @@ echo "results in $out"
 
 refs=(--ref-spp 4096 --seeds 4)
 [ -n "$quick" ] && refs=(--ref-spp 1024 --seeds 3)
-build/tools/bench_env_variance --pt "$pt" "${device_args[@]}" "${refs[@]}" --csv "$out/env_variance.csv"
-build/tools/bench_env_build --reps 3 --csv "$out/env_build.csv" --write-hdr /tmp/pt-bench-env-8k.hdr
+"$tools"/bench_env_variance --pt "$pt" "${device_args[@]}" "${refs[@]}" --csv "$out/env_variance.csv"
+"$tools"/bench_env_build --reps 3 --csv "$out/env_build.csv" --write-hdr /tmp/pt-bench-env-8k.hdr
 
 dir=$(mktemp -d /tmp/pt-bench-env-XXXXXX)
 trap 'rm -rf "$dir" /tmp/pt-bench-env-8k.hdr /tmp/pt-bench-env-probe.png' EXIT
