@@ -91,8 +91,8 @@ static double scaled_weight(const float4 *texels, const double *row_scale, size_
 /* Vose's alias table over the texels in one sweep (O(n), no work lists): small entries in index
  * order each fill their slot from the current large entry, whose residual weight is kept in
  * double; a large entry whose residual drops below 1 becomes small and fills its own slot from the
- * next large one. On entry a[t].prob holds the scaled weight as a float, for telling small from
- * large; the sweep takes the residuals from the double weights, so each small entry's float
+ * next large one. On entry a[t] = {the scaled weight as a float, for telling small from large,
+ * ALIAS_UNSET}; the sweep takes the residuals from the double weights, so each small entry's float
  * rounding lands on its own large partner (relative 1e-7), not all of them on the last entry.
  * texels[t].w becomes n x the probability that the table picks texel t, prob_t + the sum over the
  * entries j aliasing to t of (1 - prob_j), summed in double from the stored float probs: exactly
@@ -100,8 +100,6 @@ static double scaled_weight(const float4 *texels, const double *row_scale, size_
  * slot aliases to is the one being filled then, so its receivers are all known.) */
 static void build_alias(EnvAlias *a, float4 *texels, const double *row_scale, size_t w, size_t n)
 {
-    for (size_t t = 0; t < n; t++)
-        a[t].alias = ALIAS_UNSET;
     size_t s = next_small(a, n, 0), l = next_large(a, n, 0), fallback = l;
     double residual = l < n ? scaled_weight(texels, row_scale, w, l) : 0.0, received = 0.0; /* of l */
     while (s < n && l < n) {
@@ -131,7 +129,7 @@ static void build_alias(EnvAlias *a, float4 *texels, const double *row_scale, si
         a[l].prob = 1.0f, a[l].alias = (uint32_t)l;
         texels[l].s[3] = (float)(received + 1.0);
     }
-    for (size_t t = 0; t < n; t++) {
+    for (size_t t = s < l ? s : l; t < n; t++) { /* all before the two scans are in the table */
         if (a[t].alias != ALIAS_UNSET)
             continue;
         if (a[t].prob > 0.0f || fallback >= n) {
@@ -157,7 +155,8 @@ static double build_tables(Environment *env, size_t w, size_t h, float *rows, do
     for (size_t j = 0; j < h; j++) {
         row_scale[j] *= n / total;
         for (size_t i = 0; i < w; i++)
-            env->alias[j * w + i].prob = (float)((double)env->texels[j * w + i].s[3] * row_scale[j]);
+            env->alias[j * w + i] = (EnvAlias){(float)((double)env->texels[j * w + i].s[3] * row_scale[j]),
+                                               ALIAS_UNSET};
     }
     build_alias(env->alias, env->texels, row_scale, w, w * h);
     return total;
