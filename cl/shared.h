@@ -274,6 +274,13 @@ typedef struct {
  * indices stay far below (BVH_QUANTIZED_MAX_TRIANGLES). */
 #define LIGHT_ANALYTIC_BASE 0x80000000u
 
+/* One entry of the environment map's alias table over its texels (host/scene/environment.c):
+ * texel i is kept with probability prob, else its alias is taken. */
+typedef struct {
+    float prob;
+    uint alias;
+} EnvAlias;
+
 /* Analytic lights (JSON "lights", shared/DESIGN.md "Lights"; host/scene/analytic_lights.c). */
 #define LIGHT_POINT 0u
 #define LIGHT_SPOT 1u
@@ -312,8 +319,7 @@ typedef struct {
     X(LightEntry, lights)                                                                           \
     X(AnalyticLight, analytic_lights)                                                               \
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
-    X(float, env_marginal)     /* CDF over rows, env_height + 1 */                                 \
-    X(float, env_conditional)  /* CDF over each row's columns, env_height * (env_width + 1) */
+    X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */
 
 #define SCENE_BUFFER_COUNT_ONE(type, name) +1
 #define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
@@ -410,6 +416,7 @@ typedef struct {
         FIELD(RenderParams, pad2)                                                                   \
     STRUCT(LightEntry, 16) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)                                          \
+    STRUCT(EnvAlias, 8) FIELD(EnvAlias, prob) FIELD(EnvAlias, alias)                               \
     STRUCT(AnalyticLight, 80) FIELD(AnalyticLight, position) FIELD(AnalyticLight, color)            \
         FIELD(AnalyticLight, axis) FIELD(AnalyticLight, params) FIELD(AnalyticLight, type)          \
         FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)

@@ -112,7 +112,7 @@ static inline void write_ball_obj(const char *dir, bool floor)
 }
 
 typedef struct {
-    cl_mem texels, marginal, conditional;
+    cl_mem texels, alias;
 } EnvBuffers;
 
 /* The map's buffers as the first arguments of an env_test.cl kernel (ENV_TEST_PARAMS); returns
@@ -120,16 +120,13 @@ typedef struct {
 static inline cl_uint env_args(Device *dev, cl_kernel k, const Environment *env, EnvBuffers *b)
 {
     Error err = {0};
-    size_t w = env->width, h = env->height;
-    b->texels = device_buffer(dev, "env_texels", CL_MEM_READ_ONLY, w * h * sizeof(float4), env->texels, &err);
-    b->marginal = device_buffer(dev, "env_marginal", CL_MEM_READ_ONLY, (h + 1) * sizeof(float), env->marginal, &err);
-    b->conditional = device_buffer(dev, "env_conditional", CL_MEM_READ_ONLY, h * (w + 1) * sizeof(float),
-                                   env->conditional, &err);
+    size_t n = (size_t)env->width * env->height;
+    b->texels = device_buffer(dev, "env_texels", CL_MEM_READ_ONLY, n * sizeof(float4), env->texels, &err);
+    b->alias = device_buffer(dev, "env_alias", CL_MEM_READ_ONLY, n * sizeof(EnvAlias), env->alias, &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     cl_uint a = 0;
     KERNEL_ARG(k, a++, b->texels);
-    KERNEL_ARG(k, a++, b->marginal);
-    KERNEL_ARG(k, a++, b->conditional);
+    KERNEL_ARG(k, a++, b->alias);
     KERNEL_ARG(k, a++, env->width);
     KERNEL_ARG(k, a++, env->height);
     KERNEL_ARG(k, a++, env->rotation);
@@ -139,8 +136,7 @@ static inline cl_uint env_args(Device *dev, cl_kernel k, const Environment *env,
 static inline void env_buffers_release(EnvBuffers *b)
 {
     clReleaseMemObject(b->texels);
-    clReleaseMemObject(b->marginal);
-    clReleaseMemObject(b->conditional);
+    clReleaseMemObject(b->alias);
 }
 
 #endif

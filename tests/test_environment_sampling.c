@@ -19,6 +19,68 @@ static double texel_weight(const float *rgb, int w, int h, int i, int j)
     return best * sin(ENV_PI * (j + 0.5) / h);
 }
 
+/* The alias table draws each texel with probability weight / total (within float rounding: the
+ * table holds float probabilities), a texel of weight 0 never; texels[].w is that probability x
+ * W x H exactly as the table implies it (prob_i + the slots that alias to i), so the pdf the MIS
+ * weights use is the density env_sample draws from. A table whose texels[].w leaves out the
+ * aliased mass, or whose sweep loses a large texel's residual, fails. */
+static void check_alias_table(const float *rgb, int w, int h)
+{
+    Environment env;
+    Error err = {0};
+    cr_assert(environment_build(&env, rgb, w, h, 1.0f, 0.0f, "map", &err), "%s", err.message);
+    size_t n = (size_t)w * h;
+    double *implied = calloc(n, sizeof *implied), total = 0.0;
+    for (size_t t = 0; t < n; t++) {
+        cr_assert(env.alias[t].alias < n && env.alias[t].prob >= 0.0f && env.alias[t].prob <= 1.0f,
+                  "entry %zu: prob %g alias %u", t, env.alias[t].prob, env.alias[t].alias);
+        implied[t] += env.alias[t].prob;
+        implied[env.alias[t].alias] += 1.0 - env.alias[t].prob;
+    }
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            total += texel_weight(rgb, w, h, i, j);
+    int wrong_table = 0, wrong_pdf = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            size_t t = (size_t)j * w + i;
+            double want = texel_weight(rgb, w, h, i, j) / total * (double)n, pdf = env.texels[t].s[3];
+            if (!(fabs(implied[t] - want) <= 1e-6 * want + 1e-9) || (want == 0.0) != (implied[t] == 0.0))
+                if (wrong_table++ < 3)
+                    cr_log_error("texel (%d, %d): the table draws it %.9g x uniform, its weight says %.9g", i, j,
+                                 implied[t], want);
+            if (!(fabs(pdf - implied[t]) <= 1e-6 * implied[t]))
+                if (wrong_pdf++ < 3)
+                    cr_log_error("texel (%d, %d): texels[].w %.9g, the table draws it %.9g x uniform", i, j, pdf,
+                                 implied[t]);
+        }
+    cr_expect_eq(wrong_table, 0, "%dx%d: %d texels drawn off their weight", w, h, wrong_table);
+    cr_expect_eq(wrong_pdf, 0, "%dx%d: %d texels whose pdf is not the table's", w, h, wrong_pdf);
+    environment_free(&env);
+    free(implied);
+}
+
+/* Maps from smooth to extreme: every texel's weight near the mean (most entries keep their slot),
+ * a sun 10^5 x the sky (one texel receives thousands of slots), black rows and single texels (many
+ * weights of 0). */
+Test(environment_sampling, alias_table_draws_each_texel_by_its_weight)
+{
+    float *axis = axis_map(64, 32), *contrast = contrast_map(64, 32), *one = one_texel_map(32, 16, 0, 5);
+    check_alias_table(axis, 64, 32);
+    check_alias_table(contrast, 64, 32);
+    check_alias_table(one, 32, 16);
+    int w = 512, h = 256;
+    float *sun = malloc((size_t)w * h * 3 * sizeof *sun);
+    uint64_t state = 11;
+    for (int t = 0; t < w * h; t++)
+        for (int c = 0; c < 3; c++)
+            sun[3 * t + c] = 0.1f + mesh_rng_float(&state);
+    for (int c = 0; c < 3; c++)
+        sun[3 * (100 * w + 200) + c] = 1e5f;
+    check_alias_table(sun, w, h);
+    free(axis), free(contrast), free(one), free(sun);
+}
+
 /* Samples of env_sample counted per texel pass a chi-square test against the texel weights (a
  * black texel whose neighbours are black too is not sampled); each sample's pdf and radiance
  * equal what an escaped ray in its direction sees (env_lookup). */

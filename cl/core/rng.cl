@@ -43,7 +43,7 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
  *   camera, 0..7: jitter x, y, lens u, v; 4 is for the shutter time (motion blur), 5..7 spare;
  *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light pick, alias coin, light u, v,
  *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
- *   the shadow ray; 12..15 spare. */
+ *   the shadow ray, environment texel pick, its alias coin; 14..15 spare. */
 #define DIM_CAMERA_JITTER_X 0u
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u
@@ -62,6 +62,8 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_MIX 9u        /* which leaf of a mix material */
 #define DIM_OPACITY 10u   /* alpha cut-out pass-through of the closest hit */
 #define DIM_SHADOW_OPACITY 11u /* the same along the bounce's shadow ray */
+#define DIM_ENV_PICK 12u  /* the environment map's alias-table entry (32 bits) */
+#define DIM_ENV_COIN 13u  /* that entry or its alias */
 
 inline float rng_from_key(RngKey key, uint dimension) { return uint_to_unit(rng_bits(key, dimension)); }
 

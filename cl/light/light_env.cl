@@ -6,7 +6,8 @@
  *
  * Radiance is the bilinear interpolation of the four texel centres around the direction (wrapping
  * in u, clamped in v), everywhere: escaped rays and next-event estimation see the same function.
- * Sampling is piecewise constant per texel cell, with each texel's weight the largest luminance of
+ * Sampling is piecewise constant per texel cell (a texel from the alias table over all texels, O(1),
+ * then a uniform point in its cell), with each texel's weight the largest luminance of
  * the 3 x 3 texels around it (the only texels bilinear filtering reads inside its cell) x sin(theta
  * of its row): the density is > 0 wherever the bilinear radiance is > 0 (except at the two poles,
  * a set of measure zero). env_pdf_w is exactly the density env_sample draws from, so NEE divides by
@@ -15,16 +16,14 @@
 
 typedef struct {
     const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
-    const global float *marginal;     /* height + 1 */
-    const global float *conditional;  /* height * (width + 1) */
+    const global EnvAlias *alias;     /* width * height: the alias table over the texels */
     uint width, height;
     float rotation;                   /* theta as a fraction of a turn */
 } EnvMap;
 
 inline EnvMap env_map(constant RenderParams *p, const SceneView *scene)
 {
-    EnvMap env = {scene->env_texels, scene->env_marginal, scene->env_conditional, p->env_width,
-                  p->env_height, p->env_rotation};
+    EnvMap env = {scene->env_texels, scene->env_alias, p->env_width, p->env_height, p->env_rotation};
     return env;
 }
 
@@ -82,21 +81,6 @@ inline float3 env_lookup(const EnvMap *env, float3 d, float *pdf_w)
     return env_bilinear(env, uv.x, uv.y);
 }
 
-/* The index k in [0, n) with cdf[k] <= x < cdf[k + 1] (cdf[0] = 0, cdf[n] = 1, x in [0, 1)): a
- * zero-width entry (a black texel or row) is never returned. */
-inline uint env_cdf_find(const global float *cdf, uint n, float x)
-{
-    uint lo = 0u, hi = n;
-    while (lo + 1u < hi) {
-        uint mid = (lo + hi) >> 1;
-        if (cdf[mid] <= x)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 typedef struct {
     float3 direction;
     float3 radiance;
@@ -104,18 +88,16 @@ typedef struct {
 } EnvSample;
 
 /* A direction in proportion to each texel's weight (the 3 x 3 neighbourhood's largest luminance x
- * sin(theta) of the row): a row by the marginal CDF, a column by the row's conditional CDF, then
- * uniformly within the texel's uv cell. */
-inline EnvSample env_sample(const EnvMap *env, float u1, float u2)
+ * sin(theta) of the row): the texel from the alias table (an entry uniform from 32 bits by a
+ * multiply-high, as light_pick, then it or its alias by an independent coin; texels[].w is the
+ * table's exact probability of each texel x W x H), then uniformly within its uv cell by u1, u2. */
+inline EnvSample env_sample(const EnvMap *env, uint pick_bits, float u_coin, float u1, float u2)
 {
-    uint j = env_cdf_find(env->marginal, env->height, u1);
-    float row_lo = env->marginal[j], row_hi = env->marginal[j + 1u];
-    const global float *cdf = env->conditional + j * (env->width + 1u);
-    uint i = env_cdf_find(cdf, env->width, u2);
-    float col_lo = cdf[i], col_hi = cdf[i + 1u];
-    float fv = clamp((u1 - row_lo) / (row_hi - row_lo), 0.0f, 0.99999994f);
-    float fu = clamp((u2 - col_lo) / (col_hi - col_lo), 0.0f, 0.99999994f);
-    float u = ((float)i + fu) / (float)env->width, v = ((float)j + fv) / (float)env->height;
+    uint t = mul_hi(pick_bits, env->width * env->height);
+    EnvAlias slot = env->alias[t];
+    t = u_coin < slot.prob ? t : slot.alias;
+    uint j = t / env->width, i = t - j * env->width;
+    float u = ((float)i + u1) / (float)env->width, v = ((float)j + u2) / (float)env->height;
     float phi = 2.0f * M_PI_F * (u - 0.5f - env->rotation);
     float theta = M_PI_F * v;
     float sin_theta = sin(theta);

@@ -16,8 +16,11 @@ inline LightEntry light_pick(const global LightEntry *lights, uint num_lights, u
     return u_coin < entry.prob ? entry : lights[entry.alias];
 }
 
+/* pick_bits, u_coin choose the light; env_pick_bits, env_coin the environment map's texel when it
+ * is chosen (independent numbers: the light's are spent on the light); u1, u2 the point on it. */
 PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, uint num_lights,
-                                   float3 from, uint pick_bits, float u_coin, float u1, float u2)
+                                   float3 from, uint pick_bits, float u_coin, uint env_pick_bits,
+                                   float env_coin, float u1, float u2)
 {
     const global LightEntry *lights = scene->lights;
     const global float4 *positions = scene->positions;
@@ -27,7 +30,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     LightSample ls;
     LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
     if (PT_FEATURE_ENV && entry.triangle == LIGHT_ENVIRONMENT) {
-        EnvSample es = env_sample(env, u1, u2);
+        EnvSample es = env_sample(env, env_pick_bits, env_coin, u1, u2);
         ls.position = from;
         ls.normal = -es.direction;
         ls.direction = es.direction;

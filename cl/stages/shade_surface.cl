@@ -117,6 +117,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
             LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
+                                          rng_bounce_bits(key, bounce, DIM_ENV_PICK),
+                                          rng_bounce(key, bounce, DIM_ENV_COIN),
                                           rng_bounce(key, bounce, DIM_LIGHT_U),
                                           rng_bounce(key, bounce, DIM_LIGHT_V));
             float3 wi = ls.direction;

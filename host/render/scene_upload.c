@@ -48,8 +48,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     const Environment *env = &data->environment;
     size_t env_w = env->width, env_h = env->height;
     src.env_texels = source(env_w * env_h, sizeof(float4), env->texels);
-    src.env_marginal = source(env_h ? env_h + 1 : 0, sizeof(float), env->marginal);
-    src.env_conditional = source(env_h * (env_w + 1), sizeof(float), env->conditional);
+    src.env_alias = source(env_w * env_h, sizeof(EnvAlias), env->alias);
     out->env_width = env->width;
     out->env_height = env->height;
     out->env_rotation = env->rotation;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-/* environment.c: reading the environment map and building its sampling distribution. */
+/* environment.c: reading the environment map and building its sampling distribution (an alias
+ * table over the texels). */
 #include "scene/environment.h"
 
 #include <limits.h>
@@ -21,7 +22,7 @@
 static float luminance(const float4 *c) { return 0.2126f * c->s[0] + 0.7152f * c->s[1] + 0.0722f * c->s[2]; }
 
 /* out[i] = the largest of lum[i - 1], lum[i], lum[i + 1], wrapping around the row (u = 0 meets
- * u = 1). lum is the row's texels; their w holds the luminance while the tables are built. */
+ * u = 1). lum is the row's texels; their w holds the luminance while the weights are built. */
 static void row_max3(const float4 *row, size_t w, float *out)
 {
     for (size_t i = 0; i < w; i++) {
@@ -30,56 +31,134 @@ static void row_max3(const float4 *row, size_t w, float *out)
     }
 }
 
-/* The sampling tables. A texel's weight is the largest luminance of the 3 x 3 texels around it
- * (wrapping in u, clamped in v) x sin(theta of its row centre): bilinear filtering inside a texel's
- * cell reads only those texels, so the weight is > 0 wherever the displayed radiance is (see
- * cl/light/light_env.cl). Weights accumulate in double so zero texels stay zero-width. texels[].w
- * holds the luminance on entry and the pdf per unit uv area on return: the product of the float
- * CDF steps of the texel's row and column, exactly the density env_sample draws from. Returns the
- * total weight (0: the map is black). rows: 3 * w scratch floats, row_weight: h doubles. */
-static double build_tables(Environment *env, size_t w, size_t h, float *rows, double *row_weight)
+/* A texel's sampling weight is the largest luminance of the 3 x 3 texels around it (wrapping in u,
+ * clamped in v) x sin(theta of its row centre): bilinear filtering inside a texel's cell reads only
+ * those texels, so the weight is > 0 wherever the displayed radiance is (see
+ * cl/light/light_env.cl). texels[].w holds the luminance on entry and the 3 x 3 maximum on return
+ * (row j's luminance is last read when row j + 1's maxima are taken, so it is overwritten then);
+ * row_scale[j] = sin(theta of row j's centre). Returns the total weight, summed in double. rows:
+ * 3 * w scratch floats. */
+static double build_weights(float4 *texels, size_t w, size_t h, float *rows, double *row_scale)
 {
     const double pi = 3.14159265358979323846;
     float *above = rows, *here = rows + w, *below = rows + 2 * w;
-    row_max3(env->texels, w, here);
+    row_max3(texels, w, here);
     memcpy(above, here, w * sizeof *here);
     double total = 0.0;
-    env->marginal[0] = 0.0f;
     for (size_t j = 0; j < h; j++) {
         if (j + 1 < h)
-            row_max3(env->texels + (j + 1) * w, w, below);
+            row_max3(texels + (j + 1) * w, w, below);
         else
             memcpy(below, here, w * sizeof *here);
-        double sin_c = sin(pi * ((double)j + 0.5) / (double)h), row = 0.0;
-        float *cdf = env->conditional + j * (w + 1);
-        cdf[0] = 0.0f;
+        double row = 0.0;
         for (size_t i = 0; i < w; i++) {
-            row += (double)fmaxf(fmaxf(above[i], here[i]), below[i]);
-            cdf[i + 1] = (float)row;
+            float m = fmaxf(fmaxf(above[i], here[i]), below[i]);
+            texels[j * w + i].s[3] = m;
+            row += (double)m;
         }
-        for (size_t i = 1; i <= w; i++)
-            cdf[i] = row > 0.0 ? (float)((double)cdf[i] / row) : (float)i / (float)w;
-        cdf[w] = 1.0f;
-        row_weight[j] = row * sin_c;
-        total += row_weight[j];
+        row_scale[j] = sin(pi * ((double)j + 0.5) / (double)h);
+        total += row * row_scale[j];
         float *spare = above; /* roll: this row is the next one's row above */
         above = here, here = below, below = spare;
     }
+    return total;
+}
+
+#define ALIAS_UNSET UINT32_MAX
+
+/* The first index >= i not yet in the table whose scaled weight is < 1 (small) or >= 1 (large).
+ * A large entry keeps its weight in prob until it is finished, a small one for good. */
+static size_t next_small(const EnvAlias *a, size_t n, size_t i)
+{
+    while (i < n && !(a[i].alias == ALIAS_UNSET && a[i].prob < 1.0f))
+        i++;
+    return i;
+}
+static size_t next_large(const EnvAlias *a, size_t n, size_t i)
+{
+    while (i < n && !(a[i].alias == ALIAS_UNSET && a[i].prob >= 1.0f))
+        i++;
+    return i;
+}
+
+/* Texel t's weight scaled to mean 1, in double: its 3 x 3 maximum (texels[t].w until the table
+ * is built) x its row's scale. */
+static double scaled_weight(const float4 *texels, const double *row_scale, size_t w, size_t t)
+{
+    return (double)texels[t].s[3] * row_scale[t / w];
+}
+
+/* Vose's alias table over the texels in one sweep (O(n), no work lists): small entries in index
+ * order each fill their slot from the current large entry, whose residual weight is kept in
+ * double; a large entry whose residual drops below 1 becomes small and fills its own slot from the
+ * next large one. On entry a[t] = {the scaled weight as a float, for telling small from large,
+ * ALIAS_UNSET}; the sweep takes the residuals from the double weights, so each small entry's float
+ * rounding lands on its own large partner (relative 1e-7), not all of them on the last entry.
+ * texels[t].w becomes n x the probability that the table picks texel t, prob_t + the sum over the
+ * entries j aliasing to t of (1 - prob_j), summed in double from the stored float probs: exactly
+ * what env_sample draws. (An entry's texels[].w is written when it is finished: the large entry a
+ * slot aliases to is the one being filled then, so its receivers are all known.) */
+static void build_alias(EnvAlias *a, float4 *texels, const double *row_scale, size_t w, size_t n)
+{
+    size_t s = next_small(a, n, 0), l = next_large(a, n, 0), fallback = l;
+    double residual = l < n ? scaled_weight(texels, row_scale, w, l) : 0.0, received = 0.0; /* of l */
+    while (s < n && l < n) {
+        double q = scaled_weight(texels, row_scale, w, s);
+        float p = (float)q;
+        a[s].prob = p, a[s].alias = (uint32_t)l;
+        texels[s].s[3] = p;
+        residual -= 1.0 - q;
+        received += 1.0 - (double)p;
+        s = next_small(a, n, s + 1);
+        while (residual < 1.0) { /* l turns small: it keeps `residual` of its slot */
+            size_t next = next_large(a, n, l + 1);
+            if (next >= n)
+                break; /* rounding only: what is left weighs 1 per slot */
+            float kept = (float)fmax(residual, 0.0);
+            a[l].prob = kept, a[l].alias = (uint32_t)next;
+            texels[l].s[3] = (float)(received + (double)kept);
+            residual = scaled_weight(texels, row_scale, w, next) - (1.0 - fmax(residual, 0.0));
+            received = 1.0 - (double)kept;
+            l = fallback = next;
+        }
+        if (residual < 1.0 && next_large(a, n, l + 1) >= n)
+            break;
+    }
+    /* What is left weighs 1 per slot up to rounding: each keeps its own slot. */
+    if (l < n) {
+        a[l].prob = 1.0f, a[l].alias = (uint32_t)l;
+        texels[l].s[3] = (float)(received + 1.0);
+    }
+    for (size_t t = s < l ? s : l; t < n; t++) { /* all before the two scans are in the table */
+        if (a[t].alias != ALIAS_UNSET)
+            continue;
+        if (a[t].prob > 0.0f || fallback >= n) {
+            a[t].prob = 1.0f, a[t].alias = (uint32_t)t;
+            texels[t].s[3] = 1.0f;
+        } else { /* a black texel must never be drawn: its slot goes to a bright one */
+            a[t].prob = 0.0f, a[t].alias = (uint32_t)fallback;
+            texels[t].s[3] = 0.0f;
+            texels[fallback].s[3] += 1.0f;
+        }
+    }
+}
+
+/* The sampling table: the texels' weights scaled to mean 1, then the alias table and texels[].w,
+ * the pdf per unit uv area. Returns the total weight (0: the map is black). rows: 3 * w scratch
+ * floats, row_scale: h doubles. */
+static double build_tables(Environment *env, size_t w, size_t h, float *rows, double *row_scale)
+{
+    double total = build_weights(env->texels, w, h, rows, row_scale);
     if (!(total > 0.0) || !isfinite(total))
         return 0.0;
-    double running = 0.0;
+    double n = (double)w * (double)h;
     for (size_t j = 0; j < h; j++) {
-        running += row_weight[j];
-        env->marginal[j + 1] = (float)(running / total);
-    }
-    env->marginal[h] = 1.0f;
-    double cells = (double)w * (double)h;
-    for (size_t j = 0; j < h; j++) {
-        double row_p = (double)env->marginal[j + 1] - (double)env->marginal[j];
-        const float *cdf = env->conditional + j * (w + 1);
+        row_scale[j] *= n / total;
         for (size_t i = 0; i < w; i++)
-            env->texels[j * w + i].s[3] = (float)(row_p * ((double)cdf[i + 1] - (double)cdf[i]) * cells);
+            env->alias[j * w + i] = (EnvAlias){(float)((double)env->texels[j * w + i].s[3] * row_scale[j]),
+                                               ALIAS_UNSET};
     }
+    build_alias(env->alias, env->texels, row_scale, w, w * h);
     return total;
 }
 
@@ -98,12 +177,11 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     size_t w = (size_t)width, h = (size_t)height, n = w * h;
     env->texels = malloc(n * sizeof *env->texels);
-    env->marginal = malloc((h + 1) * sizeof *env->marginal);
-    env->conditional = malloc(h * (w + 1) * sizeof *env->conditional);
+    env->alias = malloc(n * sizeof *env->alias);
     float *rows = malloc(3 * w * sizeof *rows);
-    double *row_weight = malloc(h * sizeof *row_weight);
-    if (!env->texels || !env->marginal || !env->conditional || !rows || !row_weight) {
-        free(rows), free(row_weight);
+    double *row_scale = malloc(h * sizeof *row_scale);
+    if (!env->texels || !env->alias || !rows || !row_scale) {
+        free(rows), free(row_scale);
         environment_free(env);
         error_set(err, ERR_TOO_LARGE, name, 0, "%s: out of memory for a %dx%d environment map", name,
                   width, height);
@@ -131,8 +209,8 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     if (clamped)
         warn("%s: %zu negative or non-finite texel values clamped to 0", name, clamped);
-    double total = build_tables(env, w, h, rows, row_weight);
-    free(rows), free(row_weight);
+    double total = build_tables(env, w, h, rows, row_scale);
+    free(rows), free(row_scale);
     if (!(total > 0.0)) {
         environment_free(env);
         error_set(err, ERR_TEXTURE, name, 0,
@@ -199,7 +277,6 @@ bool environment_load(Environment *env, const char *path, float scale, float rot
 void environment_free(Environment *env)
 {
     free(env->texels);
-    free(env->marginal);
-    free(env->conditional);
+    free(env->alias);
     memset(env, 0, sizeof *env);
 }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* environment.h: the environment map (shared/DESIGN.md "Environment"): an equirectangular HDR or
- * EXR image, its radiance per texel (times scale) and the 2-D piecewise-constant distribution that
- * next-event estimation samples it from (marginal CDF over rows, one conditional CDF per row). The
+ * EXR image, its radiance per texel (times scale) and the piecewise-constant distribution that
+ * next-event estimation samples it from (one alias table over all texels: O(1) per sample). The
  * radiance is evaluated bilinearly everywhere; each texel's sampling weight is the largest
  * luminance of its 3 x 3 neighbourhood x sin(theta of its row centre), so the pdf is > 0 wherever
  * the bilinear radiance is, and texels[].w is exactly the density the sampler draws from: MIS with
@@ -18,8 +18,7 @@ typedef struct {
     uint32_t width, height;   /* 0 x 0: no map (the constant background is the environment) */
     float4 *texels;           /* width * height, row 0 at the top: rgb radiance x scale; w: the
                                  sampling pdf in the texel's (u, v) cell per unit uv area */
-    float *marginal;          /* height + 1: CDF over rows, marginal[height] = 1 */
-    float *conditional;       /* height * (width + 1): per row the CDF over its columns */
+    EnvAlias *alias;          /* width * height: the alias table over the texels (Vose) */
     float rotation;           /* DESIGN's theta as a fraction of a turn */
     double mean_luminance;    /* of the radiance over the sphere (solid-angle weighted) */
 } Environment;

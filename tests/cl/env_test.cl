@@ -2,9 +2,9 @@
 /* env_test.cl: kernels for tests/test_environment_sampling.c. */
 
 #define ENV_TEST_PARAMS                                                                            \
-    const global float4 *texels, const global float *marginal, const global float *conditional,   \
-        uint width, uint height, float rotation
-#define ENV_TEST_MAP {texels, marginal, conditional, width, height, rotation}
+    const global float4 *texels, const global EnvAlias *alias, uint width, uint height,            \
+        float rotation
+#define ENV_TEST_MAP {texels, alias, width, height, rotation}
 
 /* Work item i draws samples_per_item env_sample directions (the path RNG of pixel i, samples 0..,
  * light dimensions of the first bounce) and counts them per texel that env_lookup puts them in.
@@ -17,7 +17,8 @@ kernel void env_test_sample(ENV_TEST_PARAMS, uint samples_per_item, uint seed,
     uint item = get_global_id(0);
     for (uint s = 0; s < samples_per_item; s++) {
         RngKey key = rng_path_key(item, s, seed);
-        EnvSample es = env_sample(&env, rng_bounce(key, 0u, DIM_LIGHT_U), rng_bounce(key, 0u, DIM_LIGHT_V));
+        EnvSample es = env_sample(&env, rng_bounce_bits(key, 0u, DIM_ENV_PICK), rng_bounce(key, 0u, DIM_ENV_COIN),
+                                  rng_bounce(key, 0u, DIM_LIGHT_U), rng_bounce(key, 0u, DIM_LIGHT_V));
         atomic_inc(&counts[env_texel_of(&env, es.direction)]);
         float pdf;
         float3 L = env_lookup(&env, es.direction, &pdf);
