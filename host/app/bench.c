@@ -85,8 +85,9 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
     fclose(f);
 }
 
-/* The ablations: the default (compaction, slots refilled from a window of WINDOW_PER_POOL pools,
- * shadow rays queued), the same with a shadow flag per active path, with material sorting,
+/* The ablations: "default" is what pt render does (compaction, slots refilled from a window of
+ * WINDOW_PER_POOL pools, shadow rays queued, material sorting when session_sorts_materials says
+ * so); "refill" the same never sorted; then with a shadow flag per active path, with material sorting,
  * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
  * neither (every bounce over the whole pool). */
 typedef struct {
@@ -94,17 +95,18 @@ typedef struct {
     bool no_compaction;
     uint32_t window_size; /* 1: clamped up to the pool, i.e. no refills */
     bool shadow_flags;
-    bool sort_materials;
+    int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
 } BenchMode;
 
 static const BenchMode modes[] = {
-    {"refill", false, 0, false, false, false},
-    {"shadow-flags", false, 0, true, false, false},
-    {"no-refill", false, 1, false, false, false},
-    {"no-compaction", true, 0, false, false, false},
-    {"sort-materials", false, 0, false, true, false},
-    {"brute-force", false, 0, false, false, true},
+    {"default", false, 0, false, SORT_MATERIALS_AUTO, false},
+    {"refill", false, 0, false, SORT_MATERIALS_OFF, false},
+    {"shadow-flags", false, 0, true, SORT_MATERIALS_OFF, false},
+    {"no-refill", false, 1, false, SORT_MATERIALS_OFF, false},
+    {"no-compaction", true, 0, false, SORT_MATERIALS_OFF, false},
+    {"sort-materials", false, 0, false, SORT_MATERIALS_ON, false},
+    {"brute-force", false, 0, false, SORT_MATERIALS_OFF, true},
 };
 #define BRUTE_FORCE_MAX_TRIANGLES 4096
 #define NUM_MODES (sizeof modes / sizeof modes[0])
@@ -135,7 +137,7 @@ int command_bench(const Options *o)
         settings[m].window_size = modes[m].window_size;
         settings[m].shadow_flags = modes[m].shadow_flags;
         settings[m].brute_force = modes[m].brute_force;
-        settings[m].sort_materials = modes[m].sort_materials;
+        settings[m].sort_materials = session_sorts_materials(&s.scene.data, modes[m].sort_materials);
         /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
          * more, once per machine); keep that out of the figures. */
         RenderSettings warm = settings[m];
@@ -157,7 +159,7 @@ int command_bench(const Options *o)
             append_csv(o->csv, &s, modes[m].name, &stats[m]);
     }
 
-    RenderSettings profiled = base;
+    RenderSettings profiled = settings[0]; /* the default mode */
     profiled.profile = true;
     RenderStats prof = bench_render(&s, profiled, rgb);
     double total = 0.0;

@@ -37,8 +37,9 @@ void cli_print_help(void)
          "  --exposure EV      exposure in stops applied to PNG output (default 0)\n"
          "  --aov albedo|normal|depth   write a first-hit AOV instead of the path-traced image\n"
          "  --no-nee           pure BSDF sampling (validation; same converged image)\n"
-         "  --sort-materials   shade paths grouped by the material they hit (same image; pt bench\n"
-         "                     measures whether it pays on your scene and device)\n"
+         "  --sort-materials, --no-sort-materials   shade paths grouped by the material they hit,\n"
+         "                     or not (same image). Default: sorted when the scene has materials\n"
+         "                     beyond Lambert, smooth mirrors and glass (pt bench measures both)\n"
          "  --no-compaction    keep dead paths in the wavefront (validation; same image)\n"
          "  --profile          per-kernel timing table\n"
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
@@ -167,7 +168,8 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             else if (!strcmp(a, "--preview")) o->preview = true;
             else if (!strcmp(a, "--progress")) o->progress = true;
             else if (!strcmp(a, "--no-nee")) o->no_nee = true;
-            else if (!strcmp(a, "--sort-materials")) o->sort_materials = true;
+            else if (!strcmp(a, "--sort-materials")) o->sort_materials = SORT_MATERIALS_ON;
+            else if (!strcmp(a, "--no-sort-materials")) o->sort_materials = SORT_MATERIALS_OFF;
             else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
             else if (!strcmp(a, "--profile")) o->profile = true;
             else if (!strcmp(a, "--no-cache")) o->no_cache = true;

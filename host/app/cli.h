@@ -24,7 +24,8 @@ typedef struct {
     bool quiet;
     bool progress;  /* progress as lines on stderr, even when it is not a terminal */
     bool preview;   /* with -o X.exr, also write X.png */
-    bool no_nee, no_compaction, profile, sort_materials;
+    bool no_nee, no_compaction, profile;
+    int sort_materials; /* SORT_MATERIALS_* (render/session.h); AUTO unless asked */
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     bool no_default_light; /* a scene without any light stays dark */
     const char *csv; /* pt bench: append results to this CSV file */

@@ -179,7 +179,7 @@ int command_render(const Options *o)
             .max_depth = desc->max_depth,
             .seed = seed,
             .no_nee = o->no_nee,
-            .sort_materials = o->sort_materials,
+            .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
             .no_compaction = o->no_compaction,
             .profile = o->profile,
         };

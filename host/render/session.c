@@ -102,3 +102,10 @@ void session_close(Session *s)
     scene_free(&s->scene);
     memset(s, 0, sizeof *s);
 }
+
+bool session_sorts_materials(const SceneData *d, int request)
+{
+    if (request != SORT_MATERIALS_AUTO)
+        return request == SORT_MATERIALS_ON;
+    return material_features(d->materials, d->num_materials, &d->textures) != 0;
+}

@@ -285,7 +285,8 @@ int command_view(const ViewerDesc *o)
         v->scene_size = 1.0f;
     v->target_spp = o->render.spp ? o->render.spp : UNLIMITED_SPP;
     v->settings = (RenderSettings){.spp = v->target_spp, .max_depth = d->max_depth,
-                                   .seed = o->seed, .no_nee = o->no_nee, .sort_materials = o->sort_materials,
+                                   .seed = o->seed, .no_nee = o->no_nee,
+                                   .sort_materials = session_sorts_materials(&v->session.scene.data, o->sort_materials),
                                    .no_compaction = o->no_compaction};
     if (!o->quiet) {
         session_print_summary(&v->session);

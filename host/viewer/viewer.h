@@ -13,7 +13,8 @@ typedef struct {
     RenderDesc render;       /* .spp 0 = sample until closed */
     unsigned seed;
     float exposure;          /* stops */
-    bool no_nee, no_compaction, sort_materials, quiet;
+    bool no_nee, no_compaction, quiet;
+    int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool print_events;       /* --events: a stdout line per input event and state change */
     int frames;              /* quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* at exit: FILE.exr the linear film, else a PNG of the framebuffer */
