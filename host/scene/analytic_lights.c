@@ -18,18 +18,7 @@ static bool read_color(JsonParser *p, const cJSON *e, const char *name, const ch
     const cJSON *item = json_member(e, name);
     if (!item)
         return json_fail(p, ERR_JSON_VALUE, key, "missing");
-    if (cJSON_IsNumber(item)) { /* a grey, as colours elsewhere in the scene */
-        if (!json_read_float(p, item, key, &out[0]))
-            return false;
-        out[1] = out[2] = out[0];
-    } else if (!json_read_vec3(p, item, key, out)) {
-        return false;
-    }
-    for (int i = 0; i < 3; i++)
-        if (!(out[i] >= 0.0f) || !isfinite(out[i]))
-            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be finite and >= 0", out[0],
-                             out[1], out[2]);
-    return true;
+    return json_read_colour(p, item, key, out);
 }
 
 /* A unit vector from a non-zero finite one. */

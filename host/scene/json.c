@@ -134,6 +134,22 @@ bool json_read_vec3(JsonParser *p, const cJSON *item, const char *key, float out
     return true;
 }
 
+bool json_read_colour(JsonParser *p, const cJSON *item, const char *key, float out[3])
+{
+    if (cJSON_IsNumber(item)) {
+        if (!json_read_float(p, item, key, &out[0]))
+            return false;
+        out[1] = out[2] = out[0];
+    } else if (!json_read_vec3(p, item, key, out)) {
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        if (!(out[i] >= 0.0f) || !isfinite(out[i]))
+            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be finite and >= 0", out[0],
+                             out[1], out[2]);
+    return true;
+}
+
 bool json_check_object(JsonParser *p, const cJSON *item, const char *path, const char *const *keys)
 {
     if (!cJSON_IsObject(item))

@@ -33,6 +33,8 @@ bool json_fail(JsonParser *p, ErrorCode code, const char *key, const char *fmt, 
 bool json_read_float(JsonParser *p, const cJSON *item, const char *key, float *out);
 bool json_read_int(JsonParser *p, const cJSON *item, const char *key, int *out);
 bool json_read_vec3(JsonParser *p, const cJSON *item, const char *key, float out[3]);
+/* A colour: [r, g, b], or one number for a grey; every channel finite and >= 0. */
+bool json_read_colour(JsonParser *p, const cJSON *item, const char *key, float out[3]);
 
 /* Checks that item is an object whose keys are all in `keys` (NULL-terminated), none twice.
  * path: the object's key path ("" for the top level). */

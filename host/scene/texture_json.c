@@ -23,20 +23,7 @@ static bool read_noise_colour(JsonParser *p, const cJSON *e, const char *name, c
     char key[300];
     snprintf(key, sizeof key, "%s.%s", prefix, name);
     const cJSON *item = json_member(e, name);
-    if (!item)
-        return true;
-    if (cJSON_IsNumber(item)) {
-        if (!json_read_float(p, item, key, &out[0]))
-            return false;
-        out[1] = out[2] = out[0];
-    } else if (!json_read_vec3(p, item, key, out)) {
-        return false;
-    }
-    for (int i = 0; i < 3; i++)
-        if (!(out[i] >= 0.0f))
-            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be >= 0", out[0], out[1],
-                             out[2]);
-    return true;
+    return !item || json_read_colour(p, item, key, out);
 }
 
 /* type "noise": color0 (default 0), color1 (default 1), frequency > 0 (default 1), octaves in
