@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* host/base: the file-system and vector helpers every layer uses. */
+/* host/base: the file-system, vector and parallel-loop helpers every layer uses. */
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <math.h>
@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "base/fs.h"
+#include "base/parallel_for.h"
 #include "base/vec3.h"
 #include "support.h"
 
@@ -130,4 +131,28 @@ Test(base, atomic_write_refuses_bad_targets_with_one_line)
         cr_expect(strchr(err.message, '\n') == NULL, "one line: %s", err.message);
     }
     cr_expect_eq(files_in(folder), 0, "nothing written");
+}
+
+/* Each call of parallel_for's body marks its range; every index must be marked exactly once, for
+ * counts below, at and above what splits across threads. */
+static void mark_range(void *ctx, size_t begin, size_t end)
+{
+    unsigned char *marks = ctx;
+    for (size_t i = begin; i < end; i++)
+        __atomic_fetch_add(&marks[i], 1, __ATOMIC_RELAXED);
+}
+
+Test(base, parallel_for_visits_every_index_once)
+{
+    static const size_t counts[] = {0, 1, 15, 16, 17, 31, 32, 33, 255, 1000, 4096, 100003};
+    for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
+        size_t n = counts[c];
+        unsigned char *marks = calloc(n + 1, 1);
+        cr_assert(marks);
+        parallel_for(n, 16, mark_range, marks);
+        for (size_t i = 0; i < n; i++)
+            cr_assert_eq(marks[i], 1, "count %zu: index %zu visited %d times", n, i, marks[i]);
+        cr_assert_eq(marks[n], 0, "count %zu: ran past the end", n);
+        free(marks);
+    }
 }

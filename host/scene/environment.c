@@ -11,6 +11,7 @@
 #include <stb_image.h>
 
 #include "base/fs.h"
+#include "base/parallel_for.h"
 #include "io/image_checks.h"
 #include "io/image_io.h"
 #include "io/input_file.h"
@@ -21,50 +22,83 @@
 
 static float luminance(const float4 *c) { return 0.2126f * c->s[0] + 0.7152f * c->s[1] + 0.0722f * c->s[2]; }
 
-/* out[i] = the largest of lum[i - 1], lum[i], lum[i + 1], wrapping around the row (u = 0 meets
- * u = 1). lum is the row's texels; their w holds the luminance while the weights are built. */
-static void row_max3(const float4 *row, size_t w, float *out)
+/* The passes over the texels run in parallel by rows (base/parallel_for.h): each row writes only
+ * its own texels and per-row sums, which are added in row order afterwards, so the tables are the
+ * same bits on any number of cores. */
+#define ROWS_PER_THREAD 16
+#define ALIAS_UNSET UINT32_MAX
+
+typedef struct {
+    const float *rgb;       /* the decoded image, 3 floats per texel */
+    float4 *texels;
+    EnvAlias *alias;
+    size_t w, h;
+    float scale;
+    double *row_sum;        /* per row: luminance sum (convert) or weight sum (weights) */
+    size_t *row_clamped;    /* per row: texel values clamped to 0 */
+    const double *row_scale;
+} EnvPass;
+
+/* texels = clamp(rgb) x scale, w = luminance. */
+static void convert_rows(void *ctx, size_t begin, size_t end)
 {
-    for (size_t i = 0; i < w; i++) {
-        float left = row[i == 0 ? w - 1 : i - 1].s[3], right = row[i + 1 == w ? 0 : i + 1].s[3];
-        out[i] = fmaxf(fmaxf(left, row[i].s[3]), right);
+    EnvPass *e = ctx;
+    for (size_t j = begin; j < end; j++) {
+        double row = 0.0;
+        size_t clamped = 0;
+        for (size_t i = 0; i < e->w; i++) {
+            float4 *t = &e->texels[j * e->w + i];
+            for (int c = 0; c < 3; c++) {
+                float v = e->rgb[3 * (j * e->w + i) + c];
+                if (!(v >= 0.0f) || !isfinite(v))
+                    clamped++, v = 0.0f;
+                t->s[c] = v * e->scale;
+            }
+            t->s[3] = luminance(t);
+            row += t->s[3];
+        }
+        e->row_sum[j] = row, e->row_clamped[j] = clamped;
     }
 }
 
 /* A texel's sampling weight is the largest luminance of the 3 x 3 texels around it (wrapping in u,
  * clamped in v) x sin(theta of its row centre): bilinear filtering inside a texel's cell reads only
  * those texels, so the weight is > 0 wherever the displayed radiance is (see
- * cl/light/light_env.cl). texels[].w holds the luminance on entry and the 3 x 3 maximum on return
- * (row j's luminance is last read when row j + 1's maxima are taken, so it is overwritten then);
- * row_scale[j] = sin(theta of row j's centre). Returns the total weight, summed in double. rows:
- * 3 * w scratch floats. */
-static double build_weights(float4 *texels, size_t w, size_t h, float *rows, double *row_scale)
+ * cl/light/light_env.cl). This pass puts the 3 x 3 maximum in alias[].prob (scratch until the
+ * table is built) and each row's sum of them in row_sum. */
+static void weight_rows(void *ctx, size_t begin, size_t end)
 {
-    const double pi = 3.14159265358979323846;
-    float *above = rows, *here = rows + w, *below = rows + 2 * w;
-    row_max3(texels, w, here);
-    memcpy(above, here, w * sizeof *here);
-    double total = 0.0;
-    for (size_t j = 0; j < h; j++) {
-        if (j + 1 < h)
-            row_max3(texels + (j + 1) * w, w, below);
-        else
-            memcpy(below, here, w * sizeof *here);
+    EnvPass *e = ctx;
+    size_t w = e->w;
+    for (size_t j = begin; j < end; j++) {
+        const float4 *rows[3] = {e->texels + (j > 0 ? j - 1 : j) * w, e->texels + j * w,
+                                 e->texels + (j + 1 < e->h ? j + 1 : j) * w};
         double row = 0.0;
         for (size_t i = 0; i < w; i++) {
-            float m = fmaxf(fmaxf(above[i], here[i]), below[i]);
-            texels[j * w + i].s[3] = m;
+            size_t left = i == 0 ? w - 1 : i - 1, right = i + 1 == w ? 0 : i + 1;
+            float m = 0.0f;
+            for (int r = 0; r < 3; r++)
+                m = fmaxf(m, fmaxf(fmaxf(rows[r][left].s[3], rows[r][i].s[3]), rows[r][right].s[3]));
+            e->alias[j * w + i].prob = m;
             row += (double)m;
         }
-        row_scale[j] = sin(pi * ((double)j + 0.5) / (double)h);
-        total += row * row_scale[j];
-        float *spare = above; /* roll: this row is the next one's row above */
-        above = here, here = below, below = spare;
+        e->row_sum[j] = row;
     }
-    return total;
 }
 
-#define ALIAS_UNSET UINT32_MAX
+/* texels[].w = the 3 x 3 maximum, alias[] = {the weight scaled to mean 1 as a float (for telling
+ * small from large), ALIAS_UNSET}; row_scale already holds sin(theta) x n / total. */
+static void init_alias_rows(void *ctx, size_t begin, size_t end)
+{
+    EnvPass *e = ctx;
+    for (size_t j = begin; j < end; j++)
+        for (size_t i = 0; i < e->w; i++) {
+            size_t t = j * e->w + i;
+            float m = e->alias[t].prob;
+            e->texels[t].s[3] = m;
+            e->alias[t] = (EnvAlias){(float)((double)m * e->row_scale[j]), ALIAS_UNSET};
+        }
+}
 
 /* The first index >= i not yet in the table whose scaled weight is < 1 (small) or >= 1 (large).
  * A large entry keeps its weight in prob until it is finished, a small one for good. */
@@ -144,20 +178,25 @@ static void build_alias(EnvAlias *a, float4 *texels, const double *row_scale, si
 }
 
 /* The sampling table: the texels' weights scaled to mean 1, then the alias table and texels[].w,
- * the pdf per unit uv area. Returns the total weight (0: the map is black). rows: 3 * w scratch
- * floats, row_scale: h doubles. */
-static double build_tables(Environment *env, size_t w, size_t h, float *rows, double *row_scale)
+ * the pdf per unit uv area. Returns the total weight (0: the map is black). e->row_sum: h doubles
+ * of scratch; row_scale: h doubles. */
+static double build_tables(Environment *env, EnvPass *e, double *row_scale)
 {
-    double total = build_weights(env->texels, w, h, rows, row_scale);
+    const double pi = 3.14159265358979323846;
+    size_t w = e->w, h = e->h;
+    parallel_for(h, ROWS_PER_THREAD, weight_rows, e);
+    double total = 0.0;
+    for (size_t j = 0; j < h; j++) {
+        row_scale[j] = sin(pi * ((double)j + 0.5) / (double)h);
+        total += e->row_sum[j] * row_scale[j];
+    }
     if (!(total > 0.0) || !isfinite(total))
         return 0.0;
     double n = (double)w * (double)h;
-    for (size_t j = 0; j < h; j++) {
+    for (size_t j = 0; j < h; j++)
         row_scale[j] *= n / total;
-        for (size_t i = 0; i < w; i++)
-            env->alias[j * w + i] = (EnvAlias){(float)((double)env->texels[j * w + i].s[3] * row_scale[j]),
-                                               ALIAS_UNSET};
-    }
+    e->row_scale = row_scale;
+    parallel_for(h, ROWS_PER_THREAD, init_alias_rows, e);
     build_alias(env->alias, env->texels, row_scale, w, w * h);
     return total;
 }
@@ -178,39 +217,31 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     size_t w = (size_t)width, h = (size_t)height, n = w * h;
     env->texels = malloc(n * sizeof *env->texels);
     env->alias = malloc(n * sizeof *env->alias);
-    float *rows = malloc(3 * w * sizeof *rows);
-    double *row_scale = malloc(h * sizeof *row_scale);
-    if (!env->texels || !env->alias || !rows || !row_scale) {
-        free(rows), free(row_scale);
+    double *row_scale = malloc(h * sizeof *row_scale), *row_sum = malloc(h * sizeof *row_sum);
+    size_t *row_clamped = malloc(h * sizeof *row_clamped);
+    if (!env->texels || !env->alias || !row_scale || !row_sum || !row_clamped) {
+        free(row_scale), free(row_sum), free(row_clamped);
         environment_free(env);
         error_set(err, ERR_TOO_LARGE, name, 0, "%s: out of memory for a %dx%d environment map", name,
                   width, height);
         return false;
     }
     const double pi = 3.14159265358979323846;
+    EnvPass pass = {.rgb = rgb, .texels = env->texels, .alias = env->alias, .w = w, .h = h,
+                    .scale = scale, .row_sum = row_sum, .row_clamped = row_clamped};
+    parallel_for(h, ROWS_PER_THREAD, convert_rows, &pass);
     size_t clamped = 0;
     double solid_angle_sum = 0.0;
     for (size_t j = 0; j < h; j++) {
         double row_solid_angle = 2.0 * pi / (double)w *
                                  (cos(pi * (double)j / (double)h) - cos(pi * (double)(j + 1) / (double)h));
-        double row = 0.0;
-        for (size_t i = 0; i < w; i++) {
-            float4 *t = &env->texels[j * w + i];
-            for (int c = 0; c < 3; c++) {
-                float v = rgb[3 * (j * w + i) + c];
-                if (!(v >= 0.0f) || !isfinite(v))
-                    clamped++, v = 0.0f;
-                t->s[c] = v * scale;
-            }
-            t->s[3] = luminance(t);
-            row += t->s[3];
-        }
-        solid_angle_sum += row * row_solid_angle;
+        solid_angle_sum += row_sum[j] * row_solid_angle;
+        clamped += row_clamped[j];
     }
     if (clamped)
         warn("%s: %zu negative or non-finite texel values clamped to 0", name, clamped);
-    double total = build_tables(env, w, h, rows, row_scale);
-    free(rows), free(row_scale);
+    double total = build_tables(env, &pass, row_scale);
+    free(row_scale), free(row_sum), free(row_clamped);
     if (!(total > 0.0)) {
         environment_free(env);
         error_set(err, ERR_TEXTURE, name, 0,
