@@ -34,7 +34,7 @@ void session_print_summary(const Session *s);
  * asked, SORT_MATERIALS_AUTO when the scene uses any material feature beyond Lambert, smooth
  * mirrors and glass (scene/materials.h material_features): on the H200 sorting made such scenes
  * 11% (env-lit rough gold) to 63% (rough gold, rough glass, normal maps) faster and v1's plain
- * Cornell box 23% slower (the textured scene 9%). */
+ * Cornell box about a quarter slower (the textured scene about a tenth). */
 enum { SORT_MATERIALS_AUTO = 0, SORT_MATERIALS_ON = 1, SORT_MATERIALS_OFF = 2 };
 bool session_sorts_materials(const SceneData *data, int request);
 void session_close(Session *s);
