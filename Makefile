@@ -115,6 +115,16 @@ bench: all
 # Re-renders tests/references/ with Mitsuba 3 (slow; only when asked, never as a dependency).
 references: ; ./tools/make-references.sh
 
+# The test scenes' large generated meshes (tools/make_material_scenes.py GENERATED_MESHES; not in
+# git): written before any test binary, byte for byte the meshes the references were made from.
+TEST_MESHES := $(foreach s,conductors envmap envmap-diffuse glass glass-clear mix,tests/scenes/$(s)/$(s).obj)
+$(BUILD)/test-meshes.stamp: tools/make_material_scenes.py tools/make_test_scenes.py
+	@mkdir -p $(@D)
+	@echo "  GEN   $(TEST_MESHES)"
+	$(Q)python3 tools/make_material_scenes.py tests/scenes
+	$(Q)touch $@
+$(TESTS): $(BUILD)/test-meshes.stamp
+
 VERSION ?= $(shell git describe --always --dirty 2>/dev/null || echo dev)
 bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))
 	$(Q)./tools/bundle.sh $(BUILD) $(VERSION)

@@ -13,6 +13,8 @@ reference by tests/test_reference_materials.c.
   envmap-diffuse/  the same with MTL (diffuse) materials only: the map apart from the materials
 
 Deterministic, plain Python. The JSON materials replace the MTL materials of the same name.
+Run on its own (`python3 tools/make_material_scenes.py`, as `make` does) it writes only the large
+OBJ files that git does not keep (GENERATED_MESHES).
 """
 import math
 import os
@@ -292,3 +294,38 @@ def write_all(out):
     p = [g for g in wall if g.material.name == "light"][0].positions
     assert normalize(cross(sub(p[1], p[0]), sub(p[2], p[0])))[0] < -0.999, "light must face -x"
     return list(writers)
+
+
+# The scenes whose OBJ is too large to keep in git (thousands of lines of generated vertices): the
+# repository keeps their scene.json, MTL and maps, and `make` writes the OBJ (write_meshes) before
+# the tests run. The generator is deterministic, so the meshes are the ones the Mitsuba references
+# in tests/references/ were rendered from, byte for byte.
+GENERATED_MESHES = ("conductors", "envmap", "envmap-diffuse", "glass", "glass-clear", "mix")
+
+
+def write_meshes(scenes_dir):
+    """Writes tests/scenes/<name>/<name>.obj for GENERATED_MESHES (through a scratch copy of every
+    scene, so the writers and checks are the same as write_all's); a file already equal is left
+    alone, so make sees nothing new."""
+    import shutil
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix="pt-meshes-") as scratch:
+        write_all(scratch)
+        for name in GENERATED_MESHES:
+            src = os.path.join(scratch, name, f"{name}.obj")
+            dst = os.path.join(scenes_dir, name, f"{name}.obj")
+            with open(src, "rb") as f:
+                data = f.read()
+            if os.path.exists(dst):
+                with open(dst, "rb") as f:
+                    if f.read() == data:
+                        continue
+            os.makedirs(os.path.dirname(dst), exist_ok=True)
+            shutil.copyfile(src, dst + ".tmp")
+            os.replace(dst + ".tmp", dst)
+
+
+if __name__ == "__main__":
+    import sys
+    here = os.path.dirname(os.path.abspath(__file__))
+    write_meshes(sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "tests", "scenes"))
