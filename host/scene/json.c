@@ -134,6 +134,16 @@ bool json_read_vec3(JsonParser *p, const cJSON *item, const char *key, float out
     return true;
 }
 
+bool json_path_resolve(JsonParser *p, const char *key, const char *relative, char out[1024])
+{
+    const char *slash = strrchr(p->file, '/');
+    int folder_len = relative[0] == '/' || !slash ? 0 : (int)(slash - p->file) + 1;
+    int n = snprintf(out, 1024, "%.*s%s", folder_len, p->file, relative);
+    if (n < 0 || n >= 1024)
+        return json_fail(p, ERR_JSON_VALUE, key, "path \"%s\" is too long", relative);
+    return true;
+}
+
 bool json_read_colour(JsonParser *p, const cJSON *item, const char *key, float out[3])
 {
     if (cJSON_IsNumber(item)) {

@@ -33,6 +33,9 @@ bool json_fail(JsonParser *p, ErrorCode code, const char *key, const char *fmt, 
 bool json_read_float(JsonParser *p, const cJSON *item, const char *key, float *out);
 bool json_read_int(JsonParser *p, const cJSON *item, const char *key, int *out);
 bool json_read_vec3(JsonParser *p, const cJSON *item, const char *key, float out[3]);
+/* A path from the scene file (key names it in errors) joined onto the scene file's folder;
+ * absolute paths stay as they are. */
+bool json_path_resolve(JsonParser *p, const char *key, const char *relative, char out[1024]);
 /* A colour: [r, g, b], or one number for a grey; every channel finite and >= 0. */
 bool json_read_colour(JsonParser *p, const cJSON *item, const char *key, float out[3]);
 

@@ -98,7 +98,7 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
             return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
         if (!obj->valuestring[0])
             return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
-        if (!scene_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
+        if (!json_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
             !parse_object_options(p, e, i, d))
             return false;
         d->num_objects = i + 1;
@@ -129,7 +129,7 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
         return json_fail(p, ERR_JSON_TYPE, "environment.file", "expected a file name (string)");
     if (!file->valuestring[0])
         return json_fail(p, ERR_JSON_VALUE, "environment.file", "empty file name");
-    if (!scene_path_resolve(p, "environment.file", file->valuestring, d->environment))
+    if (!json_path_resolve(p, "environment.file", file->valuestring, d->environment))
         return false;
     if ((item = json_member(obj, "scale"))) {
         if (!json_read_float(p, item, "environment.scale", &d->environment_scale))

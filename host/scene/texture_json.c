@@ -7,15 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-bool scene_path_resolve(JsonParser *p, const char *key, const char *relative, char out[1024])
-{
-    const char *slash = strrchr(p->file, '/');
-    int folder_len = relative[0] == '/' || !slash ? 0 : (int)(slash - p->file) + 1;
-    int n = snprintf(out, 1024, "%.*s%s", folder_len, p->file, relative);
-    if (n < 0 || n >= 1024)
-        return json_fail(p, ERR_JSON_VALUE, key, "path \"%s\" is too long", relative);
-    return true;
-}
 
 static bool read_noise_colour(JsonParser *p, const cJSON *e, const char *name, const char *prefix,
                               float out[3])
@@ -80,7 +71,7 @@ static bool read_file_texture(JsonParser *p, const cJSON *e, const char *prefix,
         return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
     if (!file->valuestring[0])
         return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
-    if (!scene_path_resolve(p, key, file->valuestring, t->path))
+    if (!json_path_resolve(p, key, file->valuestring, t->path))
         return false;
     const cJSON *encoding = json_member(e, "encoding");
     if (!encoding)

@@ -21,9 +21,6 @@ typedef struct {
     TextureNoise noise;
 } TextureDesc;
 
-/* Joins a path from the scene file onto the scene file's folder (absolute paths stay as they are);
- * a result over 1023 bytes is an error naming key. */
-bool scene_path_resolve(JsonParser *p, const char *key, const char *relative, char out[1024]);
 /* Reads the "textures" object into a malloc'ed array (*out, *count); paths are resolved against
  * p->file's folder. */
 bool textures_from_json(JsonParser *p, const cJSON *obj, TextureDesc **out, int *count);
