@@ -32,7 +32,8 @@ endif
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
 CL_SOURCES := cl/shared.h \
               cl/core/util.cl cl/core/rng.cl cl/core/sampling.cl cl/core/camera.cl \
-              cl/geometry/intersect_triangle.cl cl/geometry/bvh_traverse.cl cl/geometry/bvh_traverse_wide.cl \
+              cl/geometry/intersect_triangle.cl cl/geometry/instance.cl cl/geometry/bvh_traverse.cl \
+              cl/geometry/bvh_traverse_wide.cl cl/geometry/scene_trace.cl \
               cl/geometry/ray_offset.cl cl/geometry/surface.cl cl/material/texture.cl \
               cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \

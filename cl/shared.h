@@ -127,6 +127,37 @@ typedef BvhTriangle TraversalPrim;
 #endif
 #endif
 
+/* ---- Instances (shared/DESIGN.md "Objects"; host/scene/instances.c, cl/geometry/instance.cl) -- */
+
+/* A scene is a set of instances of meshes. Every mesh (an OBJ with its material override) is
+ * flattened once into the vertex and triangle arrays, in object space, and has one BVH (BLAS) in
+ * bvh_nodes/bvh_tris; a top-level BVH (TLAS) over the instances' world boxes comes first in
+ * bvh_nodes (root 0) and its leaves name instances. Objects without a transform whose mesh is
+ * used once are merged into one mesh in world space (instance 0, the identity); a scene that has
+ * nothing else is built one-level (-DPT_FEATURE_INSTANCES=0: bvh_nodes is that mesh's BVH, as in
+ * v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into triangles[]. */
+/* What the kernels assume without -DPT_FEATURE_INSTANCES (tests and tools build so), and so the
+ * layout the tests' scenes are built with (tests/support.h PT_TESTS_TWO_LEVEL). */
+#define PT_FEATURE_INSTANCES_DEFAULT 0
+#define INSTANCE_STATIC 0xffffffffu /* Instance.motion of an instance that does not move */
+typedef struct {
+    float4 to_world[3];  /* rows of the 3x4 object-to-world matrix M (p' = M p); a moving
+                            instance's at shutter open (the light table's reference) */
+    float4 to_object[3]; /* rows of M^-1 */
+    uint blas_root;      /* the mesh's BLAS root, an index into bvh_nodes */
+    uint motion;         /* index into instance_motion, or INSTANCE_STATIC */
+    uint first_prim;     /* the mesh's entries of bvh_tris (triangles or packs): the brute-force */
+    uint num_prims;      /* ablation's range */
+} Instance;
+
+/* The motion of a moving instance: M(s) = T(s) R(s) S(s) with s = (time - open) / (close - open),
+ * T and S linear in s, R slerped along the shortest arc (host/base/transform.h trs_*). */
+typedef struct {
+    float4 translation[2]; /* T at open and close; w unused */
+    float4 rotation[2];    /* unit quaternions (x, y, z, w); dot(open, close) >= 0 */
+    float4 scale[6];       /* rows of the symmetric 3x3 S: 0-2 at open, 3-5 at close; w unused */
+} InstanceMotion;
+
 /* ---- Materials and textures ---------------------------------------------------------------- */
 
 /* Material types: X(NAME, "json name"). The values are the kernels' Material.type. */
@@ -251,7 +282,9 @@ typedef struct {
     float env_rotation;  /* the map's rotation theta as a fraction of a turn */
     float env_pick_pdf;  /* probability that the light table picks the environment */
     uint num_analytic;   /* entries of analytic_lights (escaped rays look for suns there) */
-    uint pad0, pad1, pad2;
+    float shutter_open;  /* camera.shutter: each camera path draws its time uniformly in */
+    float shutter_close; /* [open, close] (PT_FEATURE_MOTION); equal: no motion blur */
+    uint num_instances;  /* entries of instances */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -266,6 +299,8 @@ typedef struct {
     uint alias;    /* entry taken otherwise */
     uint triangle; /* emissive triangle index, or LIGHT_ENVIRONMENT */
     float pdf;     /* probability of choosing this triangle */
+    uint instance; /* the instance whose triangle it is (each instance's emitters are lights) */
+    uint pad0, pad1, pad2;
 } LightEntry;
 /* LightEntry.triangle of the environment map's entry (its power: mean luminance x 4 pi R^2, R the
  * scene's bounding-sphere radius; triangles count area x luminance: both are power / pi). */
@@ -319,7 +354,9 @@ typedef struct {
     X(LightEntry, lights)                                                                           \
     X(AnalyticLight, analytic_lights)                                                               \
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
-    X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */
+    X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */           \
+    X(Instance, instances)                                                                          \
+    X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */
 
 #define SCENE_BUFFER_COUNT_ONE(type, name) +1
 #define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
@@ -353,6 +390,8 @@ typedef struct {
     X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
     X(float4, shadow_direction)    /* xyz; w unused */                                             \
     X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
+    X(uint, hit_instance)          /* the instance hit (PT_FEATURE_INSTANCES; else unused) */     \
+    X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE_MOTION, else 0) */ \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
     X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \
@@ -412,10 +451,16 @@ typedef struct {
         FIELD(RenderParams, batch_start) FIELD(RenderParams, batch_size)                            \
         FIELD(RenderParams, env_width) FIELD(RenderParams, env_height)                              \
         FIELD(RenderParams, env_rotation) FIELD(RenderParams, env_pick_pdf)                         \
-        FIELD(RenderParams, num_analytic) FIELD(RenderParams, pad0) FIELD(RenderParams, pad1)       \
-        FIELD(RenderParams, pad2)                                                                   \
-    STRUCT(LightEntry, 16) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
-        FIELD(LightEntry, triangle) FIELD(LightEntry, pdf)                                          \
+        FIELD(RenderParams, num_analytic) FIELD(RenderParams, shutter_open)                         \
+        FIELD(RenderParams, shutter_close) FIELD(RenderParams, num_instances)                       \
+    STRUCT(LightEntry, 32) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
+        FIELD(LightEntry, triangle) FIELD(LightEntry, pdf) FIELD(LightEntry, instance)              \
+        FIELD(LightEntry, pad0) FIELD(LightEntry, pad1) FIELD(LightEntry, pad2)                     \
+    STRUCT(Instance, 112) FIELD(Instance, to_world) FIELD(Instance, to_object)                      \
+        FIELD(Instance, blas_root) FIELD(Instance, motion) FIELD(Instance, first_prim)              \
+        FIELD(Instance, num_prims)                                                                  \
+    STRUCT(InstanceMotion, 160) FIELD(InstanceMotion, translation) FIELD(InstanceMotion, rotation)  \
+        FIELD(InstanceMotion, scale)                                                                \
     STRUCT(EnvAlias, 8) FIELD(EnvAlias, prob) FIELD(EnvAlias, alias)                               \
     STRUCT(AnalyticLight, 80) FIELD(AnalyticLight, position) FIELD(AnalyticLight, color)            \
         FIELD(AnalyticLight, axis) FIELD(AnalyticLight, params) FIELD(AnalyticLight, type)          \

@@ -49,8 +49,7 @@ static inline void detail_fixture_open(RenderFixture *f, const char *scene_path,
     f->dev = test_device();
     cr_assert(scene_load(scene_path, &f->scene, &err), "scene_load %s: %s", scene_path, err.message);
     patch(&f->scene, ctx);
-    bvh_build_for_width(&f->bvh, f->scene.data.positions, f->scene.data.triangles,
-                        f->scene.data.num_triangles, f->dev->bvh_width);
+    scene_accel_build(&f->bvh, &f->scene.data, f->dev, PT_TESTS_TWO_LEVEL);
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s",
               err.message);
 }

@@ -131,15 +131,14 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
         f->scene.desc.width = width;
     if (height)
         f->scene.desc.height = height;
-    bvh_build_for_width(&f->bvh, f->scene.data.positions, f->scene.data.triangles,
-                        f->scene.data.num_triangles, f->dev->bvh_width);
+    scene_accel_build(&f->bvh, &f->scene.data, f->dev, PT_TESTS_TWO_LEVEL);
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
 }
 
 void render_fixture_close(RenderFixture *f)
 {
     scene_buffers_release(&f->buffers);
-    bvh_free(&f->bvh);
+    scene_bvh_free(&f->bvh);
     scene_free(&f->scene);
     test_device_release(f->dev);
 }

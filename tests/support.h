@@ -7,7 +7,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "accel/bvh.h"
+#include "accel/scene_bvh.h"
 #include "device/device.h"
 #include "scene/scene.h"
 #include "render/scene_upload.h"
@@ -42,11 +42,15 @@ const char *test_temp_dir(void);
  * valid for the next 7 calls. */
 const char *test_write_file(const char *dir, const char *name, const char *text);
 
+/* The tests' program is built without feature options, so its traversal is two-level exactly
+ * when PT_FEATURE_INSTANCES defaults to it (cl/shared.h); fixtures build the matching layout. */
+#define PT_TESTS_TWO_LEVEL PT_FEATURE_INSTANCES_DEFAULT
+
 /* A scene loaded onto the test device, ready to render many times. */
 typedef struct {
     Device *dev;
     Scene scene;
-    Bvh bvh;
+    SceneBvh bvh;
     SceneBuffers buffers;
 } RenderFixture;
 

@@ -8,6 +8,7 @@ typedef struct {
     float t;
     float u, v;
     uint prim; /* original triangle index, HIT_NONE on a miss */
+    uint instance; /* the instance (shared.h Instance) whose triangle it is; 0 in one-level scenes */
 #ifdef BVH_COUNT_STEPS
     uint visits, tests; /* node visits, triangle (or pack) tests: bench_bvh --count-steps */
 #endif

@@ -10,8 +10,10 @@ typedef struct {
     uint material;
 } SurfaceHit;
 
-PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit)
+/* time: the path's shutter fraction, where a moving instance is (path_time). */
+PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit, float time)
 {
+    (void)time;
     SurfaceHit s;
     const global float4 *positions = scene->positions, *normals = scene->normals;
     const global float2 *uvs = scene->uvs;

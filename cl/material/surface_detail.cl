@@ -116,14 +116,16 @@ inline float material_opacity(const SceneView *scene, Material m, float2 uv, flo
  * materials; for a cut-out with probability 1 - opacity. The number is a hash of the ray's stream
  * (rng_bounce_bits of the path's key, bounce and DIM_OPACITY or DIM_SHADOW_OPACITY) and the
  * triangle, so that each layer a ray meets gets its own number and renders stay reproducible. */
-inline bool cutout_passes(const SceneView *scene, uint prim, float u, float v, uint stream)
+inline bool cutout_passes(const SceneView *scene, uint instance, uint prim, float u, float v,
+                          uint stream)
 {
     Material m = scene->materials[scene->material_ids[prim]];
     if (!(m.flags & MATERIAL_FLAG_CUTOUT))
         return false;
     float3 position;
     float2 uv = surface_uv_at(scene, prim, u, v, &position);
-    float x = uint_to_unit(hash_pcg(stream ^ hash_pcg(prim ^ 0x5bd1e995u)));
+    /* Instance 0 (every one-level scene's) leaves v1's numbers as they were. */
+    float x = uint_to_unit(hash_pcg(stream ^ hash_pcg(prim ^ 0x5bd1e995u ^ instance * 0x9e3779b9u)));
     return x >= material_opacity(scene, m, uv, position);
 }
 
@@ -132,14 +134,13 @@ inline bool cutout_passes(const SceneView *scene, uint prim, float u, float v, u
  * the same bits and the layer cannot be met again). A second triangle at exactly the same t is
  * skipped with it. */
 inline Hit trace_closest_through(const SceneView *scene, uint num_prims, float3 o, float3 d,
-                                 float tmin, float tmax, bool brute_force, uint stream)
+                                 float tmin, float tmax, float time, bool brute_force, uint stream)
 {
     for (uint layer = 0u;; layer++) {
-        Hit h = brute_force ? trace_brute_force(scene->bvh_tris, num_prims, o, d, tmin, tmax, false)
-                            : trace_closest(scene->bvh_nodes, scene->bvh_tris, num_prims, o, d, tmin,
-                                            tmax);
+        Hit h = brute_force ? scene_brute_force(scene, num_prims, o, d, tmin, tmax, false, time)
+                            : scene_closest(scene, num_prims, o, d, tmin, tmax, time);
         if (h.prim == HIT_NONE || layer == CUTOUT_MAX_LAYERS ||
-            !cutout_passes(scene, h.prim, h.u, h.v, stream))
+            !cutout_passes(scene, h.instance, h.prim, h.u, h.v, stream))
             return h;
         tmin = nextafter(h.t, INFINITY);
     }
@@ -148,15 +149,15 @@ inline Hit trace_closest_through(const SceneView *scene, uint num_prims, float3 
 /* Whether anything stops a shadow ray over [0, tmax): one any-hit query answers when the hit it
  * finds is opaque (or nothing is hit); a cut-out hit walks the layers front to back instead. */
 inline bool trace_occluded_through(const SceneView *scene, uint num_prims, float3 o, float3 d,
-                                   float tmax, bool brute_force, uint stream)
+                                   float tmax, float time, bool brute_force, uint stream)
 {
-    Hit any = brute_force ? trace_brute_force(scene->bvh_tris, num_prims, o, d, 0.0f, tmax, true)
-                          : trace_bvh(scene->bvh_nodes, scene->bvh_tris, o, d, 0.0f, tmax, true);
+    Hit any = brute_force ? scene_brute_force(scene, num_prims, o, d, 0.0f, tmax, true, time)
+                          : scene_any(scene, num_prims, o, d, 0.0f, tmax, time);
     if (any.prim == HIT_NONE)
         return false;
     Material m = scene->materials[scene->material_ids[any.prim]];
     if (!(m.flags & MATERIAL_FLAG_CUTOUT))
         return true;
-    return trace_closest_through(scene, num_prims, o, d, 0.0f, tmax, brute_force, stream).prim !=
-           HIT_NONE;
+    return trace_closest_through(scene, num_prims, o, d, 0.0f, tmax, time, brute_force, stream)
+               .prim != HIT_NONE;
 }

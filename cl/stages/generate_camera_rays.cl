@@ -25,6 +25,7 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     shadow_contribution[slot] = (float4)(0.0f);
     sample_id[slot] = k;
     path_depth[slot] = 1u;
+    path_time[slot] = 0.0f;
     radiance[k] = (float4)(0.0f);
     active[n_live + j] = slot;
 }

@@ -26,20 +26,23 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     if (i < n_active && path_depth[slot]) {
         atomic_inc(group_rays);
         float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
+        float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
 #if PT_FEATURE_CUTOUT
         /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
          * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
         uint k = sample_id[slot];
         RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
-        Hit h = trace_closest_through(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, brute_force,
+        Hit h = trace_closest_through(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, time,
+                                      brute_force,
                                       rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
 #else
-        Hit h = brute_force ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, o, d, 0.0f,
-                                                INFINITY, false)
-                            : trace_closest(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, o,
-                                            d, 0.0f, INFINITY);
+        Hit h = brute_force ? scene_brute_force(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, false,
+                                                time)
+                            : scene_closest(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, time);
 #endif
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
+        if (PT_FEATURE_INSTANCES)
+            hit_instance[slot] = h.instance;
     }
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);

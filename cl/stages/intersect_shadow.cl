@@ -33,6 +33,7 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
             atomic_inc(group_rays);
             float4 origin = shadow_origin[slot];
             float3 d = xyz(shadow_direction[slot]);
+            float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
 #if PT_FEATURE_CUTOUT
             /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY
              * stream decides the cut-out pass-throughs. */
@@ -40,15 +41,14 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
             RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
             uint bounce = as_uint(shadow_direction[slot].w);
             bool occluded = trace_occluded_through(scene, p->num_bvh_prims, xyz(origin), d, origin.w,
-                                                   brute_force,
+                                                   time, brute_force,
                                                    rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
 #else
             bool occluded =
-                brute_force
-                    ? trace_brute_force(scene->bvh_tris, p->num_bvh_prims, xyz(origin), d, 0.0f,
-                                        origin.w, true).prim != HIT_NONE
-                    : trace_any(scene->bvh_nodes, scene->bvh_tris, p->num_bvh_prims, xyz(origin), d,
-                                0.0f, origin.w);
+                brute_force ? scene_brute_force(scene, p->num_bvh_prims, xyz(origin), d, 0.0f,
+                                                origin.w, true, time).prim != HIT_NONE
+                            : scene_occluded(scene, p->num_bvh_prims, xyz(origin), d, 0.0f,
+                                             origin.w, time);
 #endif
             if (!occluded)
                 radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);

@@ -14,10 +14,11 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
     for (uint s = 0; s < spp; s++) {
         float3 origin, dir;
         camera_sample(p, pixel, p->sample_index + s, &origin, &dir);
-        Hit hit = trace_closest(bvh_nodes, bvh_tris, p->num_bvh_prims, origin, dir, 0.0f, INFINITY);
+        /* The AOVs are of the shutter's opening instant. */
+        Hit hit = scene_closest(&scene, p->num_bvh_prims, origin, dir, 0.0f, INFINITY, 0.0f);
         if (hit.prim == HIT_NONE)
             continue;
-        SurfaceHit surf = surface_at(&scene, hit);
+        SurfaceHit surf = surface_at(&scene, hit, 0.0f);
         if (p->aov == AOV_NORMAL) {
             sum += surf.shading_normal;
         } else if (p->aov == AOV_DEPTH) {

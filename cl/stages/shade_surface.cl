@@ -75,8 +75,9 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         path_depth[slot] = 0u;
         return false;
     }
-    Hit hh = {h.x, h.y, h.z, prim};
-    SurfaceHit surf = surface_at(scene, hh);
+    Hit hh = {h.x, h.y, h.z, prim, PT_FEATURE_INSTANCES ? hit_instance[slot] : 0u};
+    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
+    SurfaceHit surf = surface_at(scene, hh, time);
     Material m = scene->materials[surf.material];
     float3 wo = -xyz(dir4);
     float cos_o_geometric = dot(wo, surf.geometric_normal);

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "render/scene_upload.h"
 
+#include <stdlib.h>
 #include <string.h>
 
-#include "accel/bvh_wide.h"
 #include "scene/lights.h"
 
 /* Where one scene buffer's contents come from. */
@@ -18,13 +18,80 @@ static BufferSource source(size_t count, size_t element_size, const void *data)
     return (BufferSource){count * element_size, data, true};
 }
 
-bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, SceneBuffers *out,
-                          Error *err)
+void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, bool two_level)
+{
+    uint32_t nm = data->num_meshes, ni = data->num_instances;
+    BvhMesh *meshes = malloc((nm ? nm : 1) * sizeof *meshes);
+    BvhInstance *instances = malloc((ni ? ni : 1) * sizeof *instances);
+    if (!meshes || !instances)
+        die("out of memory for %u instances", ni);
+    for (uint32_t m = 0; m < nm; m++)
+        meshes[m] = (BvhMesh){data->meshes[m].first_triangle, data->meshes[m].num_triangles};
+    for (uint32_t i = 0; i < ni; i++) {
+        const SceneInstance *si = &data->instances[i];
+        instances[i].mesh = si->mesh;
+        memcpy(instances[i].lo, si->bounds_min, sizeof instances[i].lo);
+        memcpy(instances[i].hi, si->bounds_max, sizeof instances[i].hi);
+    }
+    /* One level: the whole triangle array is one world-space mesh. */
+    BvhMesh all = {0, data->num_triangles};
+    if (two_level)
+        scene_bvh_build(out, data->positions, data->triangles, meshes, nm, instances, ni,
+                        dev->bvh_width, dev->bvh_quantized, true);
+    else
+        scene_bvh_build(out, data->positions, data->triangles, &all, 1, NULL, 0, dev->bvh_width,
+                        dev->bvh_quantized, false);
+    free(meshes);
+    free(instances);
+}
+
+void scene_instances_for_device(const SceneData *data, const SceneBvh *bvh, Instance **instances,
+                                InstanceMotion **motions)
+{
+    uint32_t n = data->num_instances, nm = data->num_moving;
+    *instances = calloc(n ? n : 1, sizeof **instances);
+    *motions = calloc(nm ? nm : 1, sizeof **motions);
+    if (!*instances || !*motions)
+        die("out of memory for %u instances", n);
+    uint32_t moving = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const SceneInstance *si = &data->instances[i];
+        Instance *inst = &(*instances)[i];
+        Affine inverse;
+        if (!affine_invert(&si->to_world, &inverse))
+            die("instance %u: singular transform (the scene loader refuses these)", i);
+        affine_to_rows(&si->to_world, inst->to_world);
+        affine_to_rows(&inverse, inst->to_object);
+        uint32_t mesh = bvh->two_level ? si->mesh : 0;
+        inst->blas_root = bvh->blas_root[mesh];
+        inst->first_prim = bvh->first_prim[mesh];
+        inst->num_prims = bvh->num_mesh_prims[mesh];
+        inst->motion = INSTANCE_STATIC;
+        if (si->moving) {
+            InstanceMotion *m = &(*motions)[moving];
+            for (int key = 0; key < 2; key++) {
+                const Trs *trs = &si->motion[key];
+                for (int k = 0; k < 3; k++) {
+                    m->translation[key].s[k] = (float)trs->t[k];
+                    for (int j = 0; j < 3; j++)
+                        m->scale[3 * key + k].s[j] = (float)trs->s[k][j];
+                }
+                for (int k = 0; k < 4; k++)
+                    m->rotation[key].s[k] = (float)trs->q[k];
+            }
+            inst->motion = moving++;
+        }
+    }
+}
+
+bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bvh,
+                          SceneBuffers *out, Error *err)
 {
     memset(out, 0, sizeof *out);
     size_t nv = data->num_vertices, nt = data->num_triangles;
-    BvhLayout layout;
-    bvh_layout(&layout, bvh, dev->bvh_width, dev->bvh_quantized);
+    Instance *instances;
+    InstanceMotion *motions;
+    scene_instances_for_device(data, bvh, &instances, &motions);
     LightTable lights;
     light_table_build(&lights, data);
     struct {
@@ -32,8 +99,12 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
         SCENE_BUFFERS(SOURCE_MEMBER)
 #undef SOURCE_MEMBER
     } src = {0};
-    src.bvh_nodes = source(layout.num_nodes, layout.node_size, layout.nodes);
-    src.bvh_tris = source(layout.num_prims, layout.prim_size, layout.prims);
+    src.bvh_nodes = source(bvh->num_nodes, bvh->node_size, bvh->nodes);
+    src.bvh_tris = source(bvh->num_prims, bvh->prim_size, bvh->prims);
+    src.instances = source(data->num_instances, sizeof(Instance), instances);
+    src.instance_motion = source(data->num_moving ? data->num_moving : 1, sizeof(InstanceMotion),
+                                 motions);
+    out->num_instances = data->num_instances;
     src.positions = source(nv, sizeof(float4), data->positions);
     src.normals = source(nv, sizeof(float4), data->normals);
     src.uvs = source(nv, sizeof(float2), data->uvs);
@@ -53,7 +124,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     out->env_height = env->height;
     out->env_rotation = env->rotation;
     out->env_pick_pdf = lights.env_pick_pdf;
-    out->num_bvh_prims = layout.num_prims;
+    out->num_bvh_prims = bvh->num_prims;
     out->num_emissive = lights.count;
     out->emissive_power = lights.total_power;
 
@@ -66,7 +137,8 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, Sc
     }
     SCENE_BUFFERS(UPLOAD)
 #undef UPLOAD
-    bvh_layout_free(&layout);
+    free(instances);
+    free(motions);
     light_table_free(&lights);
     if (error_is_set(err)) {
         scene_buffers_release(out);

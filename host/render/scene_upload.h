@@ -4,7 +4,7 @@
 #ifndef PT_SCENE_UPLOAD_H
 #define PT_SCENE_UPLOAD_H
 
-#include "accel/bvh.h"
+#include "accel/scene_bvh.h"
 #include "device/device.h"
 #include "scene/scene_data.h"
 
@@ -18,13 +18,22 @@ typedef struct {
     uint32_t env_width, env_height; /* the environment map's size, 0 without one */
     float env_rotation;     /* RenderParams.env_rotation */
     uint32_t num_analytic;  /* entries of analytic_lights (RenderParams.num_analytic) */
+    uint32_t num_instances; /* entries of instances (RenderParams.num_instances) */
     float env_pick_pdf;     /* the light table's probability of the environment entry */
     size_t bytes; /* device memory used */
 } SceneBuffers;
 
 /* ERR_ALLOC_TOO_LARGE names the buffer that does not fit. */
-bool scene_buffers_upload(Device *dev, const SceneData *data, const Bvh *bvh, SceneBuffers *out,
-                          Error *err);
+bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bvh,
+                          SceneBuffers *out, Error *err);
+/* The scene's BVH for the device's layout (dev->bvh_width, bvh_quantized): two levels when asked,
+ * which a program built with PT_FEATURE_INSTANCES=1 needs (session.c asks for data->two_level and
+ * builds the program to match; the tests' program has every feature), else one. */
+void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, bool two_level);
+/* The kernels' instances and motions (cl/shared.h) from the scene's and the BVH's: *instances has
+ * data->num_instances entries, *motions max(1, data->num_moving); free() both. */
+void scene_instances_for_device(const SceneData *data, const SceneBvh *bvh, Instance **instances,
+                                InstanceMotion **motions);
 void scene_buffers_release(SceneBuffers *buffers);
 
 /* Binds every scene buffer to kernel arguments first, first + 1, ... in SCENE_BUFFERS order (the

@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "accel/bvh_wide.h"
 #include "base/clock.h"
 
 static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
@@ -34,12 +33,13 @@ static void specialise_program(Device *dev, const SceneData *data)
     bool cutout = false;
     for (uint32_t i = 0; i < data->num_materials && !cutout; i++)
         cutout = (data->materials[i].flags & MATERIAL_FLAG_CUTOUT) != 0;
-    char features[128];
+    char features[192];
     snprintf(features, sizeof features,
              " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d"
-             " -DPT_MATERIAL_FEATURES=%uu",
+             " -DPT_MATERIAL_FEATURES=%uu -DPT_FEATURE_INSTANCES=%d -DPT_FEATURE_MOTION=%d",
              data->environment.width > 0, data->num_analytic > 0, cutout,
-             (unsigned)material_features(data->materials, data->num_materials, &data->textures));
+             (unsigned)material_features(data->materials, data->num_materials, &data->textures),
+             data->two_level, data->num_moving > 0);
     size_t used = strlen(dev->build_options);
     if (used + strlen(features) < sizeof dev->build_options)
         memcpy(dev->build_options + used, features, strlen(features) + 1);
@@ -70,8 +70,7 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
         return false;
     }
     double t1 = seconds_now();
-    bvh_build_for_width(&s->bvh, s->scene.data.positions, s->scene.data.triangles,
-                        s->scene.data.num_triangles, s->dev.bvh_width);
+    scene_accel_build(&s->bvh, &s->scene.data, &s->dev, s->scene.data.two_level);
     s->bvh_seconds = seconds_now() - t1;
     if (!scene_buffers_upload(&s->dev, &s->scene.data, &s->bvh, &s->buffers, err)) {
         session_close(s);
@@ -96,7 +95,7 @@ void session_print_summary(const Session *s)
 void session_close(Session *s)
 {
     scene_buffers_release(&s->buffers);
-    bvh_free(&s->bvh);
+    scene_bvh_free(&s->bvh);
     if (s->dev.context)
         device_close(&s->dev);
     scene_free(&s->scene);

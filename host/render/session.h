@@ -4,7 +4,7 @@
 #ifndef PT_SESSION_H
 #define PT_SESSION_H
 
-#include "accel/bvh.h"
+#include "accel/scene_bvh.h"
 #include "device/device.h"
 #include "scene/scene.h"
 #include "render/scene_upload.h"
@@ -22,7 +22,7 @@ typedef struct {
 typedef struct {
     Scene scene;
     Device dev;
-    Bvh bvh;
+    SceneBvh bvh;
     SceneBuffers buffers;
     double load_seconds, bvh_seconds; /* dev.build_seconds has the kernel build */
 } Session;

@@ -93,6 +93,9 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .env_rotation = buffers->env_rotation,
         .env_pick_pdf = buffers->env_pick_pdf,
         .num_analytic = buffers->num_analytic,
+        .shutter_open = desc->camera.shutter_open,
+        .shutter_close = desc->camera.shutter_close,
+        .num_instances = buffers->num_instances,
         .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
     };
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);

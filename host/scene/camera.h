@@ -10,6 +10,7 @@ typedef struct {
     float fov_y;          /* degrees, vertical */
     float aperture;       /* lens diameter; 0 = pinhole */
     float focus_distance; /* 0 = distance from eye to target */
+    float shutter_open, shutter_close; /* scene time; equal (default 0, 0): no motion blur */
 } CameraDesc;
 
 /* Camera coordinates (eye, target, up) must lie within +-CAMERA_COORDINATE_LIMIT: farther out, a

@@ -87,12 +87,14 @@ bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
     /* A bare OBJ: one object, default settings, camera framed later on the bounds. */
     out->objects = calloc(1, sizeof *out->objects);
     out->object_options = calloc(1, sizeof *out->object_options);
-    if (!out->objects || !out->object_options) {
+    out->object_transforms = calloc(1, sizeof *out->object_transforms);
+    if (!out->objects || !out->object_options || !out->object_transforms) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
         return false;
     }
     snprintf(out->objects[0], sizeof out->objects[0], "%s", out->path);
     out->object_options[0] = (ObjectOptions){.material = NO_MATERIAL};
+    out->object_transforms[0].transform = out->object_transforms[0].transform_end = affine_identity();
     out->num_objects = 1;
     return true;
 }
@@ -103,6 +105,8 @@ void scene_desc_free(SceneDesc *desc)
     desc->objects = NULL;
     free(desc->object_options);
     desc->object_options = NULL;
+    free(desc->object_transforms);
+    desc->object_transforms = NULL;
     free(desc->textures);
     desc->textures = NULL;
     desc->num_textures = 0;
@@ -141,6 +145,12 @@ static bool load_json_materials(Scene *s, const char ***names, Error *err)
 
 bool scene_load(const char *path, Scene *out, Error *err)
 {
+    return scene_load_with(path, INSTANCING_AUTO, out, err);
+}
+
+bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Error *err)
+{
+    (void)instancing;
     memset(out, 0, sizeof *out);
     scene_data_init(&out->data);
     if (!scene_desc_load(path, &out->desc, err))

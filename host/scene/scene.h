@@ -16,6 +16,23 @@
 #define FILM_SIZE_LIMIT 65536
 #define MAX_DEPTH_LIMIT 1024
 
+/* objects[i].transform and transform_end (shared/DESIGN.md "Objects"), composed. */
+typedef struct {
+    Affine transform;     /* identity when absent */
+    Affine transform_end; /* at shutter close; equal to transform when absent */
+    bool has_end;         /* "transform_end" was given */
+} ObjectTransform;
+
+/* How objects become instances (scene_load_with, pt --instancing). */
+typedef enum {
+    INSTANCING_AUTO,   /* objects without a transform whose mesh is used once are merged into one
+                          world-space mesh; every other object is an instance */
+    INSTANCING_ALWAYS, /* every object is an instance (tests, and measuring the two levels' cost) */
+    INSTANCING_NEVER,  /* every static object is baked into world space, one level when nothing
+                          moves (the reference of the equivalence tests; memory grows with
+                          instances) */
+} InstancingMode;
+
 typedef struct {
     char path[1024];    /* the scene file (.json or .obj) */
     bool camera_given;  /* false: frame the camera on the scene's bounds (bare .obj) */
@@ -31,6 +48,7 @@ typedef struct {
     int num_objects;
     char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
     ObjectOptions *object_options; /* per object; material indexes `materials` */
+    ObjectTransform *object_transforms; /* per object */
     TextureDesc *textures;   /* the "textures" block */
     int num_textures;
     MaterialDesc *materials; /* the "materials" block; scene material i is materials[i] */
@@ -49,6 +67,8 @@ typedef struct {
 
 /* scene_desc_load + scene_data_build, and frames the camera when none was given. */
 bool scene_load(const char *path, Scene *out, Error *err);
+/* The same with a choice of instancing (scene_load: INSTANCING_AUTO). */
+bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Error *err);
 void scene_free(Scene *scene);
 
 /* A scene with no light at all (no emissive triangle, no "lights", no environment map and a black

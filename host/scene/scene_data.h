@@ -9,11 +9,31 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "base/transform.h"
 #include "io/obj_loader.h"
 #include "base/shared_types.h"
 #include "scene/environment.h"
 #include "scene/materials.h" /* material_from_obj, for the flattener's users and tests */
 #include "scene/texture.h"
+
+/* One distinct mesh: a contiguous range of the flattened arrays, in object space (cl/shared.h
+ * "Instances"). Mesh 0 is the merged static mesh when a scene has one. */
+typedef struct {
+    uint32_t first_triangle, num_triangles;
+    uint32_t first_vertex, num_vertices;
+    uint32_t first_emissive, num_emissive; /* its range of SceneData.emissive_triangles */
+    float bounds_min[3], bounds_max[3];    /* of its vertices (object space) */
+} SceneMesh;
+
+/* One placement of a mesh. */
+typedef struct {
+    uint32_t mesh;
+    int32_t object;      /* the JSON objects[] index it comes from; -1: the merged static mesh */
+    Affine to_world;     /* a moving instance's at shutter open */
+    bool moving;         /* motion[] holds its transforms at open and close (trs_align'ed) */
+    Trs motion[2];
+    float bounds_min[3], bounds_max[3]; /* world box, swept over the shutter when moving */
+} SceneInstance;
 
 typedef struct {
     float4 *positions; /* w = 0 */
@@ -26,9 +46,17 @@ typedef struct {
     Material *materials;
     uint32_t num_materials;
     TextureSet textures;
-    uint32_t *emissive_triangles; /* indices of triangles whose material emits */
+    uint32_t *emissive_triangles; /* indices of triangles whose material emits, ascending */
     uint32_t num_emissive;
-    float bounds_min[3], bounds_max[3];
+    SceneMesh *meshes;            /* at least one after scene_data_finish */
+    uint32_t num_meshes;
+    SceneInstance *instances;     /* at least one after scene_data_finish */
+    uint32_t num_instances;
+    uint32_t num_moving;          /* instances with moving set */
+    /* Whether the kernels must traverse two levels: any instance other than one identity instance
+     * of mesh 0 (scene_data_finish). */
+    bool two_level;
+    float bounds_min[3], bounds_max[3]; /* world bounds over every instance */
     AnalyticLight *analytic_lights; /* the scene's "lights" (scene_load copies them in) */
     uint32_t num_analytic;
     Environment environment; /* width 0: none (scene_load loads it after scene_data_finish) */
@@ -55,5 +83,15 @@ bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *
  * first OBJ without faces and why). */
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err);
 void scene_data_free(SceneData *data);
+/* Makes the triangles and vertices appended since first_triangle / first_vertex one mesh (its
+ * bounds too; scene_data_finish_instances finds its emissive range). */
+bool scene_data_add_mesh(SceneData *data, uint32_t first_triangle, uint32_t first_vertex,
+                         Error *err);
+bool scene_data_add_instance(SceneData *data, const SceneInstance *instance, Error *err);
+/* After the emissive table: each mesh's emissive range, each instance's world box (swept when it
+ * moves, with its motion aligned to the shortest arc), num_moving, two_level and the world
+ * bounds. scene_data_finish calls it (adding mesh 0 and one identity instance when no mesh was
+ * added); call it again after changing instances. */
+void scene_data_finish_instances(SceneData *data);
 
 #endif

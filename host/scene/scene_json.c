@@ -82,7 +82,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     d->objects = calloc((size_t)count, sizeof *d->objects);
     d->object_options = calloc((size_t)count, sizeof *d->object_options);
-    if (!d->objects || !d->object_options)
+    d->object_transforms = calloc((size_t)count, sizeof *d->object_transforms);
+    if (!d->objects || !d->object_options || !d->object_transforms)
         return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
     int i = 0;
     for (const cJSON *e = array->child; e; e = e->next, i++) {
@@ -90,6 +91,7 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         snprintf(key, sizeof key, "objects[%d]", i);
         if (!json_check_object(p, e, key, keys))
             return false;
+        d->object_transforms[i].transform = d->object_transforms[i].transform_end = affine_identity();
         snprintf(key, sizeof key, "objects[%d].obj", i);
         const cJSON *obj = json_member(e, "obj");
         if (!obj)
