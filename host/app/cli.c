@@ -41,6 +41,11 @@ void cli_print_help(void)
          "                     or not (same image). Default: sorted when the scene has materials\n"
          "                     beyond Lambert, smooth mirrors and glass (pt bench measures both)\n"
          "  --no-compaction    keep dead paths in the wavefront (validation; same image)\n"
+         "  --instancing auto|always|never   how objects become instances (same image): auto\n"
+         "                     merges objects without a transform whose file is used once into\n"
+         "                     one mesh and instances the rest (two-level BVH); always instances\n"
+         "                     every object; never bakes every static object's transform into\n"
+         "                     its vertices (memory grows with the objects)\n"
          "  --profile          per-kernel timing table\n"
          "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
          "                     default ~/.cache/pt) holds them\n"
@@ -152,6 +157,16 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
         else if (!strcmp(a, "--screenshot")) ok = need_value(a, v, err), o->screenshot = v;
         else if (!strcmp(a, "--camera")) ok = need_value(a, v, err), o->camera_json = v;
         else if (!strcmp(a, "--exposure")) ok = parse_float(a, v, &o->exposure, err);
+        else if (!strcmp(a, "--instancing")) {
+            ok = need_value(a, v, err);
+            if (ok && !strcmp(v, "auto")) o->instancing = INSTANCING_AUTO;
+            else if (ok && !strcmp(v, "always")) o->instancing = INSTANCING_ALWAYS;
+            else if (ok && !strcmp(v, "never")) o->instancing = INSTANCING_NEVER;
+            else if (ok) {
+                error_set(err, ERR_USAGE, NULL, 0, "--instancing: '%s' is not auto, always or never", v);
+                ok = false;
+            }
+        }
         else if (!strcmp(a, "--aov")) {
             ok = need_value(a, v, err);
             if (ok && strcmp(v, "albedo") && strcmp(v, "normal") && strcmp(v, "depth")) {
@@ -201,7 +216,8 @@ RenderDesc cli_render_desc(const Options *o)
 {
     return (RenderDesc){.scene = o->scene, .device = o->device, .width = o->width,
                         .height = o->height, .spp = o->spp, .max_depth = o->max_depth,
-                        .no_cache = o->no_cache, .no_default_light = o->no_default_light};
+                        .no_cache = o->no_cache, .no_default_light = o->no_default_light,
+                        .instancing = o->instancing};
 }
 
 ViewerDesc cli_viewer_desc(const Options *o)

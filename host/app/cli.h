@@ -28,6 +28,7 @@ typedef struct {
     int sort_materials; /* SORT_MATERIALS_* (render/session.h); AUTO unless asked */
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     bool no_default_light; /* a scene without any light stays dark */
+    int instancing;  /* --instancing: InstancingMode (scene/scene.h), AUTO unless asked */
     const char *csv; /* pt bench: append results to this CSV file */
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* pt view: at exit, the film (FILE.exr) or the framebuffer (PNG) */

@@ -2,6 +2,7 @@
 #include "render/session.h"
 
 #include <stdio.h>
+#include <sys/resource.h>
 #include <string.h>
 
 #include "base/clock.h"
@@ -49,7 +50,7 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
 {
     memset(s, 0, sizeof *s);
     double t0 = seconds_now();
-    if (!scene_load(o->scene, &s->scene, err))
+    if (!scene_load_with(o->scene, (InstancingMode)o->instancing, &s->scene, err))
         return false;
     if (!apply_overrides(o, &s->scene.desc, err)) {
         scene_free(&s->scene);
@@ -79,17 +80,40 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
     return true;
 }
 
+/* Triangles as rendered: each instance counts its mesh's. */
+static double instanced_triangles(const SceneData *d)
+{
+    double sum = 0.0;
+    for (uint32_t i = 0; i < d->num_instances; i++)
+        sum += d->meshes[d->instances[i].mesh].num_triangles;
+    return sum;
+}
+
+/* The process's peak resident memory in MiB (Linux reports ru_maxrss in KiB). */
+static double peak_rss_mib(void)
+{
+    struct rusage usage;
+    return getrusage(RUSAGE_SELF, &usage) == 0 ? (double)usage.ru_maxrss / 1024.0 : 0.0;
+}
+
 void session_print_summary(const Session *s)
 {
+    const SceneData *d = &s->scene.data;
     fprintf(stderr,
             "pt: %s: %u triangles, %u materials, %u textures, %u emissive triangles; load %.2f s, "
-            "BVH %.2f s, kernels %.2f s (%s)\npt: device %s (%s, driver %s), %.1f MiB of scene "
-            "buffers\n",
-            s->scene.desc.path, s->scene.data.num_triangles, s->scene.data.num_materials,
-            s->scene.data.textures.count, s->scene.data.num_emissive, s->load_seconds,
-            s->bvh_seconds, s->dev.build_seconds, s->dev.cache_hit ? "from the kernel cache" : "compiled",
-            s->dev.name, s->dev.platform_name,
-            s->dev.driver_version, (double)s->buffers.bytes / (1 << 20));
+            "BVH %.2f s, kernels %.2f s (%s)\n",
+            s->scene.desc.path, d->num_triangles, d->num_materials, d->textures.count,
+            d->num_emissive, s->load_seconds, s->bvh_seconds, s->dev.build_seconds,
+            s->dev.cache_hit ? "from the kernel cache" : "compiled");
+    if (d->two_level)
+        fprintf(stderr,
+                "pt: %u meshes, %u instances (%u moving): %.4g triangles rendered; two-level BVH "
+                "(BLAS %.3f s, TLAS %.3f s)\n",
+                d->num_meshes, d->num_instances, d->num_moving, instanced_triangles(d),
+                s->bvh.blas_seconds, s->bvh.tlas_seconds);
+    fprintf(stderr, "pt: device %s (%s, driver %s), %.1f MiB of scene buffers; host peak %.0f MiB\n",
+            s->dev.name, s->dev.platform_name, s->dev.driver_version,
+            (double)s->buffers.bytes / (1 << 20), peak_rss_mib());
 }
 
 void session_close(Session *s)

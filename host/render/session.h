@@ -17,6 +17,7 @@ typedef struct {
     int width, height, spp, max_depth;
     bool no_cache;      /* compile the kernels even if the kernel cache has them */
     bool no_default_light; /* leave a scene without any light dark (scene_add_default_light) */
+    int instancing;     /* InstancingMode (scene/scene.h); 0 = INSTANCING_AUTO */
 } RenderDesc;
 
 typedef struct {

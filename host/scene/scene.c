@@ -12,6 +12,7 @@
 #include "base/fs.h"
 #include "io/input_file.h"
 #include "scene/camera.h"
+#include "scene/instances.h"
 #include "scene/json.h"
 #include "scene/scene_json.h"
 
@@ -150,7 +151,6 @@ bool scene_load(const char *path, Scene *out, Error *err)
 
 bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Error *err)
 {
-    (void)instancing;
     memset(out, 0, sizeof *out);
     scene_data_init(&out->data);
     if (!scene_desc_load(path, &out->desc, err))
@@ -162,18 +162,10 @@ bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Er
         return false;
     }
     NamedMaterials named = {names, out->data.num_materials};
-    for (int i = 0; i < out->desc.num_objects; i++) {
-        ObjMesh mesh;
-        memset(&mesh, 0, sizeof mesh);
-        bool ok = obj_load(out->desc.objects[i], &mesh, err) &&
-                  scene_data_append_object(&out->data, &mesh, out->desc.objects[i],
-                                           &out->desc.object_options[i], &named, err);
-        obj_free(&mesh);
-        if (!ok) {
-            free(names);
-            scene_free(out);
-            return false;
-        }
+    if (!scene_load_objects(&out->data, &out->desc, instancing, &named, err)) {
+        free(names);
+        scene_free(out);
+        return false;
     }
     free(names);
     if (!scene_data_finish(&out->data, out->desc.path, err)) {
