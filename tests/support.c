@@ -124,9 +124,16 @@ const char *test_write_file(const char *dir, const char *name, const char *text)
 
 void render_fixture_open(RenderFixture *f, const char *scene_path, int width, int height)
 {
+    render_fixture_open_with(f, scene_path, width, height, INSTANCING_AUTO);
+}
+
+void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
+                              InstancingMode instancing)
+{
     Error err = {0};
     f->dev = test_device();
-    cr_assert(scene_load(scene_path, &f->scene, &err), "scene_load %s: %s", scene_path, err.message);
+    cr_assert(scene_load_with(scene_path, instancing, &f->scene, &err), "scene_load %s: %s",
+              scene_path, err.message);
     if (width)
         f->scene.desc.width = width;
     if (height)

@@ -56,6 +56,9 @@ typedef struct {
 
 /* width/height 0 keep the scene's film size. */
 void render_fixture_open(RenderFixture *f, const char *scene_path, int width, int height);
+/* The same with a choice of instancing (scene/scene.h). */
+void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
+                              InstancingMode instancing);
 void render_fixture_close(RenderFixture *f);
 /* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */
 float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);
