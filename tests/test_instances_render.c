@@ -5,6 +5,7 @@
  * otherwise); the order of a transform's operations, the rotation sense and the matrix layout
  * give hand-computed depths; a mirrored emitter shines on the side its transformed normal points
  * to; a moving object renders the average over the shutter of stratified fixed-time renders. */
+#define _DEFAULT_SOURCE /* realpath */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
