@@ -58,7 +58,7 @@ static bool read_rotate(JsonParser *p, const cJSON *item, const char *key, Affin
     static const char *const keys[] = {"axis", "angle", NULL};
     if (!json_check_object(p, item, key, keys))
         return false;
-    char axis_key[160], angle_key[160];
+    char axis_key[320], angle_key[320];
     snprintf(axis_key, sizeof axis_key, "%s.axis", key);
     snprintf(angle_key, sizeof angle_key, "%s.angle", key);
     const cJSON *axis_item = json_member(item, "axis"), *angle_item = json_member(item, "angle");
@@ -75,6 +75,18 @@ static bool read_rotate(JsonParser *p, const cJSON *item, const char *key, Affin
     return true;
 }
 
+/* m (a matrix operation, or the composition: `what`) must be finite and invertible. */
+static bool check_regular(JsonParser *p, const Affine *m, const char *key, const char *what)
+{
+    double det = affine_det(m);
+    Affine inverse;
+    if (!affine_is_finite(m) || !isfinite(det))
+        return json_fail(p, ERR_JSON_VALUE, key, "%sis not finite (overflow; det %g)", what, det);
+    if (!affine_invert(m, &inverse))
+        return json_fail(p, ERR_JSON_VALUE, key, "%sis singular (det %g)", what, det);
+    return true;
+}
+
 static bool read_matrix(JsonParser *p, const cJSON *item, const char *key, Affine *out)
 {
     double rows[16];
@@ -84,10 +96,7 @@ static bool read_matrix(JsonParser *p, const cJSON *item, const char *key, Affin
         return json_fail(p, ERR_JSON_VALUE, key, "the last row is [%g, %g, %g, %g], not [0, 0, 0, 1] "
                          "(rows first, column vectors: p' = M p)", rows[12], rows[13], rows[14],
                          rows[15]);
-    Affine inverse;
-    if (!affine_invert(out, &inverse))
-        return json_fail(p, ERR_JSON_VALUE, key, "is singular (det %g)", affine_det(out));
-    return true;
+    return check_regular(p, out, key, "");
 }
 
 /* One operation: an object with exactly one key naming it. */
@@ -97,8 +106,8 @@ static bool read_operation(JsonParser *p, const cJSON *op, const char *key, Affi
         return json_fail(p, ERR_JSON_TYPE, key, "expected an object with one key: translate, "
                          "scale, rotate or matrix");
     const cJSON *value = op->child;
-    char op_key[160];
-    snprintf(op_key, sizeof op_key, "%s.%s", key, value->string);
+    char op_key[256];
+    snprintf(op_key, sizeof op_key, "%s.%.64s", key, value->string);
     if (strcmp(value->string, "translate") == 0) {
         double t[3];
         if (!read_numbers(p, value, op_key, 3, t))
@@ -130,12 +139,8 @@ bool transform_from_json(JsonParser *p, const cJSON *item, const char *key, Affi
             return false;
         m = affine_mul(&a, &m); /* the later operation applies after the earlier ones */
     }
-    Affine inverse;
-    if (!affine_is_finite(&m))
-        return json_fail(p, ERR_JSON_VALUE, key, "the composed transform is not finite (overflow)");
-    if (!affine_invert(&m, &inverse))
-        return json_fail(p, ERR_JSON_VALUE, key, "the composed transform is singular (det %g)",
-                         affine_det(&m));
+    if (!check_regular(p, &m, key, "the composed transform "))
+        return false;
     *out = m;
     return true;
 }
