@@ -83,7 +83,7 @@ static bool check_regular(JsonParser *p, const Affine *m, const char *key, const
     if (!affine_is_finite(m) || !isfinite(det))
         return json_fail(p, ERR_JSON_VALUE, key, "%sis not finite (overflow; det %g)", what, det);
     if (!affine_invert(m, &inverse))
-        return json_fail(p, ERR_JSON_VALUE, key, "%sis singular (det %g)", what, det);
+        return json_fail(p, ERR_JSON_VALUE, key, "%sis singular or too close to it (det %g)", what, det);
     return true;
 }
 
