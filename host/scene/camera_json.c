@@ -73,11 +73,31 @@ static bool read_vector(JsonParser *p, const cJSON *obj, const char *path, const
     return !item || json_read_vec3(p, item, key, value);
 }
 
+/* shutter: [open, close] in scene time, finite, open <= close. */
+static bool read_shutter(JsonParser *p, const cJSON *obj, const char *path, CameraDesc *c)
+{
+    const cJSON *item = json_member(obj, "shutter");
+    if (!item)
+        return true;
+    char key[64];
+    snprintf(key, sizeof key, "%s.shutter", path);
+    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 2)
+        return json_fail(p, ERR_JSON_TYPE, key, "expected [open, close]");
+    float open, close;
+    if (!json_read_float(p, cJSON_GetArrayItem(item, 0), key, &open) ||
+        !json_read_float(p, cJSON_GetArrayItem(item, 1), key, &close))
+        return false;
+    if (open > close)
+        return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g]: open is after close", open, close);
+    c->shutter_open = open, c->shutter_close = close;
+    return true;
+}
+
 bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
                            bool require_eye_target, CameraDesc *inout)
 {
     static const char *const keys[] = {"eye", "target", "up", "fov_y", "aperture", "focus_distance",
-                                       NULL};
+                                       "shutter", NULL};
     if (!json_check_object(p, obj, path, keys))
         return false;
     static const char *const required[] = {"eye", "target"};
@@ -94,6 +114,7 @@ bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
               read_scalar(p, obj, path, "fov_y", true, &c.fov_y) &&
               read_scalar(p, obj, path, "aperture", false, &c.aperture) &&
               read_scalar(p, obj, path, "focus_distance", false, &c.focus_distance) &&
+              read_shutter(p, obj, path, &c) &&
               check_frame(p, &c, path);
     if (!ok)
         return false;

@@ -13,7 +13,8 @@
  * replace the values, the others are kept. With require_eye_target (a scene file) eye and target
  * must be present. The result must define a view: fov_y in (0, 180), aperture and
  * focus_distance >= 0, coordinates within +-CAMERA_COORDINATE_LIMIT, eye != target, up not along
- * the view direction. *inout is unchanged on error. */
+ * the view direction; shutter [open, close] finite with open <= close. *inout is unchanged on
+ * error. */
 bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
                            bool require_eye_target, CameraDesc *inout);
 

@@ -11,6 +11,7 @@
 
 #include "scene/analytic_lights.h"
 #include "scene/camera_json.h"
+#include "scene/transform_json.h"
 
 static bool parse_positive_int(JsonParser *p, const cJSON *obj, const char *name, const char *key,
                                int min, int max, int *out)
@@ -72,7 +73,8 @@ static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc
 
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj", "material", "smooth", NULL};
+    static const char *const keys[] = {"obj", "material", "smooth", "transform", "transform_end",
+                                       NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -85,13 +87,14 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
     d->object_transforms = calloc((size_t)count, sizeof *d->object_transforms);
     if (!d->objects || !d->object_options || !d->object_transforms)
         return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
+    /* The camera is read before the objects: a transform_end needs its shutter interval. */
+    bool has_shutter = d->camera.shutter_close > d->camera.shutter_open;
     int i = 0;
     for (const cJSON *e = array->child; e; e = e->next, i++) {
         char key[64];
         snprintf(key, sizeof key, "objects[%d]", i);
         if (!json_check_object(p, e, key, keys))
             return false;
-        d->object_transforms[i].transform = d->object_transforms[i].transform_end = affine_identity();
         snprintf(key, sizeof key, "objects[%d].obj", i);
         const cJSON *obj = json_member(e, "obj");
         if (!obj)
@@ -101,7 +104,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         if (!obj->valuestring[0])
             return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
         if (!json_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
-            !parse_object_options(p, e, i, d))
+            !parse_object_options(p, e, i, d) ||
+            !object_transform_from_json(p, e, i, has_shutter, &d->object_transforms[i]))
             return false;
         d->num_objects = i + 1;
     }

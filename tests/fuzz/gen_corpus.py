@@ -18,6 +18,7 @@ Each case folder holds its input files and case.json:
 Deterministic: the same corpus every run (seeded), so a failure names a case that stays put.
 The cases come from one module per input kind: corpus_scene.py, corpus_obj.py (OBJ and MTL),
 corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statements),
+corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
 list they append to.
 """
@@ -34,6 +35,7 @@ from corpus_materials import material_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
 from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
+from corpus_transform import transform_cases  # noqa: E402
 
 
 def as_bytes(content):
@@ -71,6 +73,7 @@ def main():
     env_cases()
     environment_map_cases()
     material_cases()
+    transform_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
