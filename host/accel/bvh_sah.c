@@ -237,8 +237,8 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
     SweepResult sweep = sweep_three_axes(sorted, count, (int)n, unit);
     double cost = b->costs.traversal +
                   b->costs.intersect * sweep.sum / box_half_area_in(box, unit);
-    if (sweep.axis < 0 || (n <= BVH_MAX_LEAF_SIZE && b->costs.intersect * (double)n <= cost)) {
-        if (n <= BVH_MAX_LEAF_SIZE)
+    if (sweep.axis < 0 || (n <= b->max_leaf && b->costs.intersect * (double)n <= cost)) {
+        if (n <= b->max_leaf)
             return false;
         sweep = (SweepResult){0.0f, 0, (int)n / 2}; /* no split compares: halve it */
     }
