@@ -202,7 +202,7 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
         lanes_store(area, half_areas_of_three((const Box[3]){local[0], local[1], *box},
                                               lanes_splat(unit)));
         double cost = b->costs.traversal + b->costs.intersect * (area[0] + area[1]) / area[2];
-        if (b->costs.intersect * 2.0 <= cost)
+        if (b->max_leaf >= 2 && b->costs.intersect * 2.0 <= cost)
             return false;
         part->mid = begin + 1;
         write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
