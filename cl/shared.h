@@ -70,6 +70,9 @@ typedef struct {
 /* Entries of the traversal's private stack; host/accel/bvh_build.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
+/* Two levels (PT_FEATURE_INSTANCES): a TLAS walk's entries, then one BLAS's, each bounded as one
+ * tree's. */
+#define BVH_SCENE_STACK_SIZE (2 * BVH_STACK_SIZE)
 
 /* Wide BVH for CPUs (host/accel/bvh_wide.c, cl/geometry/bvh_traverse_wide.cl): the 2-wide tree collapsed to 4 or 8
  * children per node, stored lane by lane so that one SIMD instruction tests every child box, and
@@ -101,6 +104,7 @@ typedef struct {
 /* The wide traversal's stack: each level of the wide tree pushes at most width - 1 children; the
  * collapse (bvh_layout) checks that no path needs more. */
 #define BVH_WIDE_STACK_SIZE 192
+#define BVH_WIDE_SCENE_STACK_SIZE (2 * BVH_WIDE_STACK_SIZE)
 
 /* The layout the kernels are compiled for: -DBVH_WIDTH=2 (default), 4 or 8 (host/device/program.c). */
 #ifdef __OPENCL_C_VERSION__
@@ -138,7 +142,7 @@ typedef BvhTriangle TraversalPrim;
  * v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into triangles[]. */
 /* What the kernels assume without -DPT_FEATURE_INSTANCES (tests and tools build so), and so the
  * layout the tests' scenes are built with (tests/support.h PT_TESTS_TWO_LEVEL). */
-#define PT_FEATURE_INSTANCES_DEFAULT 0
+#define PT_FEATURE_INSTANCES_DEFAULT 1
 #define INSTANCE_STATIC 0xffffffffu /* Instance.motion of an instance that does not move */
 typedef struct {
     float4 to_world[3];  /* rows of the 3x4 object-to-world matrix M (p' = M p); a moving

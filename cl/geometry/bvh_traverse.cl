@@ -172,11 +172,20 @@ inline void test_children(const global BvhNode *node, BoxRay ray, float tmin, fl
 }
 #endif
 
-/* Intersects the leaf's triangles, shrinking hit->t; true when any hit (for early exit). A hit at
- * exactly hit->t replaces it when its original index is lower (hit_tie_limit), so ties do not
- * depend on the order in which the tree presents triangles. */
+/* Whether a hit at t on triangle prim of `instance` replaces *hit, given t <= hit->t (the tie
+ * limit): a tie goes to the lower (instance, prim) pair, so ties do not depend on the order in
+ * which the trees present triangles. One level: every instance is 0. */
+inline bool hit_wins(Hit hit, float t, uint instance, uint prim)
+{
+    if (!PT_FEATURE_INSTANCES)
+        return t < hit.t || prim < hit.prim;
+    return t < hit.t || instance < hit.instance || (instance == hit.instance && prim < hit.prim);
+}
+
+/* Intersects the leaf's triangles (of `instance`, in the space the ray is given in), shrinking
+ * hit->t; true when any hit (for early exit). A hit at exactly hit->t replaces it by hit_wins. */
 inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint count,
-                           WatertightRay ray, float tmin, bool any_hit, Hit *hit)
+                           WatertightRay ray, float tmin, bool any_hit, Hit *hit, uint instance)
 {
     bool found = false;
     float limit = hit_tie_limit(*hit);
@@ -186,11 +195,12 @@ inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint coun
         if (intersect_triangle_watertight(ray, xyz(tris[i].v0), xyz(tris[i].v1), xyz(tris[i].v2),
                                           tmin, limit, &t, &u, &v)) {
             uint prim = as_uint(tris[i].v0.w);
-            if (t < hit->t || prim < hit->prim) { /* t <= hit->t here: a tie needs the lower index */
+            if (hit_wins(*hit, t, instance, prim)) { /* t <= hit->t here */
                 hit->t = t;
                 hit->u = u;
                 hit->v = v;
                 hit->prim = prim;
+                hit->instance = instance;
                 limit = hit_tie_limit(*hit);
                 found = true;
                 if (any_hit)
@@ -210,22 +220,24 @@ typedef struct {
     float slack; /* see box_slack */
 } Walk;
 
-/* Visits one child whose box the ray meets at t_entry: a leaf is intersected now, an inner node
- * becomes the next node or, if there is one already, goes on the stack. True when an any-hit query
- * is answered. */
+/* Visits one child whose box the ray meets at t_entry: a leaf is intersected now (in a TLAS,
+ * defer_leaves, it names an instance and is visited like an inner node), an inner node becomes
+ * the next node or, if there is one already, goes on the stack. True when an any-hit query is
+ * answered. */
 inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, float t_entry,
-                        WatertightRay ray, float tmin, bool any_hit, Walk *walk, uint *stack)
+                        WatertightRay ray, float tmin, bool any_hit, Walk *walk, uint *stack,
+                        uint stack_limit, bool defer_leaves, uint instance)
 {
     /* The sibling visited first may have moved the closest hit in front of this box. */
     if (!(t_entry <= (walk->hit.t + walk->slack) * BOX_EXIT_SCALE))
         return false;
-    if (child_is_leaf(ref))
+    if (child_is_leaf(ref) && !defer_leaves)
         return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin, any_hit,
-                              &walk->hit) &&
+                              &walk->hit, instance) &&
                any_hit;
     if (walk->next == 0)
         walk->next = ref;
-    else if (walk->stack_size < BVH_STACK_SIZE) /* always true: the builder bounds the depth */
+    else if (walk->stack_size < stack_limit) /* always true: the builder bounds the depth */
         stack[walk->stack_size++] = ref;
     return false;
 }
@@ -247,17 +259,18 @@ inline void traversal_start(Traversal *tr, const global TraversalNode *nodes, fl
 {
     tr->box = box_ray(origin, dir);
     tr->tri = watertight_ray(origin, dir);
-    Walk walk = {{tmax, 0.0f, 0.0f, HIT_NONE}, 0, 0, box_slack(nodes, origin, tr->tri)};
+    Walk walk = {{tmax, 0.0f, 0.0f, HIT_NONE, 0u}, 0, 0, box_slack(nodes, origin, tr->tri)};
     tr->walk = walk;
     tr->tmin = tmin;
     tr->box_tmin = tmin - walk.slack;
     tr->node = 0;
 }
 
-/* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
- * at the first hit found, otherwise when no node is left. */
-inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
-                           const global BvhTriangle *tris, bool any_hit, uint *stack)
+/* Tests tr->node's children and visits those the ray meets (nearer first), leaving the node to
+ * visit next in tr->walk.next (0: pop one); true when an any-hit query is answered. */
+inline bool traversal_visit_children(Traversal *tr, const global TraversalNode *nodes,
+                                     const global BvhTriangle *tris, bool any_hit, uint *stack,
+                                     uint stack_limit, bool defer_leaves, uint instance)
 {
     COUNT_STEPS(tr->walk.hit, 1u, 0u);
     bool hit[2];
@@ -271,11 +284,21 @@ inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
     tr->walk.next = 0;
     if ((hit[0] || hit[1]) &&
         visit_child(tris, swap ? ref[1] : ref[0], swap ? lane[1] : lane[0], swap ? t[1] : t[0],
-                    tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+                    tr->tri, tr->tmin, any_hit, &tr->walk, stack, stack_limit, defer_leaves,
+                    instance))
         return true;
-    if (hit[0] && hit[1] &&
-        visit_child(tris, swap ? ref[0] : ref[1], swap ? lane[0] : lane[1], swap ? t[0] : t[1],
-                    tr->tri, tr->tmin, any_hit, &tr->walk, stack))
+    return hit[0] && hit[1] &&
+           visit_child(tris, swap ? ref[0] : ref[1], swap ? lane[0] : lane[1], swap ? t[0] : t[1],
+                       tr->tri, tr->tmin, any_hit, &tr->walk, stack, stack_limit, defer_leaves,
+                       instance);
+}
+
+/* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
+ * at the first hit found, otherwise when no node is left. */
+inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
+                           const global BvhTriangle *tris, bool any_hit, uint *stack)
+{
+    if (traversal_visit_children(tr, nodes, tris, any_hit, stack, BVH_STACK_SIZE, false, 0u))
         return true;
     if (tr->walk.next == 0) {
         if (tr->walk.stack_size == 0)
@@ -298,12 +321,81 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global BvhTriangle
     return tr.walk.hit;
 }
 
+#if PT_FEATURE_INSTANCES
+/* Two levels (host/accel/tlas.c): the TLAS from node 0, whose leaves name instances. One loop,
+ * not a walk inside a walk, so that a GPU's lanes in different levels still step together: a
+ * TLAS leaf is visited like an inner node, and visiting it moves the ray into the instance's
+ * object space (its direction not normalised: t means the same in both spaces) and goes on at the
+ * BLAS root, on the same stack; when the BLAS's part of the stack is used up (blas_base), the
+ * world ray comes back and the TLAS walk goes on. */
+inline Hit trace_scene_bvh(const global TraversalNode *nodes, const global BvhTriangle *tris,
+                           const global Instance *instances, const global InstanceMotion *motions,
+                           float3 origin, float3 dir, float tmin, float tmax, float time,
+                           bool any_hit)
+{
+    Traversal tr;
+    uint stack[BVH_SCENE_STACK_SIZE];
+    traversal_start(&tr, nodes, origin, dir, tmin, tmax);
+    float world_slack = tr.walk.slack;
+    uint instance = HIT_NONE; /* HIT_NONE: walking the TLAS */
+    uint blas_base = 0;
+    for (;;) {
+        if (child_is_leaf(tr.node)) {
+            instance = leaf_first(tr.node, 0u);
+            Affine m = instance_to_object(instances, motions, instance, time);
+            float3 o = affine_point(m, origin), d = affine_vector(m, dir);
+            uint root = instances[instance].blas_root;
+            tr.box = box_ray(o, d);
+            tr.tri = watertight_ray(o, d);
+            tr.walk.slack = box_slack(&nodes[root], o, tr.tri);
+            tr.box_tmin = tmin - tr.walk.slack;
+            tr.node = root;
+            blas_base = tr.walk.stack_size;
+        }
+        if (traversal_visit_children(&tr, nodes, tris, any_hit, stack, BVH_SCENE_STACK_SIZE,
+                                     instance == HIT_NONE, instance))
+            return tr.walk.hit;
+        if (tr.walk.next == 0) {
+            if (instance != HIT_NONE && tr.walk.stack_size == blas_base) {
+                instance = HIT_NONE;
+                tr.box = box_ray(origin, dir);
+                tr.tri = watertight_ray(origin, dir);
+                tr.walk.slack = world_slack;
+                tr.box_tmin = tmin - world_slack;
+            }
+            if (tr.walk.stack_size == 0)
+                return tr.walk.hit;
+            tr.walk.next = stack[--tr.walk.stack_size];
+        }
+        tr.node = tr.walk.next;
+    }
+}
+
+/* Every triangle of every instance, in its object space: the brute-force ablation's two levels. */
+inline Hit trace_scene_brute_force(const global BvhTriangle *tris, const global Instance *instances,
+                                   const global InstanceMotion *motions, uint num_instances,
+                                   float3 origin, float3 dir, float tmin, float tmax, float time,
+                                   bool any_hit)
+{
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
+    for (uint i = 0; i < num_instances; i++) {
+        Affine m = instance_to_object(instances, motions, i, time);
+        WatertightRay ray = watertight_ray(affine_point(m, origin), affine_vector(m, dir));
+        if (intersect_leaf(tris, instances[i].first_prim, instances[i].num_prims, ray, tmin, any_hit,
+                           &hit, i) &&
+            any_hit)
+            break;
+    }
+    return hit;
+}
+#endif
+
 /* Every triangle, no BVH: the baseline of the brute-force ablation (the *_brute_force stages). */
 inline Hit trace_brute_force(const global BvhTriangle *tris, uint num_tris, float3 origin,
                              float3 dir, float tmin, float tmax, bool any_hit)
 {
-    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
-    intersect_leaf(tris, 0u, num_tris, watertight_ray(origin, dir), tmin, any_hit, &hit);
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
+    intersect_leaf(tris, 0u, num_tris, watertight_ray(origin, dir), tmin, any_hit, &hit, 0u);
     return hit;
 }
 

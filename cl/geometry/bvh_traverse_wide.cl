@@ -119,10 +119,10 @@ inline PackRay pack_ray(WatertightRay ray)
     return pray;
 }
 
-/* intersect_triangle_watertight on every lane of a pack; the nearest lane that hits within
- * [tmin, hit->t) replaces *hit (with any_hit, the first one). True when one did. */
+/* intersect_triangle_watertight on every lane of a pack (of `instance`); the nearest lane that
+ * hits within [tmin, hit->t) replaces *hit (with any_hit, the first one). True when one did. */
 PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, float tmin,
-                           bool any_hit, Hit *hit)
+                           bool any_hit, Hit *hit, uint instance)
 {
     const global floatW *v = pack->v;
     int kz = ray.axis_z, kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
@@ -143,10 +143,12 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     floatW det = w0 + w1 + w2;
     floatW inv_det = 1.0f / det;
     floatW t = fma(w0, az, fma(w1, bz, w2 * cz)) * inv_det;
-    /* Ties at exactly hit->t go to the lower original index (hit_tie_limit); before any hit
-     * nothing ties, hit->t being the ray's tmax. */
+    /* Ties at exactly hit->t go to the lower (instance, original index) (hit_tie_limit,
+     * hit_wins); before any hit nothing ties, hit->t being the ray's tmax. */
     uintW prims = pack->prim;
     uint tie_below = hit->prim == HIT_NONE ? 0u : hit->prim;
+    if (PT_FEATURE_INSTANCES && hit->prim != HIT_NONE && instance != hit->instance)
+        tie_below = instance < hit->instance ? HIT_NONE : 0u;
     intW closer = (t < hit->t) | ((t == hit->t) & (prims < (uintW)(tie_below)));
     uint bits = lane_bits(~(negative & positive) & (det != 0.0f) & (t >= tmin) & closer);
     if (bits == 0u)
@@ -167,12 +169,13 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     hit->u = us[best];
     hit->v = vs[best];
     hit->prim = lane_prim[best];
+    hit->instance = instance;
     return true;
 }
 
 /* A leaf reference ~(first_pack << BVH_WIDE_LEAF_PACK_BITS | (pack_count - 1)). */
 PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, PackRay ray,
-                                float tmin, bool any_hit, Hit *hit)
+                                float tmin, bool any_hit, Hit *hit, uint instance)
 {
     uint code = ~ref;
     uint first = code >> BVH_WIDE_LEAF_PACK_BITS;
@@ -180,7 +183,7 @@ PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, 
     bool found = false;
     for (uint p = first; p <= last; p++) {
         COUNT_STEPS(*hit, 0u, 1u);
-        if (intersect_pack(&packs[p], ray, tmin, any_hit, hit)) {
+        if (intersect_pack(&packs[p], ray, tmin, any_hit, hit, instance)) {
             found = true;
             if (any_hit)
                 break;
@@ -200,7 +203,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
     WideRay bray = wide_ray(origin, dir);
     WatertightRay tray = watertight_ray(origin, dir);
     PackRay pray = pack_ray(tray);
-    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
     float slack = wide_box_slack(nodes, origin, tray);
     float box_tmin = tmin - slack;
     uint stack_ref[BVH_WIDE_STACK_SIZE];
@@ -244,7 +247,7 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
                 ref = near_ref;
                 continue;
             }
-        } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit) && any_hit) {
+        } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit, 0u) && any_hit) {
             return hit;
         }
         /* Pop the nearest entry that may still hold a hit in front of the closest one. */
@@ -261,13 +264,126 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
 inline Hit trace_brute_force(const global TraversalPrim *packs, uint num_packs, float3 origin,
                              float3 dir, float tmin, float tmax, bool any_hit)
 {
-    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE};
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
     PackRay ray = pack_ray(watertight_ray(origin, dir));
     for (uint p = 0; p < num_packs; p++)
-        if (intersect_pack(&packs[p], ray, tmin, any_hit, &hit) && any_hit)
+        if (intersect_pack(&packs[p], ray, tmin, any_hit, &hit, 0u) && any_hit)
             break;
     return hit;
 }
+
+#if PT_FEATURE_INSTANCES
+/* Two levels (host/accel/tlas.c): trace_bvh's walk from the TLAS at node 0, whose leaves
+ * (~instance) are visited like inner nodes: visiting one moves the ray into the instance's object
+ * space (direction not normalised: t means the same in both spaces) and goes on at its BLAS root
+ * on the same stack; when the BLAS's entries are used up (blas_base) the world ray comes back. */
+inline Hit trace_scene_bvh(const global TraversalNode *nodes, const global TraversalPrim *packs,
+                           const global Instance *instances, const global InstanceMotion *motions,
+                           float3 origin, float3 dir, float tmin, float tmax, float time,
+                           bool any_hit)
+{
+    WideRay bray = wide_ray(origin, dir);
+    WatertightRay tray = watertight_ray(origin, dir);
+    PackRay pray = pack_ray(tray);
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
+    float world_slack = wide_box_slack(nodes, origin, tray);
+    float slack = world_slack, box_tmin = tmin - slack;
+    uint stack_ref[BVH_WIDE_SCENE_STACK_SIZE];
+    float stack_t[BVH_WIDE_SCENE_STACK_SIZE];
+    uint stack_size = 0, blas_base = 0;
+    uint instance = HIT_NONE; /* HIT_NONE: walking the TLAS */
+    uint ref = 0;
+    for (;;) {
+        if (is_leaf_ref(ref) && instance == HIT_NONE) {
+            instance = ~ref;
+            Affine m = instance_to_object(instances, motions, instance, time);
+            float3 o = affine_point(m, origin), d = affine_vector(m, dir);
+            ref = instances[instance].blas_root;
+            bray = wide_ray(o, d);
+            tray = watertight_ray(o, d);
+            pray = pack_ray(tray);
+            slack = wide_box_slack(&nodes[ref], o, tray);
+            box_tmin = tmin - slack;
+            blas_base = stack_size;
+        }
+        if (!is_leaf_ref(ref)) {
+            COUNT_STEPS(hit, 1u, 0u);
+            float t_entry[BVH_WIDTH];
+            uint bits = wide_box_hits(&nodes[ref], bray, box_tmin, hit.t + slack, t_entry);
+            if (bits != 0u) {
+                const global uint *child = (const global uint *)&nodes[ref].child;
+                uint lane = lowest_lane(bits);
+                uint near_ref = child[lane];
+                float near_t = t_entry[lane];
+                uint base = stack_size;
+                for (bits &= bits - 1u; bits != 0u; bits &= bits - 1u) {
+                    lane = lowest_lane(bits);
+                    uint r = child[lane];
+                    float t = t_entry[lane];
+                    if (!any_hit && t < near_t) {
+                        uint swap_ref = near_ref;
+                        float swap_t = near_t;
+                        near_ref = r, near_t = t;
+                        r = swap_ref, t = swap_t;
+                    }
+                    uint j = stack_size;
+                    if (j == BVH_WIDE_SCENE_STACK_SIZE) /* never: each tree bounds its stack */
+                        break;
+                    stack_size++;
+                    if (!any_hit)
+                        for (; j > base && stack_t[j - 1] < t; j--) {
+                            stack_ref[j] = stack_ref[j - 1];
+                            stack_t[j] = stack_t[j - 1];
+                        }
+                    stack_ref[j] = r;
+                    stack_t[j] = t;
+                }
+                ref = near_ref;
+                continue;
+            }
+        } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit, instance) && any_hit) {
+            return hit;
+        }
+        /* Pop the nearest entry that may still hold a hit in front of the closest one; below the
+         * BLAS's entries, the TLAS's with the world ray. */
+        for (;;) {
+            if (instance != HIT_NONE && stack_size == blas_base) {
+                instance = HIT_NONE;
+                bray = wide_ray(origin, dir);
+                tray = watertight_ray(origin, dir);
+                pray = pack_ray(tray);
+                slack = world_slack;
+                box_tmin = tmin - slack;
+            }
+            if (stack_size == 0u)
+                return hit;
+            stack_size--;
+            if (stack_t[stack_size] <= (hit.t + slack) * BOX_EXIT_SCALE)
+                break;
+        }
+        ref = stack_ref[stack_size];
+    }
+}
+
+/* Every pack of every instance, in its object space: the brute-force ablation's two levels. */
+inline Hit trace_scene_brute_force(const global TraversalPrim *packs,
+                                   const global Instance *instances,
+                                   const global InstanceMotion *motions, uint num_instances,
+                                   float3 origin, float3 dir, float tmin, float tmax, float time,
+                                   bool any_hit)
+{
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
+    for (uint i = 0; i < num_instances; i++) {
+        Affine m = instance_to_object(instances, motions, i, time);
+        PackRay ray = pack_ray(watertight_ray(affine_point(m, origin), affine_vector(m, dir)));
+        uint first = instances[i].first_prim, end = first + instances[i].num_prims;
+        for (uint p = first; p < end; p++)
+            if (intersect_pack(&packs[p], ray, tmin, any_hit, &hit, i) && any_hit)
+                return hit;
+    }
+    return hit;
+}
+#endif
 
 #endif /* BVH_WIDTH != 2 */
 

@@ -21,6 +21,7 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     if (get_local_id(0) == 0)
         *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
+    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
     if (i < n_active && path_depth[slot]) {
@@ -32,13 +33,13 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
          * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
         uint k = sample_id[slot];
         RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
-        Hit h = trace_closest_through(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, time,
+        Hit h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time,
                                       brute_force,
                                       rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
 #else
-        Hit h = brute_force ? scene_brute_force(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, false,
+        Hit h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false,
                                                 time)
-                            : scene_closest(scene, p->num_bvh_prims, o, d, 0.0f, INFINITY, time);
+                            : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
 #endif
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
         if (PT_FEATURE_INSTANCES)

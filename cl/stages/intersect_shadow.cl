@@ -24,6 +24,7 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
     if (get_local_id(0) == 0)
         *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
+    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     uint i = get_global_id(0);
     bool queue = (p->flags & RENDER_SHADOW_QUEUE) != 0u;
     if (i < (queue ? shadow_count[0] : n_active)) {
@@ -40,14 +41,14 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
             uint k = sample_id[slot];
             RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
             uint bounce = as_uint(shadow_direction[slot].w);
-            bool occluded = trace_occluded_through(scene, p->num_bvh_prims, xyz(origin), d, origin.w,
+            bool occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w,
                                                    time, brute_force,
                                                    rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
 #else
             bool occluded =
-                brute_force ? scene_brute_force(scene, p->num_bvh_prims, xyz(origin), d, 0.0f,
+                brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f,
                                                 origin.w, true, time).prim != HIT_NONE
-                            : scene_occluded(scene, p->num_bvh_prims, xyz(origin), d, 0.0f,
+                            : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f,
                                              origin.w, time);
 #endif
             if (!occluded)

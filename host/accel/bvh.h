@@ -46,6 +46,9 @@ void bvh_build_with_costs(Bvh *bvh, const float4 *positions, const Triangle *tri
 /* Reference for tests and benchmarks: the same tree rules, but every split position between
  * sorted centroids is evaluated (O(n log^2 n), slow). Compare sah_cost with bvh_build's. */
 void bvh_build_full_sweep(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n);
+/* A tree over n boxes (an instance's world box each: the TLAS, host/accel/scene_bvh.h) with one
+ * box per leaf, named by its index: leaf references are ~i with count 1; tris stays NULL. */
+void bvh_build_over_boxes(Bvh *bvh, const float (*lo)[3], const float (*hi)[3], uint32_t n);
 void bvh_free(Bvh *bvh);
 
 #endif

@@ -47,7 +47,7 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *bo
      * path depth + ceil(log2(n)) never exceeds BVH_STACK_SIZE (see the tests). The log is at
      * most 32: shallower nodes need not take it. */
     bool must_balance = depth + 32 >= BVH_STACK_SIZE && depth + ceil_log2(n) >= BVH_STACK_SIZE;
-    if (n == 1 || (n <= BVH_MAX_LEAF_SIZE && must_balance))
+    if (n == 1 || (n <= b->max_leaf && must_balance))
         return leaf;
     if (!must_balance) {
         if (!b->full_sweep && n <= BVH_SMALL_NODE)
@@ -55,7 +55,7 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *bo
         Split split = b->full_sweep ? bvh_find_full_sweep_split(b, begin, end, box)
                                     : bvh_find_binned_split(b, begin, end, box, centroids);
         if (split.axis >= 0) {
-            if (n <= BVH_MAX_LEAF_SIZE && b->costs.intersect * (double)n <= split.cost)
+            if (n <= b->max_leaf && b->costs.intersect * (double)n <= split.cost)
                 return leaf;
             if (b->full_sweep) {
                 *part = bvh_partition_at(b, begin, split.mid, end);
@@ -69,7 +69,7 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *bo
                 return true;
         }
     }
-    if (n <= BVH_MAX_LEAF_SIZE)
+    if (n <= b->max_leaf)
         return leaf;
     /* Object median on the widest centroid axis (all centroids equal: any order will do). */
     float lo[4], hi[4];
@@ -152,6 +152,27 @@ static void *alloc_array(uint32_t count, size_t size)
     return malloc(bytes);
 }
 
+/* The tree over b->prims[0, n) (whose bounds are given) into b->nodes, with bvh's SAH cost;
+ * leaves refer to ranges of b->prims as the build left it. */
+static void build_tree(Bvh *bvh, Builder *b, uint32_t n, const Box *box, const Box *centroids)
+{
+    ChildRef root = n ? build_subtree(b, 0, n, box, centroids, 0) : (ChildRef){~0u, 0};
+    if (b->num_nodes == 0) {
+        /* The whole tree is one leaf: give it a root node with an empty right child, whose
+         * inverted infinite box every ray misses. */
+        Box nothing = empty_box();
+        b->cost_sum += b->costs.traversal * box_half_area(box);
+        set_child(&b->nodes[0].lmin, &b->nodes[0].lmax, box, root);
+        set_child(&b->nodes[0].rmin, &b->nodes[0].rmax, &nothing, (ChildRef){~0u, 0});
+        b->num_nodes = 1;
+    }
+    double root_area = box_half_area(box);
+    bvh->sah_cost = root_area > 0.0 ? b->cost_sum / root_area : 0.0;
+    BvhNode *shrunk = realloc(b->nodes, b->num_nodes * sizeof *b->nodes);
+    bvh->nodes = shrunk ? shrunk : b->nodes;
+    bvh->num_nodes = b->num_nodes;
+}
+
 static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
                   bool full_sweep, BvhCosts costs)
 {
@@ -162,6 +183,7 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
     Builder b = {0};
     b.full_sweep = full_sweep;
     b.costs = costs;
+    b.max_leaf = BVH_MAX_LEAF_SIZE;
     b.prims = alloc_array(n, sizeof *b.prims);
     b.scratch = full_sweep ? malloc((n ? n : 1) * sizeof *b.scratch) : NULL;
     /* A binary tree over n >= 1 leaves has n - 1 inner nodes; one more when the root is a leaf. */
@@ -172,18 +194,7 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
 
     Box box, centroids;
     make_prims(b.prims, positions, triangles, n, &box, &centroids);
-    ChildRef root = n ? build_subtree(&b, 0, n, &box, &centroids, 0) : (ChildRef){~0u, 0};
-    if (b.num_nodes == 0) {
-        /* The whole tree is one leaf: give it a root node with an empty right child, whose
-         * inverted infinite box every ray misses. */
-        Box nothing = empty_box();
-        b.cost_sum += b.costs.traversal * box_half_area(&box);
-        set_child(&b.nodes[0].lmin, &b.nodes[0].lmax, &box, root);
-        set_child(&b.nodes[0].rmin, &b.nodes[0].rmax, &nothing, (ChildRef){~0u, 0});
-        b.num_nodes = 1;
-    }
-    double root_area = box_half_area(&box);
-    bvh->sah_cost = root_area > 0.0 ? b.cost_sum / root_area : 0.0;
+    build_tree(bvh, &b, n, &box, &centroids);
 
     for (uint32_t i = 0; i < n; i++) {
         uint32_t index = prim_index(&b.prims[i]);
@@ -197,10 +208,50 @@ static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, 
     }
     free(b.prims);
     free(b.scratch);
-    BvhNode *shrunk = realloc(b.nodes, b.num_nodes * sizeof *b.nodes);
-    bvh->nodes = shrunk ? shrunk : b.nodes;
-    bvh->num_nodes = b.num_nodes;
     bvh->num_tris = n;
+}
+
+void bvh_build_over_boxes(Bvh *bvh, const float (*lo)[3], const float (*hi)[3], uint32_t n)
+{
+    memset(bvh, 0, sizeof *bvh);
+    if (n > PRIM_INDEX_LIMIT)
+        die("BVH: %u boxes is more than the %u a BVH can index", n, PRIM_INDEX_LIMIT);
+    Builder b = {0};
+    b.costs = BVH_COSTS_DEFAULT;
+    b.max_leaf = 1;
+    b.prims = alloc_array(n, sizeof *b.prims);
+    b.nodes = alloc_array(n, sizeof *b.nodes);
+    if (!b.prims || !b.nodes)
+        die("out of memory building the BVH (%u boxes)", n);
+    Box box = empty_box(), centroids = empty_box();
+    for (uint32_t i = 0; i < n; i++) {
+        _Alignas(16) float l[4] = {lo[i][0], lo[i][1], lo[i][2], 0.0f};
+        _Alignas(16) float h[4] = {hi[i][0], hi[i][1], hi[i][2], 0.0f};
+        Box prim_box = {lanes_load(l), lanes_load(h)};
+        prim_box.lo = lanes_max(prim_box.lo, lanes_splat(-FLT_MAX));
+        prim_box.hi = lanes_min(prim_box.hi, lanes_splat(FLT_MAX));
+        box_grow(&box, &prim_box);
+        box_grow_point(&centroids, centroid_of(&prim_box));
+        prim_store(&b.prims[i], &prim_box);
+        prim_set_index(&b.prims[i], i);
+        b.prims[i].hi[3] = 0.0f;
+    }
+    build_tree(bvh, &b, n, &box, &centroids);
+    /* Leaves of one record: name the box itself, ~index, instead of its place in the records. */
+    for (uint32_t i = 0; i < bvh->num_nodes; i++) {
+        float4 *refs[2] = {&bvh->nodes[i].lmin, &bvh->nodes[i].rmin};
+        float4 *counts[2] = {&bvh->nodes[i].lmax, &bvh->nodes[i].rmax};
+        for (int c = 0; c < 2; c++) {
+            uint32_t ref, count;
+            memcpy(&ref, &refs[c]->s[3], sizeof ref);
+            memcpy(&count, &counts[c]->s[3], sizeof count);
+            if (count == 1) {
+                ref = ~prim_index(&b.prims[~ref]);
+                memcpy(&refs[c]->s[3], &ref, sizeof ref);
+            }
+        }
+    }
+    free(b.prims);
 }
 
 void bvh_build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n)

@@ -44,6 +44,7 @@ typedef struct {
     uint32_t num_nodes;
     bool full_sweep;
     BvhCosts costs;
+    uint32_t max_leaf; /* records per leaf at most: BVH_MAX_LEAF_SIZE, 1 over instance boxes */
     double cost_sum; /* SAH sum, not yet divided by the root's area */
 } Builder;
 

@@ -202,7 +202,7 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
         lanes_store(area, half_areas_of_three((const Box[3]){local[0], local[1], *box},
                                               lanes_splat(unit)));
         double cost = b->costs.traversal + b->costs.intersect * (area[0] + area[1]) / area[2];
-        if (b->costs.intersect * 2.0 <= cost)
+        if (b->max_leaf >= 2 && b->costs.intersect * 2.0 <= cost)
             return false;
         part->mid = begin + 1;
         write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
@@ -237,8 +237,8 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
     SweepResult sweep = sweep_three_axes(sorted, count, (int)n, unit);
     double cost = b->costs.traversal +
                   b->costs.intersect * sweep.sum / box_half_area_in(box, unit);
-    if (sweep.axis < 0 || (n <= BVH_MAX_LEAF_SIZE && b->costs.intersect * (double)n <= cost)) {
-        if (n <= BVH_MAX_LEAF_SIZE)
+    if (sweep.axis < 0 || (n <= b->max_leaf && b->costs.intersect * (double)n <= cost)) {
+        if (n <= b->max_leaf)
             return false;
         sweep = (SweepResult){0.0f, 0, (int)n / 2}; /* no split compares: halve it */
     }

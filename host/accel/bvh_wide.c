@@ -31,6 +31,7 @@ typedef struct {
     size_t node_size, pack_size;
     uint32_t num_nodes, num_packs;
     uint8_t *height;      /* per 2-wide node: inner levels below it, itself included */
+    bool instance_leaves; /* a TLAS: leaves name instances (~i), no packs */
     uint32_t max_stack;
 } Widener;
 
@@ -77,6 +78,8 @@ static float *node_row(Widener *w, uint32_t node, int row)
 /* The packs of a leaf; returns its reference. */
 static uint32_t emit_leaf(Widener *w, const Child *leaf)
 {
+    if (w->instance_leaves)
+        return leaf->ref;
     uint32_t first = ~leaf->ref, count = leaf->count, width = (uint32_t)w->width;
     uint32_t num = (count + width - 1) / width;
     if (num > 1u << BVH_WIDE_LEAF_PACK_BITS)
@@ -159,6 +162,8 @@ static uint32_t emit_node(Widener *w, uint32_t index, uint32_t stacked)
     return node;
 }
 
+static void collapse(BvhLayout *out, const Bvh *bvh, int width, bool instance_leaves);
+
 void bvh_layout(BvhLayout *out, const Bvh *bvh, int width, bool quantized)
 {
     memset(out, 0, sizeof *out);
@@ -174,9 +179,19 @@ void bvh_layout(BvhLayout *out, const Bvh *bvh, int width, bool quantized)
                            sizeof(BvhTriangle), bvh->num_tris, BVH_STACK_SIZE, NULL};
         return;
     }
+    collapse(out, bvh, width, false);
+}
+
+void bvh_layout_tlas(BvhLayout *out, const Bvh *tlas, int width)
+{
+    collapse(out, tlas, width, true);
+}
+
+static void collapse(BvhLayout *out, const Bvh *bvh, int width, bool instance_leaves)
+{
     if (width != 4 && width != 8)
         die("BVH width %d: the layouts are 2, 4 and 8 wide", width);
-    Widener w = {.bvh = bvh, .width = width};
+    Widener w = {.bvh = bvh, .width = width, .instance_leaves = instance_leaves};
     w.node_size = width == 4 ? sizeof(BvhNode4) : sizeof(BvhNode8);
     w.pack_size = width == 4 ? sizeof(TrianglePack4) : sizeof(TrianglePack8);
     /* At most one wide node per 2-wide node, and one pack per triangle. */

@@ -29,6 +29,9 @@ typedef struct {
  * as far as the traversal stack allows; each leaf becomes ceil(count / width) packs. */
 void bvh_layout(BvhLayout *out, const Bvh *bvh, int width, bool quantized);
 
+/* A TLAS (bvh_build_over_boxes) collapsed to 4 or 8 wide: its leaves stay ~instance, no packs. */
+void bvh_layout_tlas(BvhLayout *out, const Bvh *tlas, int width);
+
 /* The SAH costs to build the 2-wide tree with for a layout. A wide layout tests a leaf's pack of
  * up to `width` triangles in about the time of one triangle, so its leaves may be fuller: a
  * triangle costs 0.3 of a node step there (PoCL, dragon in a lit box: +15-20% Mpaths/s against

@@ -7,6 +7,7 @@
 
 #include "accel/bvh.h"
 #include "accel/bvh_wide.h"
+#include "accel/tlas.h"
 #include "base/clock.h"
 #include "base/error.h"
 
@@ -58,9 +59,14 @@ void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *tri
     out->num_mesh_prims = calloc(num_meshes ? num_meshes : 1, sizeof *out->num_mesh_prims);
     if (!out->blas_root || !out->first_prim || !out->num_mesh_prims)
         die("out of memory for the BVH (%u meshes)", num_meshes);
-    (void)instances, (void)num_instances;
-    if (two_level)
-        die("scene_bvh_build: two levels are not built yet");
+    if (two_level) {
+        if (quantized && num_instances >= BVH_QUANTIZED_MAX_TRIANGLES)
+            die("BVH: %u instances; the quantised nodes address fewer than %u", num_instances,
+                BVH_QUANTIZED_MAX_TRIANGLES);
+        scene_bvh_build_two_level(out, positions, triangles, meshes, num_meshes, instances,
+                                  num_instances);
+        return;
+    }
     if (num_meshes != 1 || meshes[0].first_triangle != 0)
         die("scene_bvh_build: one level takes exactly one mesh (got %u)", num_meshes);
     build_one_level(out, positions, triangles, &meshes[0]);

@@ -170,3 +170,29 @@ kernel void bvh_test_trace_closest_dynamic(const global TraversalNode *restrict 
     }
 }
 #endif
+
+#if PT_FEATURE_INSTANCES
+/* Two-level queries (tests/test_instances_bvh.c): ray i at shutter fraction times[i]; mode 0:
+ * closest (scene_closest's walk), 1: any hit, 2: brute-force closest, 3: brute-force any hit.
+ * hits[i] as bvh_test_hit_record, instances_hit[i] the hit's instance. */
+kernel void bvh_test_scene_trace(const global TraversalNode *restrict nodes,
+                                 const global TraversalPrim *restrict tris,
+                                 const global Instance *restrict instances,
+                                 const global InstanceMotion *restrict motions, uint num_instances,
+                                 const global float4 *restrict rays, const global float *restrict times,
+                                 uint num_rays, uint mode, global float4 *restrict hits,
+                                 global uint *restrict instances_hit)
+{
+    uint i = get_global_id(0);
+    if (i >= num_rays)
+        return;
+    float3 o = xyz(rays[2 * i]), d = xyz(rays[2 * i + 1]);
+    float tmin = rays[2 * i].w, tmax = rays[2 * i + 1].w;
+    Hit h = mode < 2u ? trace_scene_bvh(nodes, tris, instances, motions, o, d, tmin, tmax, times[i],
+                                        mode == 1u)
+                      : trace_scene_brute_force(tris, instances, motions, num_instances, o, d, tmin,
+                                                tmax, times[i], mode == 3u);
+    hits[i] = bvh_test_hit_record(h);
+    instances_hit[i] = h.instance;
+}
+#endif
