@@ -35,3 +35,13 @@ inline void camera_sample(constant RenderParams *p, uint pixel, uint sample, flo
                            rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
     camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, origin, dir);
 }
+
+/* The shutter fraction s in [0, 1) of sample `sample` of pixel `pixel` (time = open + s (close -
+ * open), shared.h path_time): uniform, from its own dimension, so that motion blur changes no other
+ * number of the path; 0 without a shutter interval. */
+inline float camera_time(constant RenderParams *p, uint pixel, uint sample)
+{
+    if (!(p->shutter_close > p->shutter_open))
+        return 0.0f;
+    return rng_uniform(pixel, sample, DIM_CAMERA_TIME, p->seed);
+}

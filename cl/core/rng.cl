@@ -48,6 +48,7 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u
 #define DIM_LENS_V 3u
+#define DIM_CAMERA_TIME 4u /* the path's shutter fraction (camera_time) */
 #define DIM_BOUNCE_BASE 8u
 #define DIMS_PER_BOUNCE 16u
 #define DIM_LIGHT_PICK 0u

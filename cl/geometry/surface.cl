@@ -1,30 +1,56 @@
 /* SPDX-License-Identifier: MIT */
 /* surface.cl: what a hit means: position, geometric and shading normals, uv, material; and the
- * triangle's uv parameterisation (dp/du, dp/dv) for the materials that need a tangent frame. */
+ * triangle's uv parameterisation (dp/du, dp/dv) for the materials that need a tangent frame.
+ *
+ * Vertex data are in the instance's object space (cl/shared.h "Instances"); with
+ * PT_FEATURE_INSTANCES the hit is taken to world space through its instance at the path's time:
+ * points and dp/du, dp/dv by to_world, normals by the inverse transpose (to_object transposed),
+ * never flipped by det: the front of a mirrored instance is the side its inverse-transposed
+ * normal points to (shared/DESIGN.md "Objects"), so its emitters shine and its glass refracts as
+ * the unmirrored mesh's do. Textures are evaluated in object space (DESIGN "Textures": noise
+ * sticks to a moving or instanced object), at object_position. One-level scenes have a single
+ * world-space mesh: object space is world space and none of this is compiled. */
 
 typedef struct {
-    float3 position;
-    float3 geometric_normal; /* unit, counter-clockwise front */
-    float3 shading_normal;   /* unit; interpolated vertex normals when the mesh has them */
+    float3 position;         /* world space */
+    float3 object_position;  /* object space: where textures are evaluated (texture_eval) */
+    float3 geometric_normal; /* unit, world; counter-clockwise front in object space */
+    float3 shading_normal;   /* unit, world; interpolated vertex normals when the mesh has them */
     float2 uv;
     uint material;
+#if PT_FEATURE_INSTANCES
+    Affine to_world; /* the hit's instance at the path's time (surface_uv_derivatives, MIS) */
+#endif
 } SurfaceHit;
 
 /* time: the path's shutter fraction, where a moving instance is (path_time). */
 PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit, float time)
 {
-    (void)time;
     SurfaceHit s;
     const global float4 *positions = scene->positions, *normals = scene->normals;
     const global float2 *uvs = scene->uvs;
     uint4 tri = scene->triangles[hit.prim].v;
     float3 p0 = xyz(positions[tri.x]), p1 = xyz(positions[tri.y]), p2 = xyz(positions[tri.z]);
     float w0 = 1.0f - hit.u - hit.v;
-    s.position = w0 * p0 + hit.u * p1 + hit.v * p2;
-    s.geometric_normal = normalize(cross(p1 - p0, p2 - p0));
+    s.object_position = w0 * p0 + hit.u * p1 + hit.v * p2;
+    float3 ng = cross(p1 - p0, p2 - p0);
+#if PT_FEATURE_INSTANCES
+    Affine to_object;
+    instance_at(scene->instances, scene->instance_motion, hit.instance, time, &s.to_world,
+                &to_object);
+    s.position = affine_point(s.to_world, s.object_position);
+    ng = affine_normal(to_object, ng);
+#else
+    (void)time;
+    s.position = s.object_position;
+#endif
+    s.geometric_normal = normalize(ng);
     s.shading_normal = s.geometric_normal;
     if (tri.w & TRIANGLE_HAS_NORMALS) {
         float3 n = w0 * xyz(normals[tri.x]) + hit.u * xyz(normals[tri.y]) + hit.v * xyz(normals[tri.z]);
+#if PT_FEATURE_INSTANCES
+        n = affine_normal(to_object, n);
+#endif
         float len = length(n);
         if (len > 0.0f && isfinite(len))
             s.shading_normal = n / len;
@@ -37,8 +63,9 @@ PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit, float time)
     return s;
 }
 
-/* The uv and position of barycentrics (u, v) on triangle prim (what surface_at computes, for the
- * stages that need only these: the cut-out test during traversal). */
+/* The uv and object-space position of barycentrics (u, v) on triangle prim (what surface_at
+ * computes, for the stages that need only these: the cut-out test during traversal, whose
+ * textures are evaluated in object space as everywhere). */
 inline float2 surface_uv_at(const SceneView *scene, uint prim, float u, float v, float3 *position)
 {
     uint4 tri = scene->triangles[prim].v;
@@ -50,12 +77,17 @@ inline float2 surface_uv_at(const SceneView *scene, uint prim, float u, float v,
     return (float2)(u, v);
 }
 
-/* dp/du and dp/dv of triangle prim, constant over it (pbrt's Triangle::Intersect). A triangle
- * without uvs uses its barycentrics as uv, so dp/du = p1 - p0 and dp/dv = p2 - p0: an arbitrary but
- * fixed frame (DESIGN "Conventions"). Degenerate uvs (zero or non-finite determinant) fall back to
- * an orthonormal basis around the geometric normal. */
-inline void surface_uv_derivatives(const SceneView *scene, uint prim, float3 geometric_normal,
-                                   float3 *dpdu, float3 *dpdv)
+/* dp/du and dp/dv of the hit's triangle, constant over it (pbrt's Triangle::Intersect): in world
+ * space (dpdu, dpdv: the tangent frame's) and in object space (object_dpdu, object_dpdv: steps
+ * along the surface where textures are evaluated, as bump mapping's finite differences take). A
+ * triangle without uvs uses its barycentrics as uv, so dp/du = p1 - p0 and dp/dv = p2 - p0: an
+ * arbitrary but fixed frame (DESIGN "Conventions"). Degenerate uvs (zero or non-finite
+ * determinant) fall back to an orthonormal basis around the geometric normal (in object space,
+ * carried to world like the rest, so that both pairs stay one frame). Vectors go to world by
+ * to_world's linear part: tangents stay tangent under any affine map. */
+inline void surface_uv_derivatives(const SceneView *scene, uint prim, const SurfaceHit *surf,
+                                   float3 *dpdu, float3 *dpdv, float3 *object_dpdu,
+                                   float3 *object_dpdv)
 {
     uint4 tri = scene->triangles[prim].v;
     float3 p0 = xyz(scene->positions[tri.x]);
@@ -69,9 +101,21 @@ inline void surface_uv_derivatives(const SceneView *scene, uint prim, float3 geo
     float det = d1.x * d2.y - d1.y * d2.x;
     float inv = 1.0f / det;
     if (!(fabs(det) > 1e-20f) || !isfinite(inv)) {
-        make_basis(geometric_normal, dpdu, dpdv);
-        return;
+#if PT_FEATURE_INSTANCES
+        make_basis(normalize(cross(e1, e2)), object_dpdu, object_dpdv);
+#else
+        make_basis(surf->geometric_normal, object_dpdu, object_dpdv);
+#endif
+    } else {
+        *object_dpdu = (d2.y * e1 - d1.y * e2) * inv;
+        *object_dpdv = (d1.x * e2 - d2.x * e1) * inv;
     }
-    *dpdu = (d2.y * e1 - d1.y * e2) * inv;
-    *dpdv = (d1.x * e2 - d2.x * e1) * inv;
+#if PT_FEATURE_INSTANCES
+    *dpdu = affine_vector(surf->to_world, *object_dpdu);
+    *dpdv = affine_vector(surf->to_world, *object_dpdv);
+#else
+    (void)surf;
+    *dpdu = *object_dpdu;
+    *dpdv = *object_dpdv;
+#endif
 }

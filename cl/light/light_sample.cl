@@ -2,7 +2,14 @@
 /* light_sample.cl: next-event estimation on emissive triangles (one-sided: they emit on the side of
  * their counter-clockwise normal), analytic lights (light_analytic.cl) and the environment map,
  * chosen through the power-proportional
- * alias table. */
+ * alias table.
+ *
+ * With instances (PT_FEATURE_INSTANCES) a table entry is an (instance, triangle) pair: the
+ * triangle's object-space point goes to world through the instance at the path's time, its normal
+ * through the inverse transpose (a mirrored instance's emitters shine where its normals point,
+ * surface.cl), and the density per unit world area is entry.pdf / (its world area at that time).
+ * The table's weights (host/scene/lights.c) use a moving instance's transform at shutter open:
+ * emitter_area_ratio gives what an emitter hit by a BSDF ray must scale its MIS pdf by. */
 
 /* The alias table's choice from two independent random numbers: the entry, uniform over
  * [0, num_lights) from 32 bits by a multiply-high (each index gets floor or ceil of 2^32 / n of the
@@ -16,11 +23,37 @@ inline LightEntry light_pick(const global LightEntry *lights, uint num_lights, u
     return u_coin < entry.prob ? entry : lights[entry.alias];
 }
 
+#if PT_FEATURE_INSTANCES
+/* Twice the world area of object-space edges e1, e2 under the linear part of m. */
+inline float affine_double_area(Affine m, float3 e1, float3 e2)
+{
+    return length(cross(affine_vector(m, e1), affine_vector(m, e2)));
+}
+
+/* area at shutter open / area now of triangle prim of instance `instance`, whose transform now is
+ * to_world (the hit's): the light table weighed a moving instance's triangles by their area at
+ * open, so picking one and then a point on it has density entry.pdf / area now per unit area,
+ * which is emission.w / total power x this ratio. 1 for a static instance. */
+inline float emitter_area_ratio(const SceneView *scene, uint prim, uint instance, Affine to_world)
+{
+    const global Instance *inst = &scene->instances[instance];
+    if (!PT_FEATURE_MOTION || inst->motion == INSTANCE_STATIC)
+        return 1.0f;
+    uint4 tri = scene->triangles[prim].v;
+    float3 p0 = xyz(scene->positions[tri.x]);
+    float3 e1 = xyz(scene->positions[tri.y]) - p0, e2 = xyz(scene->positions[tri.z]) - p0;
+    Affine open = {inst->to_world[0], inst->to_world[1], inst->to_world[2]};
+    float now = affine_double_area(to_world, e1, e2);
+    return now > 0.0f ? affine_double_area(open, e1, e2) / now : 1.0f;
+}
+#endif
+
 /* pick_bits, u_coin choose the light; env_pick_bits, env_coin the environment map's texel when it
- * is chosen (independent numbers: the light's are spent on the light); u1, u2 the point on it. */
+ * is chosen (independent numbers: the light's are spent on the light); u1, u2 the point on it.
+ * time: the path's shutter fraction (where a moving instance's emitters are). */
 PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, uint num_lights,
-                                   float3 from, uint pick_bits, float u_coin, uint env_pick_bits,
-                                   float env_coin, float u1, float u2)
+                                   float3 from, float time, uint pick_bits, float u_coin,
+                                   uint env_pick_bits, float env_coin, float u1, float u2)
 {
     const global LightEntry *lights = scene->lights;
     const global float4 *positions = scene->positions;
@@ -48,10 +81,21 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     uint4 tri = triangles[entry.triangle].v;
     float3 p0 = xyz(positions[tri.x]), p1 = xyz(positions[tri.y]), p2 = xyz(positions[tri.z]);
     float2 b = sample_triangle_uniform(u1, u2);
-    ls.position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+    float3 object_position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
     float3 cross_n = cross(p1 - p0, p2 - p0);
+#if PT_FEATURE_INSTANCES
+    Affine to_world, to_object;
+    instance_at(scene->instances, scene->instance_motion, entry.instance, time, &to_world,
+                &to_object);
+    ls.position = affine_point(to_world, object_position);
+    float double_area = affine_double_area(to_world, p1 - p0, p2 - p0);
+    float3 n_light = normalize(affine_normal(to_object, cross_n));
+#else
+    (void)time;
+    ls.position = object_position;
     float double_area = length(cross_n);
     float3 n_light = cross_n / double_area;
+#endif
     ls.normal = n_light;
     float3 to_light = ls.position - from;
     float dist2 = dot(to_light, to_light);
@@ -71,11 +115,11 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         if (tri.w & TRIANGLE_HAS_UVS)
             uv = (1.0f - b.x - b.y) * scene->uvs[tri.x] + b.x * scene->uvs[tri.y] + b.y * scene->uvs[tri.z];
         if (textured)
-            ls.radiance *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, ls.position));
+            ls.radiance *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, object_position));
         /* A ray meets a cut-out emitter with probability opacity (the rest pass through), so
          * what BSDF sampling sees on average is emission x opacity: light sampling agrees. */
         if (cutout)
-            ls.radiance *= material_opacity(scene, m, uv, ls.position);
+            ls.radiance *= material_opacity(scene, m, uv, object_position);
     }
     ls.pdf_w = entry.pdf * (2.0f / double_area) * dist2 / cos_light;
     return ls;

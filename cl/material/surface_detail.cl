@@ -29,9 +29,12 @@ inline bool surface_needs_tangents(Material m, Material leaf)
  * surface along n; forward differences one texel apart in u and v (the host has no ray
  * differentials) give the displaced dp/du and dp/dv, whose cross product is the new normal,
  * turned to n's side. pbrt's h * dn/du term is left out (interpolated normals vary slowly over a
- * texel). dpdu, dpdv: the triangle's, n: the unit shading normal on the geometric front. */
-inline float3 bump_normal(const SceneView *scene, Material m, float2 uv, float3 position, float3 n,
-                          float3 dpdu, float3 dpdv)
+ * texel). dpdu, dpdv: the triangle's in world space, n: the unit shading normal on the geometric
+ * front; position, object_dpdu, object_dpdv: the hit and the triangle's derivatives in object
+ * space, where the texture is looked up (noise: the steps' neighbours). The height is in world
+ * units (displacement is not scaled with the instance, as pbrt applies bump in render space). */
+inline float3 bump_normal(const SceneView *scene, Material m, float2 uv, float3 position,
+                          float3 object_dpdu, float3 object_dpdv, float3 n, float3 dpdu, float3 dpdv)
 {
     uint tex = m.tex[MATERIAL_TEX_BUMP];
     TextureInfo info = scene->textures[tex];
@@ -40,8 +43,8 @@ inline float3 bump_normal(const SceneView *scene, Material m, float2 uv, float3 
     float du = noise ? 1.0f / 1024.0f : 1.0f / (float)info.width;
     float dv = noise ? 1.0f / 1024.0f : 1.0f / (float)info.height;
     float h = texture_eval(scene, tex, uv, position).x;
-    float h_u = texture_eval(scene, tex, uv + (float2)(du, 0.0f), position + du * dpdu).x;
-    float h_v = texture_eval(scene, tex, uv + (float2)(0.0f, dv), position + dv * dpdv).x;
+    float h_u = texture_eval(scene, tex, uv + (float2)(du, 0.0f), position + du * object_dpdu).x;
+    float h_v = texture_eval(scene, tex, uv + (float2)(0.0f, dv), position + dv * object_dpdv).x;
     /* The shading dp/du and dp/dv: the triangle's, made tangent to the shading normal. */
     float3 su = dpdu - n * dot(n, dpdu), sv = dpdv - n * dot(n, dpdv);
     float3 bu = su + (m.bump_scale * (h_u - h) / du) * n;
@@ -56,8 +59,9 @@ inline float3 bump_normal(const SceneView *scene, Material m, float2 uv, float3 
 
 /* Normal mapping in tangent space, OpenGL convention: the texel's rgb (linear) maps to
  * (2 r - 1, 2 g - 1, 2 b - 1) along (t, b, n), t along increasing u and b along increasing v, so
- * a mirrored uv island gets a mirrored frame (MikkTSpace's bitangent sign). The map's xy is scaled
- * by bump_scale (MTL's -bm; 1 when absent). */
+ * a mirrored uv island gets a mirrored frame (MikkTSpace's bitangent sign), and so does a
+ * mirrored instance. The map's xy is scaled by bump_scale (MTL's -bm; 1 when absent). n, dpdu,
+ * dpdv in world space; position in object space (the texture lookup's). */
 inline float3 normal_map_normal(const SceneView *scene, Material m, float2 uv, float3 position,
                                 float3 n, float3 dpdu, float3 dpdv)
 {
@@ -80,17 +84,19 @@ inline float3 normal_map_normal(const SceneView *scene, Material m, float2 uv, f
 /* The shading frame of a hit whose material needs tangents (surface_needs_tangents): the normal
  * bumped and/or normal-mapped (bump first, then the normal map relative to it), turned to wo's
  * side (front: wo on the geometric normal's side); when it faces away from wo, the geometric
- * normal ng (already on wo's side) replaces it as for interpolated normals. x follows dp/du. */
+ * normal ng (already on wo's side) replaces it as for interpolated normals. x follows dp/du. All
+ * in world space; textures are looked up in object space (surface.cl). */
 inline Frame surface_detail_frame(const SceneView *scene, uint prim, SurfaceHit surf, Material m,
                                   float3 wo, bool front, float3 ng)
 {
-    float3 dpdu, dpdv;
-    surface_uv_derivatives(scene, prim, surf.geometric_normal, &dpdu, &dpdv);
+    float3 dpdu, dpdv, object_dpdu, object_dpdv;
+    surface_uv_derivatives(scene, prim, &surf, &dpdu, &dpdv, &object_dpdu, &object_dpdv);
     float3 n = surf.shading_normal;
     if (m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE)
-        n = bump_normal(scene, m, surf.uv, surf.position, n, dpdu, dpdv);
+        n = bump_normal(scene, m, surf.uv, surf.object_position, object_dpdu, object_dpdv, n, dpdu,
+                        dpdv);
     if (m.tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE)
-        n = normal_map_normal(scene, m, surf.uv, surf.position, n, dpdu, dpdv);
+        n = normal_map_normal(scene, m, surf.uv, surf.object_position, n, dpdu, dpdv);
     if (!front)
         n = -n;
     if (dot(n, wo) <= 0.0f)

@@ -5,7 +5,8 @@
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
  * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
- * ray), active[n_live + j]. Next: intersect_closest. */
+ * ray), path_time (PT_FEATURE_MOTION: the path's shutter fraction, camera_time), active[n_live + j].
+ * Next: intersect_closest. */
 
 kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
                                  const global uint *free_slots, uint n_live, uint first_sample,
@@ -25,7 +26,9 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     shadow_contribution[slot] = (float4)(0.0f);
     sample_id[slot] = k;
     path_depth[slot] = 1u;
-    path_time[slot] = 0.0f;
+    /* Unread without moving instances (intersect_*, shade_surface take 0): no store. */
+    if (PT_FEATURE_MOTION)
+        path_time[slot] = camera_time(p, pixel, sample);
     radiance[k] = (float4)(0.0f);
     active[n_live + j] = slot;
 }

@@ -25,8 +25,9 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
             sum += (float3)(hit.t);
         } else {
             /* A mix shows its first leaf's colour: the AOV is deterministic. */
-            Material m = materials[material_resolve_mix(&scene, surf.material, surf.uv, surf.position, 1.0f)];
-            Bsdf bsdf = bsdf_at(&scene, m, surf.uv, surf.position);
+            Material m = materials[material_resolve_mix(&scene, surf.material, surf.uv,
+                                                        surf.object_position, 1.0f)];
+            Bsdf bsdf = bsdf_at(&scene, m, surf.uv, surf.object_position);
             sum += bsdf_albedo(&bsdf);
         }
     }

@@ -3,26 +3,42 @@
  * next-event shadow ray for non-delta materials, samples the BSDF for the next segment and applies
  * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
- * Reads: hit, ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
+ * Reads: hit, hit_instance (PT_FEATURE_INSTANCES), path_time (PT_FEATURE_MOTION: where moving
+ * instances and their emitters are), ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
  * ray_* (next segment), shadow_* (w = 1 when queued), path_depth (depth + 1, or 0 when the path ends).
  * Next: intersect_shadow, then compaction. */
 
+/* The solid-angle density with which light_sample would have chosen the emitter point that a ray
+ * hit at distance t, cos_light to its normal (hit: its triangle and instance; surf: surface_at's). */
+inline float emitter_light_pdf(constant RenderParams *p, const SceneView *scene, Material m,
+                               Hit hit, const SurfaceHit *surf, float t, float cos_light)
+{
+    /* light_sample picks a triangle with probability area * emission.w / total power, then a point
+     * with density 1 / area: per unit area that is emission.w / total power. */
+    float light_pdf = m.emission.w / p->emissive_power * t * t / cos_light;
+#if PT_FEATURE_INSTANCES
+    /* A moving instance's triangles were weighed by their area at shutter open (light_sample.cl). */
+    light_pdf *= emitter_area_ratio(scene, hit.prim, hit.instance, surf->to_world);
+#else
+    (void)scene, (void)hit, (void)surf;
+#endif
+    return light_pdf;
+}
+
 /* Emission seen along the ray, with the MIS weight against next-event estimation. */
-inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Material m, float2 uv,
-                            float3 position, float t, float cos_light, float prev_pdf_w, uint depth)
+inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Material m,
+                            Hit hit, const SurfaceHit *surf, float t, float cos_light,
+                            float prev_pdf_w, uint depth)
 {
     if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
     float3 L = xyz(m.emission);
     if (PT_HAS_MATERIAL_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
-        L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], uv, position));
+        L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], surf->uv, surf->object_position));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
         return L;
-    /* light_sample picks a triangle with probability area * emission.w / total power, then a point
-     * with density 1 / area: per unit area that is emission.w / total power. */
-    float light_pdf = m.emission.w / p->emissive_power * t * t / cos_light;
-    return L * mis_power(prev_pdf_w, light_pdf);
+    return L * mis_power(prev_pdf_w, emitter_light_pdf(p, scene, m, hit, surf, t, cos_light));
 }
 
 /* What an escaped ray sees: the constant background, or the environment map with the MIS weight
@@ -87,8 +103,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
         ns = ng;
 
-    float3 L = emission_seen(p, scene, m, surf.uv, surf.position, h.x, cos_o_geometric, dir4.w,
-                             depth);
+    float3 L = emission_seen(p, scene, m, hh, &surf, h.x, cos_o_geometric, dir4.w, depth);
     float3 gathered = beta * L;
 
     bool path_continues = depth < p->max_depth;
@@ -101,11 +116,13 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
          * a mix resolves to. */
         bool is_mix = PT_HAS_MATERIAL_FEATURE(MIX) && m.type == MATERIAL_MIX;
         uint leaf_index = is_mix
-                              ? material_resolve_mix(scene, surf.material, surf.uv, surf.position,
+                              ? material_resolve_mix(scene, surf.material, surf.uv,
+                                                     surf.object_position,
                                                      rng_bounce(key, bounce, DIM_MIX))
                               : surf.material;
         Material leaf = is_mix ? scene->materials[leaf_index] : m;
-        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.position);
+        /* Textures are looked up in object space, the rest is world space (surface.cl). */
+        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.object_position);
         /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
          * materials keep the cheap one. */
         Frame frame = surface_needs_tangents(m, leaf)
@@ -115,7 +132,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
 
         /* Next-event estimation for every non-delta lobe. */
         if (!bsdf_is_delta(&bsdf) && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position,
+            LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position, time,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce_bits(key, bounce, DIM_ENV_PICK),

@@ -8,7 +8,8 @@
 #include "scene/scene_data.h"
 
 typedef struct {
-    LightEntry *entries; /* one per emissive triangle; NULL when there is none */
+    LightEntry *entries; /* one per light: (instance, emissive triangle), analytic, environment;
+                            NULL when there is none */
     uint32_t count;
     float total_power;   /* sum of area * luminance(Ke), plus the environment's: the pdfs' normaliser */
     float env_pick_pdf;  /* the environment entry's probability; 0 without a map */
@@ -16,7 +17,11 @@ typedef struct {
     uint32_t num_analytic;
 } LightTable;
 
-/* Builds the table from data->emissive_triangles, each weighted by area * luminance(Ke), and the
+/* Builds the table from every instance's emissive triangles (data->instances in order, each over
+ * its mesh's range of data->emissive_triangles: one entry per pair, LightEntry.instance naming the
+ * instance), each weighted by its world area (through the instance's to_world: a moving
+ * instance's at shutter open) * luminance(Ke); a SceneData without instances counts as one
+ * identity instance of every emissive triangle, so one-level scenes get v1's table. Then the
  * environment map if any (one entry, triangle = LIGHT_ENVIRONMENT, weighted by its mean luminance x
  * 4 pi R^2 with R the radius of the scene's bounding sphere: DESIGN's power over pi, as for the
  * triangles), and the analytic lights (LIGHT_ANALYTIC_BASE + index, weighted by
