@@ -196,9 +196,10 @@ def main():
     args = ap.parse_args()
     if args.count < 1:
         ap.error("--count must be at least 1")
-    out = args.out or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench",
+    out = args.out or os.path.join(os.path.relpath(os.path.dirname(os.path.abspath(__file__))), "..", "bench",
                                    f"forest-{args.count // 1000}k" if args.count >= 1000
                                    else f"forest-{args.count}")
+    out = os.path.normpath(out)
     os.makedirs(out, exist_ok=True)
     rng = random.Random(args.seed)
     meshes = make_meshes(rng)
