@@ -8,7 +8,9 @@
 # Environment: DEVICE cpu (default: pt on PoCL, Mitsuba llvm_ad_rgb) or gpu (pt on the GPU's OpenCL,
 # Mitsuba cuda_ad_rgb); VARIANT overrides the Mitsuba variant; ROUNDS (default 4), WIDTH/HEIGHT
 # (512), SPP (8), DEPTH (8), PT (build/pt), PYTHON (a python3 that imports mitsuba and numpy, e.g.
-# from wheels installed with --target; default: .venv-mitsuba, created by tools/mitsuba-venv.sh).
+# from wheels installed with --target; default: .venv-mitsuba, created by tools/mitsuba-venv.sh),
+# MITSUBA_BENCH (default tools/bench_mitsuba.py; tools/mitsuba_forest.py for scenes with transforms,
+# instances and analytic lights: the forest and dragons of bench/README.md "Instancing").
 # The material benchmark (bench/README.md "Materials"), on the GPU machine:
 #   DEVICE=gpu WIDTH=1024 HEIGHT=1024 SPP=16 tools/bench-vs-mitsuba.sh \
 #       scenes/bench-materials/materials.json scenes/bench-materials/env.json -o bench/results/vs-mitsuba-gpu
@@ -33,7 +35,7 @@ rm -f "$out/mitsuba.csv" "$out/pt.csv" "$out/pt_stages.csv" "$out/pt_live.csv"
 for round in $(seq "${ROUNDS:-4}"); do
     for scene in $scenes; do
         echo "== round $round: $scene"
-        "$VENV_PY" tools/bench_mitsuba.py "$scene" --width "$W" --height "$H" --spp "$S" \
+        "$VENV_PY" "${MITSUBA_BENCH:-tools/bench_mitsuba.py}" "$scene" --width "$W" --height "$H" --spp "$S" \
             --max-depth "$D" --reps 3 --variant "$VARIANT" --csv "$out/mitsuba.csv"
         "$PT" bench "$scene" --device "$DEVICE" --width "$W" --height "$H" --spp "$S" --max-depth "$D" \
             --csv "$out/pt.csv" | grep -E '^(mode|default) '
