@@ -67,7 +67,8 @@ static bool read_rotate(JsonParser *p, const cJSON *item, const char *key, Affin
     if (!angle_item)
         return json_fail(p, ERR_JSON_VALUE, angle_key, "missing");
     double axis[3], angle;
-    if (!read_numbers(p, axis_item, axis_key, 3, axis) || !read_number(p, angle_item, angle_key, &angle))
+    if (!read_numbers(p, axis_item, axis_key, 3, axis) ||
+        !read_number(p, angle_item, angle_key, &angle))
         return false;
     if (!affine_rotate(axis, angle, out))
         return json_fail(p, ERR_JSON_VALUE, axis_key, "[%g, %g, %g] has no direction (length 0)",
@@ -83,7 +84,8 @@ static bool check_regular(JsonParser *p, const Affine *m, const char *key, const
     if (!affine_is_finite(m) || !isfinite(det))
         return json_fail(p, ERR_JSON_VALUE, key, "%sis not finite (overflow; det %g)", what, det);
     if (!affine_invert(m, &inverse))
-        return json_fail(p, ERR_JSON_VALUE, key, "%sis singular or too close to it (det %g)", what, det);
+        return json_fail(p, ERR_JSON_VALUE, key, "%sis singular or too close to it (det %g)", what,
+                         det);
     return true;
 }
 
@@ -93,8 +95,8 @@ static bool read_matrix(JsonParser *p, const cJSON *item, const char *key, Affin
     if (!read_numbers(p, item, key, 16, rows))
         return false;
     if (!affine_from_rows16(rows, out))
-        return json_fail(p, ERR_JSON_VALUE, key, "the last row is [%g, %g, %g, %g], not [0, 0, 0, 1] "
-                         "(rows first, column vectors: p' = M p)", rows[12], rows[13], rows[14],
+        return json_fail(p, ERR_JSON_VALUE, key, "the last row is [%g, %g, %g, %g], not "
+                         "[0, 0, 0, 1] (rows first, column vectors: p' = M p)", rows[12], rows[13], rows[14],
                          rows[15]);
     return check_regular(p, out, key, "");
 }
@@ -151,7 +153,8 @@ bool object_transform_from_json(JsonParser *p, const cJSON *object, int index, b
     char key[64], end_key[64];
     snprintf(key, sizeof key, "objects[%d].transform", index);
     snprintf(end_key, sizeof end_key, "objects[%d].transform_end", index);
-    const cJSON *item = json_member(object, "transform"), *end = json_member(object, "transform_end");
+    const cJSON *item = json_member(object, "transform");
+    const cJSON *end = json_member(object, "transform_end");
     out->transform = affine_identity();
     out->has_end = false;
     if (item && !transform_from_json(p, item, key, &out->transform))
