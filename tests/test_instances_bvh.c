@@ -24,6 +24,7 @@ typedef struct {
     Affine to_world;  /* static, or the motion's start */
     bool moving;
     Trs motion[2];
+    float pad;        /* the TLAS box is this much larger on every side (still conservative) */
 } TestInstance;
 
 typedef struct {
@@ -122,6 +123,8 @@ static void world_box(const InstancedScene *s, const TestInstance *in, float lo[
         trs_swept_box(&in->motion[0], &in->motion[1], olo, ohi, lo, hi);
     else
         affine_box(&in->to_world, olo, ohi, lo, hi);
+    for (int k = 0; k < 3; k++)
+        lo[k] -= in->pad, hi[k] += in->pad;
 }
 
 /* The SceneBvh and the device's Instance / InstanceMotion records. */
@@ -400,7 +403,8 @@ Test(instances_bvh, moving_instances_match_brute_force, .timeout = 600)
 }
 
 /* Instances 1 and 2, and 3 and 4, are the same mesh in the same place: every hit on either pair
- * names the lower index, whichever the TLAS presents first. */
+ * names the lower index, whichever the TLAS presents first (instance 2's box is padded, so that
+ * rays enter it before 1's; in the other pair the lower one's is). */
 Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
 {
     InstancedScene s = scene_with_meshes();
@@ -412,6 +416,8 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
     add_instance(&s, 0, a, NULL);
     add_instance(&s, 2, b, NULL);
     add_instance(&s, 2, b, NULL);
+    s.inst[2].pad = 0.5f;
+    s.inst[3].pad = 0.5f;
     SceneBvh probe;
     Instance inst[MAX_INSTANCES];
     InstanceMotion mot[MAX_INSTANCES];
