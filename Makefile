@@ -67,9 +67,10 @@ test: deps
 	$(Q)./tools/check-layers.sh
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
-	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
-	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
-	    PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties
+	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties $(BUILD)/tests/test_instances_bvh \
+	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties $(BUILD)/tests/test_instances_bvh \
+	    PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
+	    $(BUILD)/tests/test_instances_bvh
 	$(Q)$(MAKE) --no-print-directory fuzz-replay
 
 asan:
@@ -174,11 +175,14 @@ $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film: $(BUILD)/tests/viewe
 
 # Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
 # the tests' header-only helpers, hence -Itests).
-.PHONY: tools bench-bvh
+.PHONY: tools bench-bvh bench-tlas
 tools: $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
 
 bench-bvh: $(BUILD)/tools/bench_bvh
 	$(Q)$(BUILD)/tools/bench_bvh $(if $(DEVICE),--device $(DEVICE)) && python3 tools/bench_bvh.py
+
+bench-tlas: $(BUILD)/tools/bench_tlas
+	$(Q)$(BUILD)/tools/bench_tlas
 
 $(BUILD)/tools/%.o: tools/%.c
 	@mkdir -p $(@D)

@@ -11,118 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "accel/bvh_wide.h"
 #include "accel/scene_bvh.h"
 #include "base/transform.h"
-#include "procedural_mesh.h"
+#include "bvh_fixtures_instances.h"
 #include "support.h"
-
-#define MAX_INSTANCES 64
-
-typedef struct {
-    uint32_t mesh;
-    Affine to_world;  /* static, or the motion's start */
-    bool moving;
-    Trs motion[2];
-} TestInstance;
-
-typedef struct {
-    Mesh all;         /* every mesh's triangles, in object space, one after another */
-    BvhMesh meshes[4];
-    uint32_t num_meshes;
-    TestInstance inst[MAX_INSTANCES];
-    uint32_t num_instances;
-    float lo[3], hi[3]; /* the world box of every instance */
-} InstancedScene;
-
-static void add_mesh(InstancedScene *s, Mesh m)
-{
-    uint32_t base = s->all.num_positions, first = s->all.num_triangles;
-    s->all.positions = realloc(s->all.positions, (base + m.num_positions) * sizeof(float4));
-    s->all.triangles = realloc(s->all.triangles, (first + m.num_triangles) * sizeof(Triangle));
-    cr_assert(s->all.positions && s->all.triangles);
-    memcpy(s->all.positions + base, m.positions, m.num_positions * sizeof(float4));
-    for (uint32_t i = 0; i < m.num_triangles; i++) {
-        Triangle t = m.triangles[i];
-        for (int c = 0; c < 3; c++)
-            t.v.s[c] += base;
-        s->all.triangles[first + i] = t;
-    }
-    s->all.num_positions += m.num_positions;
-    s->all.num_triangles += m.num_triangles;
-    s->meshes[s->num_meshes++] = (BvhMesh){first, m.num_triangles};
-    mesh_free(&m);
-}
-
-static InstancedScene scene_with_meshes(void)
-{
-    InstancedScene s;
-    memset(&s, 0, sizeof s);
-    add_mesh(&s, mesh_icosphere(2));
-    add_mesh(&s, mesh_torus(600));
-    add_mesh(&s, mesh_soup(300, 7));
-    return s;
-}
-
-static Affine random_rotation(uint64_t *rng)
-{
-    double axis[3] = {mesh_rng_float(rng) - 0.5, mesh_rng_float(rng) - 0.5, mesh_rng_float(rng) - 0.5};
-    Affine r;
-    if (!affine_rotate(axis, 360.0 * mesh_rng_float(rng), &r))
-        r = affine_identity();
-    return r;
-}
-
-/* A composed transform: translate, rotate, scale (non-uniform, mirrored when asked), rotate again. */
-static Affine random_transform(uint64_t *rng, bool mirrored, double spread)
-{
-    double sx = 0.4 + 1.2 * mesh_rng_float(rng), sy = 0.4 + 1.2 * mesh_rng_float(rng);
-    double sz = 0.4 + 1.2 * mesh_rng_float(rng);
-    if (mirrored)
-        sx = -sx;
-    Affine t = affine_translate(spread * (mesh_rng_float(rng) - 0.5), spread * (mesh_rng_float(rng) - 0.5),
-                                spread * (mesh_rng_float(rng) - 0.5));
-    Affine r1 = random_rotation(rng), r2 = random_rotation(rng), sc = affine_scale(sx, sy, sz);
-    Affine inner = affine_mul(&sc, &r2);
-    Affine outer = affine_mul(&r1, &inner);
-    return affine_mul(&t, &outer);
-}
-
-static void add_instance(InstancedScene *s, uint32_t mesh, Affine to_world, const Affine *to_world_end)
-{
-    cr_assert(s->num_instances < MAX_INSTANCES);
-    TestInstance *in = &s->inst[s->num_instances++];
-    memset(in, 0, sizeof *in);
-    in->mesh = mesh;
-    in->to_world = to_world;
-    if (to_world_end) {
-        in->moving = true;
-        cr_assert(trs_decompose(&to_world, &in->motion[0]) && trs_decompose(to_world_end, &in->motion[1]));
-        trs_align(&in->motion[0], &in->motion[1]);
-    }
-}
-
-/* The instance's transform at shutter fraction f. */
-static Affine instance_at_time(const TestInstance *in, double f)
-{
-    if (!in->moving)
-        return in->to_world;
-    Trs trs = trs_interpolate(&in->motion[0], &in->motion[1], f);
-    return trs_compose(&trs);
-}
-
-static void world_box(const InstancedScene *s, const TestInstance *in, float lo[3], float hi[3])
-{
-    Mesh m = s->all;
-    m.triangles += s->meshes[in->mesh].first_triangle;
-    m.num_triangles = s->meshes[in->mesh].num_triangles;
-    float olo[3], ohi[3];
-    mesh_bounds(&m, olo, ohi);
-    if (in->moving)
-        trs_swept_box(&in->motion[0], &in->motion[1], olo, ohi, lo, hi);
-    else
-        affine_box(&in->to_world, olo, ohi, lo, hi);
-}
 
 /* The SceneBvh and the device's Instance / InstanceMotion records. */
 static void build_scene_bvh(InstancedScene *s, SceneBvh *bvh, int width, bool quantized,
@@ -177,13 +69,14 @@ static Traces trace_all(InstancedScene *s, const float4 *rays, const float *time
 {
     Device *dev = test_device();
     SceneBvh bvh;
-    Instance instances[MAX_INSTANCES];
+    Instance instances[MAX_INSTANCES + 1];
     InstanceMotion motions[MAX_INSTANCES];
+    memset(instances, 0, sizeof instances);
     build_scene_bvh(s, &bvh, dev->bvh_width, dev->bvh_quantized, instances, motions);
     Error err = {0};
     cl_mem nodes = device_buffer(dev, "nodes", CL_MEM_READ_ONLY, bvh.num_nodes * bvh.node_size, bvh.nodes, &err);
     cl_mem prims = device_buffer(dev, "prims", CL_MEM_READ_ONLY, bvh.num_prims * bvh.prim_size, bvh.prims, &err);
-    cl_mem inst = device_buffer(dev, "instances", CL_MEM_READ_ONLY, s->num_instances * sizeof(Instance),
+    cl_mem inst = device_buffer(dev, "instances", CL_MEM_READ_ONLY, (s->num_instances + 1) * sizeof(Instance),
                                 instances, &err);
     cl_mem mot = device_buffer(dev, "motions", CL_MEM_READ_ONLY, sizeof motions, motions, &err);
     cl_mem ray_buf = device_buffer(dev, "rays", CL_MEM_READ_ONLY, 2 * n * sizeof(float4), rays, &err);
@@ -400,7 +293,8 @@ Test(instances_bvh, moving_instances_match_brute_force, .timeout = 600)
 }
 
 /* Instances 1 and 2, and 3 and 4, are the same mesh in the same place: every hit on either pair
- * names the lower index, whichever the TLAS presents first. */
+ * names the lower index, whichever the TLAS presents first (instance 2's box is padded, so that
+ * rays enter it before 1's; in the other pair the lower one's is). */
 Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
 {
     InstancedScene s = scene_with_meshes();
@@ -412,6 +306,8 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
     add_instance(&s, 0, a, NULL);
     add_instance(&s, 2, b, NULL);
     add_instance(&s, 2, b, NULL);
+    s.inst[2].pad = 0.5f;
+    s.inst[3].pad = 0.5f;
     SceneBvh probe;
     Instance inst[MAX_INSTANCES];
     InstanceMotion mot[MAX_INSTANCES];
@@ -429,6 +325,32 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
               on_pair[3]);
     cr_expect_eq(on_pair[2] + on_pair[4], 0, "%u hits named the higher instance of a pair",
                  on_pair[2] + on_pair[4]);
+    free(tr.hits);
+    free(tr.instance);
+    free(rays);
+    free(times);
+    mesh_free(&s.all);
+}
+
+/* No instances at all (an empty scene is two-level with none): every ray misses, in every layout
+ * (the quantised TLAS's empty leaf, whose box a ray may pass, names no instance). */
+Test(instances_bvh, empty_scene_misses_everything, .timeout = 600)
+{
+    InstancedScene s = scene_with_meshes();
+    uint32_t n = 256;
+    float4 *rays = malloc(2 * n * sizeof *rays);
+    float *times = calloc(n, sizeof *times);
+    uint64_t rng = 31;
+    for (uint32_t i = 0; i < n; i++) {
+        float d[3] = {mesh_rng_float(&rng) - 0.5f, mesh_rng_float(&rng) - 0.5f, mesh_rng_float(&rng) - 0.5f};
+        rays[2 * i] = (float4){{0.0f, 0.0f, 0.0f, 0.0f}};
+        rays[2 * i + 1] = (float4){{d[0], d[1], d[2], INFINITY}};
+    }
+    Traces tr = trace_all(&s, rays, times, n);
+    uint32_t hits = 0;
+    for (uint32_t i = 0; i < 4 * n; i++)
+        hits += prim_of(tr.hits[i]) != HIT_NONE;
+    cr_expect_eq(hits, 0, "%u hits in an empty scene", hits);
     free(tr.hits);
     free(tr.instance);
     free(rays);

@@ -231,10 +231,15 @@ inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, flo
     /* The sibling visited first may have moved the closest hit in front of this box. */
     if (!(t_entry <= (walk->hit.t + walk->slack) * BOX_EXIT_SCALE))
         return false;
-    if (child_is_leaf(ref) && !defer_leaves)
-        return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin, any_hit,
-                              &walk->hit, instance) &&
-               any_hit;
+    if (child_is_leaf(ref)) {
+        if (!defer_leaves)
+            return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin,
+                                  any_hit, &walk->hit, instance) &&
+                   any_hit;
+        /* The empty TLAS's leaf names no instance (a quantised empty box may pass the test). */
+        if (leaf_count(ref, lane) == 0u)
+            return false;
+    }
     if (walk->next == 0)
         walk->next = ref;
     else if (walk->stack_size < stack_limit) /* always true: the builder bounds the depth */

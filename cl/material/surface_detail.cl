@@ -138,13 +138,13 @@ inline bool cutout_passes(const SceneView *scene, uint instance, uint prim, floa
 /* Closest hit in [0, tmax) that the cut-outs let stop the ray: after a pass-through the same ray
  * is traced again from just past the layer (same origin and direction, so every triangle's t is
  * the same bits and the layer cannot be met again). A second triangle at exactly the same t is
- * skipped with it. */
-inline Hit trace_closest_through(const SceneView *scene, uint num_prims, float3 o, float3 d,
+ * skipped with it. brute_count: scene_trace.cl's (SCENE_BRUTE_FORCE_COUNT). */
+inline Hit trace_closest_through(const SceneView *scene, uint brute_count, float3 o, float3 d,
                                  float tmin, float tmax, float time, bool brute_force, uint stream)
 {
     for (uint layer = 0u;; layer++) {
-        Hit h = brute_force ? scene_brute_force(scene, num_prims, o, d, tmin, tmax, false, time)
-                            : scene_closest(scene, num_prims, o, d, tmin, tmax, time);
+        Hit h = brute_force ? scene_brute_force(scene, brute_count, o, d, tmin, tmax, false, time)
+                            : scene_closest(scene, brute_count, o, d, tmin, tmax, time);
         if (h.prim == HIT_NONE || layer == CUTOUT_MAX_LAYERS ||
             !cutout_passes(scene, h.instance, h.prim, h.u, h.v, stream))
             return h;
@@ -154,16 +154,16 @@ inline Hit trace_closest_through(const SceneView *scene, uint num_prims, float3 
 
 /* Whether anything stops a shadow ray over [0, tmax): one any-hit query answers when the hit it
  * finds is opaque (or nothing is hit); a cut-out hit walks the layers front to back instead. */
-inline bool trace_occluded_through(const SceneView *scene, uint num_prims, float3 o, float3 d,
+inline bool trace_occluded_through(const SceneView *scene, uint brute_count, float3 o, float3 d,
                                    float tmax, float time, bool brute_force, uint stream)
 {
-    Hit any = brute_force ? scene_brute_force(scene, num_prims, o, d, 0.0f, tmax, true, time)
-                          : scene_any(scene, num_prims, o, d, 0.0f, tmax, time);
+    Hit any = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, tmax, true, time)
+                          : scene_any(scene, brute_count, o, d, 0.0f, tmax, time);
     if (any.prim == HIT_NONE)
         return false;
     Material m = scene->materials[scene->material_ids[any.prim]];
     if (!(m.flags & MATERIAL_FLAG_CUTOUT))
         return true;
-    return trace_closest_through(scene, num_prims, o, d, 0.0f, tmax, time, brute_force, stream)
+    return trace_closest_through(scene, brute_count, o, d, 0.0f, tmax, time, brute_force, stream)
                .prim != HIT_NONE;
 }

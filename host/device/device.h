@@ -29,7 +29,7 @@ typedef struct {
                           * PT_BVH_WIDTH */
     bool bvh_quantized;  /* 2-wide: 32-byte nodes (bvh_quantized.h); PT_BVH_QUANTIZED=0/1 */
     size_t local_size;   /* work-group size of launches that name none: 64, or PT_LOCAL_SIZE */
-    char build_options[256]; /* see device_build_options */
+    char build_options[512]; /* see device_build_options; room for render/session.c's features */
     int platform_index, device_index;
     char name[256];
     char platform_name[256];

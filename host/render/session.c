@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/error.h"
 
 static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
 {
@@ -25,8 +26,9 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
 /* Compiles out the light types and material features the scene does not have (PT_FEATURE_* and
  * PT_MATERIAL_FEATURES in cl/core/util.cl): their
  * branches cost 4-8% of shade_surface on the H200 in scenes without them. The kernel cache keys on
- * the options, so each combination is its own entry. Options too long for the buffer (a long
- * PT_CL_OPTIONS) keep every feature, which is always correct. */
+ * the options, so each combination is its own entry. They always fit (PT_CL_OPTIONS is bounded):
+ * dropping them is not an option, since PT_FEATURE_INSTANCES must match the layout that
+ * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
 static void specialise_program(Device *dev, const SceneData *data)
 {
     /* Cut-out materials (cl/material/surface_detail.cl) add a material read per hit to both
@@ -42,8 +44,10 @@ static void specialise_program(Device *dev, const SceneData *data)
              (unsigned)material_features(data->materials, data->num_materials, &data->textures),
              data->two_level, data->num_moving > 0);
     size_t used = strlen(dev->build_options);
-    if (used + strlen(features) < sizeof dev->build_options)
-        memcpy(dev->build_options + used, features, strlen(features) + 1);
+    if (used + strlen(features) >= sizeof dev->build_options)
+        die("the kernel build options are too long for the scene's features (%zu + %zu bytes)", used,
+            strlen(features));
+    memcpy(dev->build_options + used, features, strlen(features) + 1);
 }
 
 bool session_open(Session *s, const RenderDesc *o, Error *err)
