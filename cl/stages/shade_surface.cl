@@ -4,8 +4,10 @@
  * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
  * Reads: hit, hit_instance (PT_FEATURE_INSTANCES), path_time (PT_FEATURE_MOTION: where moving
- * instances and their emitters are), ray_*, throughput, path_depth, sample_id, scene. Writes: radiance[sample_id], throughput,
- * ray_* (next segment), shadow_* (w = 1 when queued), path_depth (depth + 1, or 0 when the path ends).
+ * instances and their emitters are), ray_*, throughput, path_depth, sample_id, scene. Writes:
+ * radiance[sample_id], throughput, ray_* (next segment), shadow_* (w = 1 when queued), path_depth
+ * (depth + 1, or 0 when the path ends). Positions, normals and directions are world space;
+ * textures are looked up at the hit's object-space point (surface.cl).
  * Next: intersect_shadow, then compaction. */
 
 /* The solid-angle density with which light_sample would have chosen the emitter point that a ray
