@@ -95,8 +95,9 @@ inline float perlin_noise(float3 p, uint seed)
 
 /* fBm: octave i has frequency frequency * 2^i, amplitude 2^-i and seed seed + i; the sum over the
  * amplitudes' sum, mapped from [-1, 1] to the blend factor [0, 1] between color0 and color1.
- * Evaluated at the hit's world position: objects have no transforms of their own yet, so object
- * space is world space. */
+ * Evaluated at the hit's object-space position (SurfaceHit.object_position): noise stays on an
+ * instance as it moves. Objects merged into the world-space mesh (no transform, or --instancing
+ * never) have world space as their object space. */
 inline float4 texture_noise(const global uint *texels, TextureInfo info, float3 position)
 {
     const global uint *q = texels + info.offset;
