@@ -18,8 +18,10 @@ static void expect_same_bits(const char *scene)
     const char *dir = test_temp_dir();
     char cmd[1024], exr[512];
     snprintf(exr, sizeof exr, "%s/pt.exr", dir);
-    snprintf(cmd, sizeof cmd, "'%s' render %s --device cpu --width 48 --height 48 --spp 4 "
-             "--seed 3 -q -o '%s' 2>/dev/null", test_pt_bin(), scene, exr);
+    /* The device the fixture renders on (PT_TEST_DEVICE, test_device()): bits are per device. */
+    const char *device = getenv("PT_TEST_DEVICE") ? getenv("PT_TEST_DEVICE") : "cpu";
+    snprintf(cmd, sizeof cmd, "'%s' render %s --device '%s' --width 48 --height 48 --spp 4 "
+             "--seed 3 -q -o '%s' 2>/dev/null", test_pt_bin(), scene, device, exr);
     cr_assert_eq(system(cmd), 0, "%s", cmd);
     float *specialised;
     int w, h;
