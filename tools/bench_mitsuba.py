@@ -27,7 +27,15 @@ LLVM_CANDIDATES = ["/usr/lib/x86_64-linux-gnu/libLLVM-19.so", "/usr/lib/x86_64-l
                    "/usr/lib/llvm-19/lib/libLLVM.so"]
 
 
-def main():
+def write_exr(mi, img, path):
+    mi.Bitmap(img).write(path)
+
+
+def main(name="bench_mitsuba", load_scene=None, build_scene=None, write_image=write_exr):
+    """Times Mitsuba on a pt scene. tools/mitsuba_forest.py passes its own scene loader and builder
+    (transforms, instances, analytic lights) and image writer; the rest is shared."""
+    load_scene = load_scene or ref.load_scene
+    build_scene = build_scene or ref.build_scene
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("scene")
     ap.add_argument("--width", type=int)
@@ -37,7 +45,8 @@ def main():
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv")
-    ap.add_argument("--image", help="also write the last timed render here (EXR), to compare with pt's")
+    ap.add_argument("--image", help="also write the last timed render here (EXR; mitsuba_forest: "
+                    "or PNG in sRGB), to compare with pt's")
     args = ap.parse_args()
     if "DRJIT_LIBLLVM_PATH" not in os.environ:
         for path in LLVM_CANDIDATES:
@@ -51,25 +60,29 @@ def main():
     try:
         variant = ref.choose_variant(mi, args.variant)
     except ref.SceneError as e:
-        print(f"bench_mitsuba: {e} (llvm_ad_rgb needs Debian's libllvm19: apt install libllvm19, "
+        print(f"{name}: {e} (llvm_ad_rgb needs Debian's libllvm19: apt install libllvm19, "
               "or DRJIT_LIBLLVM_PATH pointing at a libLLVM that Dr.Jit accepts)", file=sys.stderr)
         return 1
     try:
-        scene_path, scene = ref.load_scene(args.scene)
-    except (ref.SceneError, OSError, ValueError) as e:
-        print(f"bench_mitsuba: {e}", file=sys.stderr)
+        scene_path, scene = load_scene(args.scene)
+        film = scene.setdefault("film", {})
+        if args.width:
+            film["width"] = args.width
+        if args.height:
+            film["height"] = args.height
+        if args.max_depth:
+            scene.setdefault("render", {})["max_depth"] = args.max_depth
+        width, height = int(film.get("width", 128)), int(film.get("height", 128))
+        depth = int(scene.get("render", {}).get("max_depth", 8))
+        start = time.perf_counter()
+        with tempfile.TemporaryDirectory(prefix=f"{name}-") as temp_dir:
+            scene_obj = mi.load_dict(build_scene(scene_path, scene, args.spp, temp_dir, mi, np))
+        load_seconds = time.perf_counter() - start
+    except (ref.SceneError, OSError, ValueError, KeyError, TypeError) as e:
+        print(f"{name}: {e}", file=sys.stderr)
         return 1
-    film = scene.setdefault("film", {})
-    if args.width:
-        film["width"] = args.width
-    if args.height:
-        film["height"] = args.height
-    if args.max_depth:
-        scene.setdefault("render", {})["max_depth"] = args.max_depth
-    width, height = int(film.get("width", 128)), int(film.get("height", 128))
-    depth = int(scene.get("render", {}).get("max_depth", 8))
-    with tempfile.TemporaryDirectory(prefix="bench-mitsuba-") as temp_dir:
-        scene_obj = mi.load_dict(ref.build_scene(scene_path, scene, args.spp, temp_dir, mi, np))
+    print(f"{name}: {args.scene}: {len(scene.get('objects', []))} objects loaded in "
+          f"{load_seconds:.2f} s (not counted)")
 
     def render(seed):
         img = mi.render(scene_obj, seed=seed, spp=args.spp)
@@ -88,7 +101,7 @@ def main():
         print(f"mitsuba {mi.__version__} {variant}: {args.scene} {width}x{height} {args.spp} spp "
               f"depth {depth}: {seconds * 1e3:.1f} ms, {paths / seconds * 1e-6:.2f} Mpaths/s")
     if args.image:
-        mi.Bitmap(img).write(args.image)
+        write_image(mi, img, args.image)
     if args.csv:
         new = not os.path.exists(args.csv) or os.path.getsize(args.csv) == 0
         with open(args.csv, "a") as f:

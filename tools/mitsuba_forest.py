@@ -26,18 +26,15 @@ transform_end under a shutter interval (motion blur) and spot lights are not tra
 time a different scene. Paths = width x height x spp; a warm-up render first (kernel compilation
 stays out of the figures); load time is not counted.
 """
-import argparse
 import json
 import math
 import os
 import sys
-import tempfile
-import time
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mitsuba_reference as ref  # noqa: E402
-from bench_mitsuba import LLVM_CANDIDATES  # noqa: E402
+import bench_mitsuba  # noqa: E402
 
 SCENE_KEYS = ref.SCENE_KEYS | {"lights"}
 CAMERA_KEYS = ref.CAMERA_KEYS | {"shutter"}
@@ -187,79 +184,7 @@ def write_image(mi, img, path):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene")
-    ap.add_argument("--width", type=int)
-    ap.add_argument("--height", type=int)
-    ap.add_argument("--spp", type=int, default=8)
-    ap.add_argument("--max-depth", type=int)
-    ap.add_argument("--variant", default="llvm_ad_rgb")
-    ap.add_argument("--reps", type=int, default=3)
-    ap.add_argument("--csv")
-    ap.add_argument("--image", help="also write the last timed render here (EXR, or PNG in sRGB)")
-    args = ap.parse_args()
-    if "DRJIT_LIBLLVM_PATH" not in os.environ:
-        for path in LLVM_CANDIDATES:
-            if os.path.exists(path):
-                os.environ["DRJIT_LIBLLVM_PATH"] = path
-                break
-
-    import drjit as dr
-    import mitsuba as mi
-    import numpy as np
-    try:
-        variant = ref.choose_variant(mi, args.variant)
-    except ref.SceneError as e:
-        print(f"mitsuba_forest: {e}", file=sys.stderr)
-        return 1
-    try:
-        scene_path, scene = load_scene(args.scene)
-        film = scene.setdefault("film", {})
-        if args.width:
-            film["width"] = args.width
-        if args.height:
-            film["height"] = args.height
-        if args.max_depth:
-            scene.setdefault("render", {})["max_depth"] = args.max_depth
-        width, height = int(film.get("width", 128)), int(film.get("height", 128))
-        depth = int(scene.get("render", {}).get("max_depth", 8))
-        start = time.perf_counter()
-        with tempfile.TemporaryDirectory(prefix="mitsuba-forest-") as temp_dir:
-            scene_obj = mi.load_dict(build_scene(scene_path, scene, args.spp, temp_dir, mi, np))
-        load_seconds = time.perf_counter() - start
-    except (ref.SceneError, OSError, ValueError, KeyError, TypeError) as e:
-        print(f"mitsuba_forest: {e}", file=sys.stderr)
-        return 1
-    print(f"mitsuba_forest: {args.scene}: {len(scene.get('objects', []))} objects loaded in "
-          f"{load_seconds:.2f} s (not counted)")
-
-    def render(seed):
-        img = mi.render(scene_obj, seed=seed, spp=args.spp)
-        dr.eval(img)
-        dr.sync_thread()
-        return img
-
-    render(0)  # warm-up: kernel compilation stays out of the figures
-    paths = width * height * args.spp
-    rows = []
-    for r in range(args.reps):
-        start = time.perf_counter()
-        img = render(r + 1)
-        seconds = time.perf_counter() - start
-        rows.append(seconds)
-        print(f"mitsuba {mi.__version__} {variant}: {args.scene} {width}x{height} {args.spp} spp "
-              f"depth {depth}: {seconds * 1e3:.1f} ms, {paths / seconds * 1e-6:.2f} Mpaths/s")
-    if args.image:
-        write_image(mi, img, args.image)
-    if args.csv:
-        new = not os.path.exists(args.csv) or os.path.getsize(args.csv) == 0
-        with open(args.csv, "a") as f:
-            if new:
-                f.write("renderer,variant,scene,width,height,spp,max_depth,seconds,mpaths_per_s\n")
-            for seconds in rows:
-                f.write(f"mitsuba-{mi.__version__},{variant},{args.scene},{width},{height},{args.spp},"
-                        f"{depth},{seconds:.6f},{paths / seconds * 1e-6:.3f}\n")
-    return 0
+    return bench_mitsuba.main("mitsuba_forest", load_scene, build_scene, write_image)
 
 
 if __name__ == "__main__":
