@@ -194,6 +194,44 @@ PT_INLINE bool intersect_wide_leaf(const global TraversalPrim *packs, uint ref, 
 
 inline bool is_leaf_ref(uint ref) { return (int)ref < 0; }
 
+/* The children of a node whose boxes the ray meets (bits, entry distances t_entry): returns the
+ * nearest, to visit next, and pushes the others among this node's pushes nearest on top (with
+ * any_hit unsorted). capacity is never reached: the layouts bound the stack. */
+PT_INLINE uint visit_children(const global TraversalNode *node, uint bits, const float *t_entry,
+                              bool any_hit, uint *stack_ref, float *stack_t, uint *stack_size,
+                              uint capacity)
+{
+    const global uint *child = (const global uint *)&node->child;
+    uint lane = lowest_lane(bits);
+    uint near_ref = child[lane];
+    float near_t = t_entry[lane];
+    uint base = *stack_size, size = *stack_size;
+    for (bits &= bits - 1u; bits != 0u; bits &= bits - 1u) {
+        lane = lowest_lane(bits);
+        uint r = child[lane];
+        float t = t_entry[lane];
+        if (!any_hit && t < near_t) {
+            uint swap_ref = near_ref;
+            float swap_t = near_t;
+            near_ref = r, near_t = t;
+            r = swap_ref, t = swap_t;
+        }
+        uint j = size;
+        if (j == capacity)
+            break;
+        size++;
+        if (!any_hit)
+            for (; j > base && stack_t[j - 1] < t; j--) {
+                stack_ref[j] = stack_ref[j - 1];
+                stack_t[j] = stack_t[j - 1];
+            }
+        stack_ref[j] = r;
+        stack_t[j] = t;
+    }
+    *stack_size = size;
+    return near_ref;
+}
+
 /* The walk: the nearest child that the ray meets is visited next and the others are pushed with
  * their entry distances, farther ones deeper, so pops come nearest first; a popped entry that now
  * lies behind the closest hit is skipped. With any_hit it returns at the first hit, unsorted. */
@@ -216,35 +254,8 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
             float t_entry[BVH_WIDTH];
             uint bits = wide_box_hits(&nodes[ref], bray, box_tmin, hit.t + slack, t_entry);
             if (bits != 0u) {
-                const global uint *child = (const global uint *)&nodes[ref].child;
-                uint lane = lowest_lane(bits);
-                uint near_ref = child[lane];
-                float near_t = t_entry[lane];
-                uint base = stack_size;
-                for (bits &= bits - 1u; bits != 0u; bits &= bits - 1u) {
-                    lane = lowest_lane(bits);
-                    uint r = child[lane];
-                    float t = t_entry[lane];
-                    if (!any_hit && t < near_t) {
-                        uint swap_ref = near_ref;
-                        float swap_t = near_t;
-                        near_ref = r, near_t = t;
-                        r = swap_ref, t = swap_t;
-                    }
-                    /* Insertion among this node's pushes: nearest on top. */
-                    uint j = stack_size;
-                    if (j == BVH_WIDE_STACK_SIZE) /* never: bvh_layout bounds the stack */
-                        break;
-                    stack_size++;
-                    if (!any_hit)
-                        for (; j > base && stack_t[j - 1] < t; j--) {
-                            stack_ref[j] = stack_ref[j - 1];
-                            stack_t[j] = stack_t[j - 1];
-                        }
-                    stack_ref[j] = r;
-                    stack_t[j] = t;
-                }
-                ref = near_ref;
+                ref = visit_children(&nodes[ref], bits, t_entry, any_hit, stack_ref, stack_t,
+                                     &stack_size, BVH_WIDE_STACK_SIZE);
                 continue;
             }
         } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit, 0u) && any_hit) {
@@ -311,34 +322,8 @@ inline Hit trace_scene_bvh(const global TraversalNode *nodes, const global Trave
             float t_entry[BVH_WIDTH];
             uint bits = wide_box_hits(&nodes[ref], bray, box_tmin, hit.t + slack, t_entry);
             if (bits != 0u) {
-                const global uint *child = (const global uint *)&nodes[ref].child;
-                uint lane = lowest_lane(bits);
-                uint near_ref = child[lane];
-                float near_t = t_entry[lane];
-                uint base = stack_size;
-                for (bits &= bits - 1u; bits != 0u; bits &= bits - 1u) {
-                    lane = lowest_lane(bits);
-                    uint r = child[lane];
-                    float t = t_entry[lane];
-                    if (!any_hit && t < near_t) {
-                        uint swap_ref = near_ref;
-                        float swap_t = near_t;
-                        near_ref = r, near_t = t;
-                        r = swap_ref, t = swap_t;
-                    }
-                    uint j = stack_size;
-                    if (j == BVH_WIDE_SCENE_STACK_SIZE) /* never: each tree bounds its stack */
-                        break;
-                    stack_size++;
-                    if (!any_hit)
-                        for (; j > base && stack_t[j - 1] < t; j--) {
-                            stack_ref[j] = stack_ref[j - 1];
-                            stack_t[j] = stack_t[j - 1];
-                        }
-                    stack_ref[j] = r;
-                    stack_t[j] = t;
-                }
-                ref = near_ref;
+                ref = visit_children(&nodes[ref], bits, t_entry, any_hit, stack_ref, stack_t,
+                                     &stack_size, BVH_WIDE_SCENE_STACK_SIZE);
                 continue;
             }
         } else if (intersect_wide_leaf(packs, ref, pray, tmin, any_hit, &hit, instance) && any_hit) {
