@@ -22,6 +22,11 @@ tools/mitsuba_reference.py's build_scene (the references' conventions). This scr
                                           a warning (Mitsuba has no disc light of given angle)
   lights: point                           'point', position, intensity
 
+With MITSUBA_FLATTEN=1 in the environment, shared meshes are not instanced: every object's shapes,
+transformed, are joined per (mesh, group) into one 'merge' shape with one BSDF (what Mitsuba's
+authors suggest where instancing is slow, mitsuba3#1017; its cuda variant did not finish a frame of
+the 10^3 and 10^4 forests with shapegroups). Memory then grows with the objects.
+
 transform_end under a shutter interval (motion blur) and spot lights are not translated: they raise an error rather than
 time a different scene. Paths = width x height x spp; a warm-up render first (kernel compilation
 stays out of the figures); load time is not counted.
@@ -142,6 +147,7 @@ class Meshes:
 
 def build_scene(scene_path, scene, spp, temp_dir, mi, np):
     objects = scene.get("objects", [])
+    flatten = os.environ.get("MITSUBA_FLATTEN") == "1"
     plain = {k: v for k, v in scene.items() if k not in ("objects", "lights")}
     mitsuba_scene = ref.build_scene(scene_path, plain, spp, temp_dir, mi, np)  # camera, film, sky
     base = os.path.dirname(os.path.abspath(scene_path))
@@ -161,7 +167,16 @@ def build_scene(scene_path, scene, spp, temp_dir, mi, np):
         to_world = mi.ScalarTransform4f(transform_matrix(obj.get("transform", []),
                                                          f"{scene_path}: objects[{i}].transform", np))
         shared = uses[(os.path.normpath(obj["obj"]), override)] > 1
-        if shared and not any("emitter" in s for s in shapes):
+        if shared and flatten and not any("emitter" in s or "interior" in s for s in shapes):
+            for k, s in enumerate(shapes):
+                bsdf_id = f"{group_id}_bsdf{k}"
+                if bsdf_id not in defined:
+                    mitsuba_scene[bsdf_id] = dict(s["bsdf"], id=bsdf_id)
+                    mitsuba_scene[f"{group_id}_merge{k}"] = {"type": "merge"}
+                    defined.add(bsdf_id)
+                merged = dict(s, to_world=to_world, bsdf={"type": "ref", "id": bsdf_id})
+                mitsuba_scene[f"{group_id}_merge{k}"][f"object{i}"] = merged
+        elif shared and not any("emitter" in s for s in shapes):
             if group_id not in defined:
                 mitsuba_scene[group_id] = {"type": "shapegroup",
                                            **{f"s{k}": s for k, s in enumerate(shapes)}}
