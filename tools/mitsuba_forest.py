@@ -31,7 +31,6 @@ transform_end under a shutter interval (motion blur) and spot lights are not tra
 time a different scene. Paths = width x height x spp; a warm-up render first (kernel compilation
 stays out of the figures); load time is not counted.
 """
-import json
 import math
 import os
 import sys
@@ -47,22 +46,10 @@ OBJECT_KEYS = {"obj", "material", "transform", "transform_end"}
 
 
 def load_scene(path):
-    if os.path.isdir(path):
-        path = os.path.join(path, "scene.json")
-    with open(path) as f:
-        scene = json.load(f)
-    for key, allowed in (("", SCENE_KEYS), ("camera", CAMERA_KEYS),
-                         ("film", {"width", "height"}), ("render", {"spp", "max_depth"})):
-        section = scene if not key else scene.get(key, {})
-        for k in section:
-            if k not in allowed:
-                raise ref.SceneError(f"{path}: unknown key '{(key + '.') if key else ''}{k}'")
+    path, scene = ref.load_scene(path, SCENE_KEYS, CAMERA_KEYS, OBJECT_KEYS)
     shutter = scene.get("camera", {}).get("shutter", [0, 0])
     moving = shutter[0] != shutter[1]  # else pt renders every object at its transform, as here
     for i, obj in enumerate(scene.get("objects", [])):
-        for k in obj:
-            if k not in OBJECT_KEYS:
-                raise ref.SceneError(f"{path}: unknown key 'objects[{i}].{k}'")
         if "transform_end" in obj and obj["transform_end"] != obj.get("transform", []) and moving:
             raise ref.SceneError(f"{path}: objects[{i}].transform_end: motion blur is not translated "
                                  "to Mitsuba (its instances have no animated transforms)")

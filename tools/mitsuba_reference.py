@@ -54,21 +54,24 @@ SCENE_KEYS = {"camera", "film", "render", "objects", "background", "materials", 
 CAMERA_KEYS = {"eye", "target", "up", "fov_y", "aperture", "focus_distance"}
 
 
-def load_scene(scene_path):
+def load_scene(scene_path, scene_keys=SCENE_KEYS, camera_keys=CAMERA_KEYS,
+               object_keys=("obj", "material")):
+    """The scene file (or a folder's scene.json), refusing keys this translation does not know
+    (tools/mitsuba_forest.py passes its wider key sets)."""
     if os.path.isdir(scene_path):
         scene_path = os.path.join(scene_path, "scene.json")
     with open(scene_path) as f:
         scene = json.load(f)
-    for key, allowed in (("", SCENE_KEYS), ("camera", CAMERA_KEYS),
+    for key, allowed in (("", scene_keys), ("camera", camera_keys),
                          ("film", {"width", "height"}), ("render", {"spp", "max_depth"})):
         section = scene if not key else scene.get(key, {})
         for k in section:
             if k not in allowed:
                 raise SceneError(f"{scene_path}: unknown key '{(key + '.') if key else ''}{k}'")
-    for obj in scene.get("objects", []):
+    for i, obj in enumerate(scene.get("objects", [])):
         for k in obj:
-            if k not in ("obj", "material"):
-                raise SceneError(f"{scene_path}: unknown key 'objects[].{k}'")
+            if k not in object_keys:
+                raise SceneError(f"{scene_path}: unknown key 'objects[{i}].{k}'")
     return scene_path, scene
 
 
