@@ -14,17 +14,24 @@
 #define SCENE_BRUTE_FORCE_COUNT(p) ((p)->num_bvh_prims)
 #endif
 
+/* The closest hit, or with any_hit the first one found. */
+inline Hit scene_trace(const SceneView *scene, float3 o, float3 d, float tmin, float tmax,
+                       float time, bool any_hit)
+{
+#if PT_FEATURE_INSTANCES
+    return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
+                           scene->instance_motion, o, d, tmin, tmax, time, any_hit);
+#else
+    (void)time;
+    return trace_bvh(scene->bvh_nodes, scene->bvh_tris, o, d, tmin, tmax, any_hit);
+#endif
+}
+
 inline Hit scene_closest(const SceneView *scene, uint brute_count, float3 o, float3 d, float tmin,
                          float tmax, float time)
 {
-#if PT_FEATURE_INSTANCES
     (void)brute_count;
-    return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
-                           scene->instance_motion, o, d, tmin, tmax, time, false);
-#else
-    (void)time;
-    return trace_closest(scene->bvh_nodes, scene->bvh_tris, brute_count, o, d, tmin, tmax);
-#endif
+    return scene_trace(scene, o, d, tmin, tmax, time, false);
 }
 
 /* The first hit found (not the closest): an occlusion test, or the start of a cut-out walk. */
@@ -32,13 +39,7 @@ inline Hit scene_any(const SceneView *scene, uint brute_count, float3 o, float3 
                      float tmax, float time)
 {
     (void)brute_count;
-#if PT_FEATURE_INSTANCES
-    return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
-                           scene->instance_motion, o, d, tmin, tmax, time, true);
-#else
-    (void)time;
-    return trace_bvh(scene->bvh_nodes, scene->bvh_tris, o, d, tmin, tmax, true);
-#endif
+    return scene_trace(scene, o, d, tmin, tmax, time, true);
 }
 
 inline bool scene_occluded(const SceneView *scene, uint brute_count, float3 o, float3 d, float tmin,
