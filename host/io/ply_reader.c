@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* ply_reader.c: PLY meshes, read by our own code: the header is parsed into elements and
- * properties, every element count is checked against the bytes that follow before anything is
- * allocated (a 1 KB file claiming 10^12 vertices is refused, not allocated), then the body is read
+ * properties by ply_header.c, which also checks every element count against the bytes that follow
+ * (a 1 KB file claiming 10^12 vertices is refused, not allocated); then the body is read
  * value by value (ascii tokens or binary scalars of either byte order). Faces are kept until every
  * element is read (PLY lets the face element come first) and then triangulated like OBJ n-gons.
  * Element items in messages count from 0, like PLY's vertex indices. */
@@ -15,42 +15,10 @@
 #include <string.h>
 
 #include "io/input_file.h"
+#include "io/ply_header.h"
 #include "io/triangulate.h"
 
-#define PLY_MAX_ELEMENTS 32
-#define PLY_MAX_PROPERTIES 64
 #define PLY_MAX_FACE_CORNERS 255 /* as OBJ (tinyobjloader's limit); ear clipping is quadratic */
-
-typedef enum { KIND_INT, KIND_UINT, KIND_FLOAT } ScalarKind;
-typedef struct {
-    const char *name;
-    uint8_t size;
-    uint8_t kind;
-} ScalarType;
-
-static const ScalarType TYPES[] = {
-    {"char", 1, KIND_INT},    {"int8", 1, KIND_INT},     {"uchar", 1, KIND_UINT},
-    {"uint8", 1, KIND_UINT},  {"short", 2, KIND_INT},    {"int16", 2, KIND_INT},
-    {"ushort", 2, KIND_UINT}, {"uint16", 2, KIND_UINT},  {"int", 4, KIND_INT},
-    {"int32", 4, KIND_INT},   {"uint", 4, KIND_UINT},    {"uint32", 4, KIND_UINT},
-    {"float", 4, KIND_FLOAT}, {"float32", 4, KIND_FLOAT}, {"double", 8, KIND_FLOAT},
-    {"float64", 8, KIND_FLOAT},
-};
-
-typedef struct {
-    char name[32];
-    int type;       /* index into TYPES: the scalar's type, or a list's item type */
-    int count_type; /* a list's count type, -1 for a scalar */
-} PlyProperty;
-
-typedef struct {
-    char name[32];
-    uint64_t count;
-    PlyProperty properties[PLY_MAX_PROPERTIES];
-    int num_properties;
-} PlyElement;
-
-typedef enum { PLY_ASCII, PLY_LITTLE_ENDIAN, PLY_BIG_ENDIAN } PlyFormat;
 
 /* The vertex properties read, in the order of a vertex's values. */
 enum { ROLE_X, ROLE_Y, ROLE_Z, ROLE_NX, ROLE_NY, ROLE_NZ, ROLE_U, ROLE_V, NUM_ROLES };
@@ -61,9 +29,7 @@ typedef struct {
     const char *data;
     size_t size, pos; /* pos: the next byte to read */
     int line;         /* ascii: the line of pos */
-    PlyFormat format;
-    PlyElement elements[PLY_MAX_ELEMENTS];
-    int num_elements;
+    PlyHeader h;
     /* Faces as read: corner counts, and their vertex indices one after another. */
     uint16_t *face_sizes;
     int32_t *face_corners;
@@ -89,189 +55,16 @@ static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
 /* The line to name for an error in the body: ascii has lines, binary does not. */
 static int body_line(const Ply *p)
 {
-    return p->format == PLY_ASCII ? p->line : 0;
-}
-
-static int find_type(const char *name)
-{
-    for (size_t i = 0; i < sizeof TYPES / sizeof TYPES[0]; i++)
-        if (strcmp(TYPES[i].name, name) == 0)
-            return (int)i;
-    return -1;
-}
-
-/* Splits a header line in place on blanks; returns the number of words (max + 1: too many). */
-static int split_words(char *line, char **words, int max)
-{
-    int n = 0;
-    for (char *c = line; *c;) {
-        while (*c == ' ' || *c == '\t')
-            *c++ = '\0';
-        if (!*c)
-            break;
-        if (n == max)
-            return max + 1;
-        words[n++] = c;
-        while (*c && *c != ' ' && *c != '\t')
-            c++;
-    }
-    return n;
-}
-
-static bool parse_count(const char *text, uint64_t *out)
-{
-    if (!*text || strlen(text) > 19)
-        return false;
-    uint64_t value = 0;
-    for (const char *c = text; *c; c++) {
-        if (*c < '0' || *c > '9')
-            return false;
-        value = value * 10 + (uint64_t)(*c - '0');
-    }
-    *out = value;
-    return true;
-}
-
-static bool parse_property(Ply *p, int line, char **words, int n)
-{
-    if (p->num_elements == 0)
-        return fail(p, ERR_OBJ_PARSE, line, "property before any element");
-    PlyElement *e = &p->elements[p->num_elements - 1];
-    if (e->num_properties == PLY_MAX_PROPERTIES)
-        return fail(p, ERR_TOO_LARGE, line, "element '%s' has more than %d properties", e->name,
-                    PLY_MAX_PROPERTIES);
-    PlyProperty *prop = &e->properties[e->num_properties];
-    const char *type = words[1], *name = words[2];
-    prop->count_type = -1;
-    if (n == 5 && strcmp(words[1], "list") == 0) {
-        prop->count_type = find_type(words[2]);
-        if (prop->count_type < 0)
-            return fail(p, ERR_OBJ_PARSE, line, "unknown property type '%s'", words[2]);
-        if (TYPES[prop->count_type].kind == KIND_FLOAT)
-            return fail(p, ERR_OBJ_PARSE, line, "list count type '%s' is not an integer type",
-                        words[2]);
-        type = words[3];
-        name = words[4];
-    } else if (n != 3) {
-        return fail(p, ERR_OBJ_PARSE, line,
-                    "malformed property (expected 'property <type> <name>' or 'property list "
-                    "<count type> <item type> <name>')");
-    }
-    prop->type = find_type(type);
-    if (prop->type < 0)
-        return fail(p, ERR_OBJ_PARSE, line, "unknown property type '%s'", type);
-    snprintf(prop->name, sizeof prop->name, "%s", name);
-    e->num_properties++;
-    return true;
-}
-
-/* One header line (words split); sets *done at end_header. */
-static bool parse_header_line(Ply *p, int line, char **words, int n, bool *have_format)
-{
-    if (strcmp(words[0], "format") == 0) {
-        static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
-        for (int f = 0; n == 3 && f < 3; f++)
-            if (strcmp(words[1], formats[f]) == 0) {
-                if (strcmp(words[2], "1.0") != 0)
-                    return fail(p, ERR_OBJ_PARSE, line, "unsupported format version '%s'", words[2]);
-                p->format = (PlyFormat)f;
-                *have_format = true;
-                return true;
-            }
-        return fail(p, ERR_OBJ_PARSE, line, "unknown format '%s'", n > 1 ? words[1] : "");
-    }
-    if (strcmp(words[0], "element") == 0) {
-        if (n != 3)
-            return fail(p, ERR_OBJ_PARSE, line, "malformed element (expected 'element <name> <count>')");
-        if (p->num_elements == PLY_MAX_ELEMENTS)
-            return fail(p, ERR_TOO_LARGE, line, "more than %d elements", PLY_MAX_ELEMENTS);
-        PlyElement *e = &p->elements[p->num_elements];
-        if (!parse_count(words[2], &e->count))
-            return fail(p, ERR_OBJ_PARSE, line, "element count '%s' is not a count", words[2]);
-        snprintf(e->name, sizeof e->name, "%s", words[1]);
-        p->num_elements++;
-        return true;
-    }
-    if (strcmp(words[0], "property") == 0)
-        return parse_property(p, line, words, n);
-    return fail(p, ERR_OBJ_PARSE, line, "unknown header keyword '%s'", words[0]);
-}
-
-static bool parse_header(Ply *p)
-{
-    bool have_format = false;
-    for (int line = 1;; line++) {
-        if (p->pos >= p->size)
-            return fail(p, ERR_OBJ_PARSE, 0, "missing end_header");
-        const char *start = p->data + p->pos;
-        const char *newline = memchr(start, '\n', p->size - p->pos);
-        size_t len = newline ? (size_t)(newline - start) : p->size - p->pos;
-        p->pos += len + (newline != NULL);
-        if (len > 0 && start[len - 1] == '\r')
-            len--;
-        if (line == 1) {
-            if (len != 3 || memcmp(start, "ply", 3) != 0)
-                return fail(p, ERR_OBJ_PARSE, 1, "not a PLY file (the first line is not 'ply')");
-            continue;
-        }
-        size_t skip = strspn(start, " \t");
-        if (skip < len && (strncmp(start + skip, "comment", 7) == 0 ||
-                           strncmp(start + skip, "obj_info", 8) == 0))
-            continue;
-        char text[256], *words[6];
-        if (len >= sizeof text)
-            return fail(p, ERR_OBJ_PARSE, line, "header line longer than %zu bytes", sizeof text - 1);
-        memcpy(text, start, len);
-        text[len] = '\0';
-        if (memchr(text, '\0', len))
-            return fail(p, ERR_OBJ_PARSE, line, "NUL byte in the header");
-        int n = split_words(text, words, 5);
-        if (n == 0)
-            continue;
-        if (strcmp(words[0], "end_header") == 0) {
-            if (!have_format)
-                return fail(p, ERR_OBJ_PARSE, line, "end_header before any format line");
-            p->line = line + 1;
-            return true;
-        }
-        if (n > 5)
-            return fail(p, ERR_OBJ_PARSE, line, "too many words in '%s' line", words[0]);
-        if (!parse_header_line(p, line, words, n, &have_format))
-            return false;
-    }
-}
-
-/* Refuses element counts the rest of the file cannot hold, before anything is allocated: an item
- * takes at least one byte per property in ascii, its scalars and list counts in binary. */
-static bool check_counts(Ply *p)
-{
-    uint64_t left = p->size - p->pos;
-    for (int i = 0; i < p->num_elements; i++) {
-        const PlyElement *e = &p->elements[i];
-        uint64_t item = 0;
-        for (int k = 0; k < e->num_properties; k++) {
-            const PlyProperty *prop = &e->properties[k];
-            item += p->format == PLY_ASCII ? 1u
-                    : TYPES[prop->count_type >= 0 ? prop->count_type : prop->type].size;
-        }
-        if (item == 0)
-            continue; /* nothing to read, nothing to allocate */
-        if (e->count > left / item)
-            return fail(p, ERR_OBJ_PARSE, 0,
-                        "the header claims %llu '%s' elements, more than the %llu bytes of data "
-                        "can hold", (unsigned long long)e->count, e->name, (unsigned long long)(p->size - p->pos));
-        left -= e->count * item;
-    }
-    return true;
+    return p->h.format == PLY_ASCII ? p->line : 0;
 }
 
 typedef enum { READ_OK, READ_END, READ_BAD } ReadStatus;
 
-/* Reads one scalar of TYPES[type] as a double. */
+/* Reads one scalar of PLY_TYPES[type] as a double. */
 static ReadStatus read_value(Ply *p, int type, double *out)
 {
-    const ScalarType *t = &TYPES[type];
-    if (p->format == PLY_ASCII) {
+    const PlyScalarType *t = &PLY_TYPES[type];
+    if (p->h.format == PLY_ASCII) {
         while (p->pos < p->size && strchr(" \t\r\n\v\f", p->data[p->pos]) && p->data[p->pos])
             p->line += p->data[p->pos++] == '\n';
         if (p->pos >= p->size)
@@ -294,18 +87,18 @@ static ReadStatus read_value(Ply *p, int type, double *out)
     const unsigned char *bytes = (const unsigned char *)p->data + p->pos;
     uint64_t bits = 0;
     for (int i = 0; i < t->size; i++) {
-        int from = p->format == PLY_LITTLE_ENDIAN ? t->size - 1 - i : i;
+        int from = p->h.format == PLY_LITTLE_ENDIAN ? t->size - 1 - i : i;
         bits = bits << 8 | bytes[from];
     }
     p->pos += t->size;
-    if (t->kind == KIND_FLOAT && t->size == 4) {
+    if (t->kind == PLY_FLOAT && t->size == 4) {
         uint32_t b32 = (uint32_t)bits;
         float f;
         memcpy(&f, &b32, sizeof f);
         *out = f;
-    } else if (t->kind == KIND_FLOAT) {
+    } else if (t->kind == PLY_FLOAT) {
         memcpy(out, &bits, sizeof *out);
-    } else if (t->kind == KIND_UINT) {
+    } else if (t->kind == PLY_UINT) {
         *out = (double)bits;
     } else {
         uint64_t sign = (uint64_t)1 << (8 * t->size - 1);
@@ -320,7 +113,7 @@ static bool read_item_value(Ply *p, int type, const PlyElement *e, uint64_t item
     ReadStatus status = read_value(p, type, out);
     if (status == READ_END)
         return fail(p, ERR_OBJ_PARSE, 0, "%s (%s %llu of %llu)",
-                    p->format == PLY_ASCII ? "unexpected end of data" : "truncated binary data",
+                    p->h.format == PLY_ASCII ? "unexpected end of data" : "truncated binary data",
                     e->name, (unsigned long long)item, (unsigned long long)e->count);
     return status == READ_OK;
 }
@@ -332,7 +125,7 @@ static bool read_list_count(Ply *p, const PlyProperty *prop, const PlyElement *e
     double value;
     if (!read_item_value(p, prop->count_type, e, item, &value))
         return false;
-    uint64_t least = p->format == PLY_ASCII ? 1u : TYPES[prop->type].size;
+    uint64_t least = p->h.format == PLY_ASCII ? 1u : PLY_TYPES[prop->type].size;
     if (!(value >= 0.0) || value != floor(value) || value > (double)((p->size - p->pos) / least))
         return fail(p, ERR_OBJ_PARSE, body_line(p), "%s %llu: list '%s' has a bad length %g",
                     e->name, (unsigned long long)item, prop->name, value);
@@ -409,8 +202,8 @@ typedef struct {
 static bool find_layout(Ply *p, MeshLayout *m)
 {
     m->vertex_element = m->face_element = m->face_list = -1;
-    for (int i = 0; i < p->num_elements; i++) {
-        const char *name = p->elements[i].name;
+    for (int i = 0; i < p->h.num_elements; i++) {
+        const char *name = p->h.elements[i].name;
         int *slot = strcmp(name, "vertex") == 0 ? &m->vertex_element
                     : strcmp(name, "face") == 0 ? &m->face_element : NULL;
         if (slot && *slot >= 0)
@@ -420,7 +213,7 @@ static bool find_layout(Ply *p, MeshLayout *m)
     }
     if (m->vertex_element < 0)
         return fail(p, ERR_OBJ_PARSE, 0, "no 'vertex' element");
-    const PlyElement *v = &p->elements[m->vertex_element];
+    const PlyElement *v = &p->h.elements[m->vertex_element];
     if (v->count > INT32_MAX)
         return fail(p, ERR_TOO_LARGE, 0, "%llu vertices (the limit is %d)",
                     (unsigned long long)v->count, INT32_MAX);
@@ -435,14 +228,14 @@ static bool find_layout(Ply *p, MeshLayout *m)
     m->has_normals = seen[ROLE_NX] && seen[ROLE_NY] && seen[ROLE_NZ];
     m->has_uvs = seen[ROLE_U] && seen[ROLE_V];
     if (m->face_element >= 0) {
-        const PlyElement *f = &p->elements[m->face_element];
+        const PlyElement *f = &p->h.elements[m->face_element];
         for (int k = 0; k < f->num_properties && m->face_list < 0; k++)
             if (f->properties[k].count_type >= 0 && (strcmp(f->properties[k].name, "vertex_indices") == 0 ||
                                                      strcmp(f->properties[k].name, "vertex_index") == 0))
                 m->face_list = k;
         if (m->face_list < 0)
             return fail(p, ERR_OBJ_PARSE, 0, "the face element lacks a vertex_indices list");
-        if (TYPES[f->properties[m->face_list].type].kind == KIND_FLOAT)
+        if (PLY_TYPES[f->properties[m->face_list].type].kind == PLY_FLOAT)
             return fail(p, ERR_OBJ_PARSE, 0, "vertex_indices has a float index type");
     }
     return true;
@@ -451,7 +244,7 @@ static bool find_layout(Ply *p, MeshLayout *m)
 /* Reads one vertex's values into out (positions, normals, uvs as the mesh has them). */
 static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, ObjMesh *out)
 {
-    const PlyElement *e = &p->elements[m->vertex_element];
+    const PlyElement *e = &p->h.elements[m->vertex_element];
     float values[NUM_ROLES] = {0};
     for (int k = 0; k < e->num_properties; k++) {
         const PlyProperty *prop = &e->properties[k];
@@ -482,10 +275,10 @@ static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, ObjMesh *out)
 /* Reads or skips every item of element e. */
 static bool read_element(Ply *p, const MeshLayout *m, int e_index, ObjMesh *out)
 {
-    const PlyElement *e = &p->elements[e_index];
+    const PlyElement *e = &p->h.elements[e_index];
     if (e->num_properties == 0)
         return true;
-    uint64_t num_vertices = p->elements[m->vertex_element].count;
+    uint64_t num_vertices = p->h.elements[m->vertex_element].count;
     for (uint64_t i = 0; i < e->count; i++) {
         if (e_index == m->vertex_element) {
             if (!read_vertex(p, m, i, out))
@@ -555,9 +348,13 @@ static bool emit_triangles(Ply *p, ObjMesh *out)
 static bool load(Ply *p, ObjMesh *out)
 {
     MeshLayout m;
-    if (!parse_header(p) || !check_counts(p) || !find_layout(p, &m))
+    if (!ply_header_parse(p->path, p->data, p->size, &p->h, p->err))
         return false;
-    size_t n = (size_t)p->elements[m.vertex_element].count;
+    p->pos = p->h.body;
+    p->line = p->h.body_line;
+    if (!find_layout(p, &m))
+        return false;
+    size_t n = (size_t)p->h.elements[m.vertex_element].count;
     out->num_positions = n;
     out->positions = calloc(n ? 3 * n : 1, sizeof(float));
     if (m.has_normals) {
@@ -570,7 +367,7 @@ static bool load(Ply *p, ObjMesh *out)
     }
     if (!out->positions || (m.has_normals && !out->normals) || (m.has_uvs && !out->texcoords))
         return fail(p, ERR_TOO_LARGE, 0, "out of memory for %zu vertices", n);
-    for (int e = 0; e < p->num_elements; e++)
+    for (int e = 0; e < p->h.num_elements; e++)
         if (!read_element(p, &m, e, out))
             return false;
     return emit_triangles(p, out);
