@@ -122,7 +122,8 @@ static bool parse_header_line(HeaderParser *p, int line, char **words, int n, bo
         for (int f = 0; n == 3 && f < 3; f++)
             if (strcmp(words[1], formats[f]) == 0) {
                 if (strcmp(words[2], "1.0") != 0)
-                    return fail(p, ERR_OBJ_PARSE, line, "unsupported format version '%s'", words[2]);
+                    return fail(p, ERR_OBJ_PARSE, line, "unsupported format version '%s'",
+                                words[2]);
                 p->h->format = (PlyFormat)f;
                 *have_format = true;
                 return true;
@@ -131,7 +132,8 @@ static bool parse_header_line(HeaderParser *p, int line, char **words, int n, bo
     }
     if (strcmp(words[0], "element") == 0) {
         if (n != 3)
-            return fail(p, ERR_OBJ_PARSE, line, "malformed element (expected 'element <name> <count>')");
+            return fail(p, ERR_OBJ_PARSE, line,
+                        "malformed element (expected 'element <name> <count>')");
         if (p->h->num_elements == PLY_MAX_ELEMENTS)
             return fail(p, ERR_TOO_LARGE, line, "more than %d elements", PLY_MAX_ELEMENTS);
         PlyElement *e = &p->h->elements[p->h->num_elements];
@@ -169,7 +171,8 @@ static bool parse_header(HeaderParser *p)
             continue;
         char text[256], *words[6];
         if (len >= sizeof text)
-            return fail(p, ERR_OBJ_PARSE, line, "header line longer than %zu bytes", sizeof text - 1);
+            return fail(p, ERR_OBJ_PARSE, line, "header line longer than %zu bytes",
+                        sizeof text - 1);
         memcpy(text, start, len);
         text[len] = '\0';
         if (memchr(text, '\0', len))
@@ -209,7 +212,8 @@ static bool check_counts(HeaderParser *p)
         if (e->count > left / item)
             return fail(p, ERR_OBJ_PARSE, 0,
                         "the header claims %llu '%s' elements, more than the %llu bytes of data "
-                        "can hold", (unsigned long long)e->count, e->name, (unsigned long long)(p->size - p->pos));
+                        "can hold", (unsigned long long)e->count, e->name,
+                        (unsigned long long)(p->size - p->pos));
         left -= e->count * item;
     }
     return true;

@@ -158,7 +158,8 @@ static bool read_face_list(Ply *p, const PlyProperty *prop, const PlyElement *e,
     if (n > PLY_MAX_FACE_CORNERS)
         return fail(p, ERR_TOO_LARGE, body_line(p), "face %llu has %zu vertices (the limit is %d)",
                     (unsigned long long)face, n, PLY_MAX_FACE_CORNERS);
-    if (!grow((void **)&p->face_sizes, &p->faces_capacity, p->num_faces + 1, sizeof *p->face_sizes) ||
+    if (!grow((void **)&p->face_sizes, &p->faces_capacity, p->num_faces + 1,
+              sizeof *p->face_sizes) ||
         !grow((void **)&p->face_corners, &p->corners_capacity, p->num_corners + n,
               sizeof *p->face_corners))
         return fail(p, ERR_TOO_LARGE, 0, "out of memory reading faces");
@@ -229,10 +230,12 @@ static bool find_layout(Ply *p, MeshLayout *m)
     m->has_uvs = seen[ROLE_U] && seen[ROLE_V];
     if (m->face_element >= 0) {
         const PlyElement *f = &p->h.elements[m->face_element];
-        for (int k = 0; k < f->num_properties && m->face_list < 0; k++)
-            if (f->properties[k].count_type >= 0 && (strcmp(f->properties[k].name, "vertex_indices") == 0 ||
-                                                     strcmp(f->properties[k].name, "vertex_index") == 0))
+        for (int k = 0; k < f->num_properties && m->face_list < 0; k++) {
+            const char *name = f->properties[k].name;
+            if (f->properties[k].count_type >= 0 &&
+                (strcmp(name, "vertex_indices") == 0 || strcmp(name, "vertex_index") == 0))
                 m->face_list = k;
+        }
         if (m->face_list < 0)
             return fail(p, ERR_OBJ_PARSE, 0, "the face element lacks a vertex_indices list");
         if (PLY_TYPES[f->properties[m->face_list].type].kind == PLY_FLOAT)
@@ -317,13 +320,14 @@ static bool emit_triangles(Ply *p, ObjMesh *out)
         return fail(p, ERR_TOO_LARGE, 0, "out of memory for %zu triangles", max_triangles);
     float points[3 * PLY_MAX_FACE_CORNERS];
     uint32_t triangles[3 * PLY_MAX_FACE_CORNERS];
-    const int32_t *corner = p->face_corners;
-    for (size_t f = 0; f < p->num_faces; corner += p->face_sizes[f++]) {
+    size_t first = 0; /* the face's first corner in face_corners (NULL when no face has one) */
+    for (size_t f = 0; f < p->num_faces; first += p->face_sizes[f++]) {
         size_t n = p->face_sizes[f];
         if (n < 3) {
             short_faces++;
             continue;
         }
+        const int32_t *corner = p->face_corners + first;
         out->num_faces++;
         for (size_t k = 0; k < n; k++)
             memcpy(points + 3 * k, out->positions + 3 * (size_t)corner[k], 3 * sizeof(float));

@@ -100,8 +100,9 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
          * to read it. */
         const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply");
         if (!obj == !ply)
-            return json_fail(p, ERR_JSON_VALUE, key, obj ? "has both \"obj\" and \"ply\" (give one)"
-                                                          : "missing \"obj\" or \"ply\" (the mesh file)");
+            return json_fail(p, ERR_JSON_VALUE, key,
+                             obj ? "has both \"obj\" and \"ply\" (give one)"
+                                 : "missing \"obj\" or \"ply\" (the mesh file)");
         d->object_formats[i] = ply ? MESH_PLY : MESH_OBJ;
         if (ply)
             obj = ply;

@@ -41,6 +41,7 @@ def ply_cases():
     ply_case("short-face", ascii_ply(QUAD, [[0, 1], [0, 1, 2]]), "ok")
     ply_case("skipped-element", ascii_ply(QUAD, [[0, 1, 2]], "element edge 1\nproperty list int uint v\n") +
              "2 0 1\n", "ok")
+    ply_case("empty-faces-only", ascii_ply(QUAD, [[], []]), "error", "no triangles")
     ply_case("no-faces", "ply\nformat ascii 1.0\n" + VERTEX_HEADER % 1 + "end_header\n0 0 0\n", "error",
              "no triangles")
     bad = [("not-ply", "PLX\nformat ascii 1.0\nend_header\n", "not a PLY file"),
