@@ -99,10 +99,12 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         /* Exactly one of "obj" and "ply" names the mesh; the key, not the extension, says how
          * to read it. */
         const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply");
-        if (!obj == !ply)
-            return json_fail(p, ERR_JSON_VALUE, key,
-                             obj ? "has both \"obj\" and \"ply\" (give one)"
-                                 : "missing \"obj\" or \"ply\" (the mesh file)");
+        if (obj && ply)
+            return json_fail(p, ERR_JSON_VALUE, key, "has both \"obj\" and \"ply\" (give one)");
+        if (!obj && !ply) {
+            snprintf(key, sizeof key, "objects[%d].obj", i);
+            return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\": the mesh file)");
+        }
         d->object_formats[i] = ply ? MESH_PLY : MESH_OBJ;
         if (ply)
             obj = ply;
