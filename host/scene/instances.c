@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "io/obj_loader.h"
+#include "io/ply_reader.h"
 
 #define NO_MESH 0xffffffffu
 
@@ -98,7 +99,8 @@ static bool load_object(SceneData *data, const SceneDesc *d, int i, const NamedM
 {
     ObjMesh mesh;
     memset(&mesh, 0, sizeof mesh);
-    bool ok = obj_load(d->objects[i], &mesh, err) &&
+    bool ply = d->object_formats && d->object_formats[i] == MESH_PLY;
+    bool ok = (ply ? ply_load(d->objects[i], &mesh, err) : obj_load(d->objects[i], &mesh, err)) &&
               scene_data_append_object(data, &mesh, d->objects[i], &d->object_options[i], named,
                                        err);
     obj_free(&mesh);

@@ -83,16 +83,20 @@ bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: path too long", path);
         return false;
     }
-    if (!fs_has_suffix(out->path, ".obj"))
+    bool ply = fs_has_suffix(out->path, ".ply");
+    if (!ply && !fs_has_suffix(out->path, ".obj"))
         return parse_json_file(out, err) || (scene_desc_free(out), false);
-    /* A bare OBJ: one object, default settings, camera framed later on the bounds. */
+    /* A bare OBJ or PLY: one object, default settings, camera framed later on the bounds. */
     out->objects = calloc(1, sizeof *out->objects);
+    out->object_formats = calloc(1, sizeof *out->object_formats);
     out->object_options = calloc(1, sizeof *out->object_options);
     out->object_transforms = calloc(1, sizeof *out->object_transforms);
-    if (!out->objects || !out->object_options || !out->object_transforms) {
+    if (!out->objects || !out->object_formats || !out->object_options || !out->object_transforms) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
+        scene_desc_free(out);
         return false;
     }
+    out->object_formats[0] = ply ? MESH_PLY : MESH_OBJ;
     snprintf(out->objects[0], sizeof out->objects[0], "%s", out->path);
     out->object_options[0] = (ObjectOptions){.material = NO_MATERIAL};
     out->object_transforms[0].transform = out->object_transforms[0].transform_end = affine_identity();
@@ -104,6 +108,8 @@ void scene_desc_free(SceneDesc *desc)
 {
     free(desc->objects);
     desc->objects = NULL;
+    free(desc->object_formats);
+    desc->object_formats = NULL;
     free(desc->object_options);
     desc->object_options = NULL;
     free(desc->object_transforms);

@@ -33,6 +33,9 @@ typedef enum {
                           instances) */
 } InstancingMode;
 
+/* What an object's file is, by the key that named it ("obj" or "ply"), never by its extension. */
+typedef enum { MESH_OBJ, MESH_PLY } MeshFormat;
+
 typedef struct {
     char path[1024];    /* the scene file (.json or .obj) */
     bool camera_given;  /* false: frame the camera on the scene's bounds (bare .obj) */
@@ -46,7 +49,8 @@ typedef struct {
     AnalyticLight *lights; /* the "lights" array (host/scene/analytic_lights.h) */
     int num_lights;
     int num_objects;
-    char (*objects)[1024]; /* OBJ paths, resolved against the scene file's folder */
+    char (*objects)[1024]; /* mesh paths, resolved against the scene file's folder */
+    MeshFormat *object_formats; /* per object, by the key that named it; NULL: all MESH_OBJ */
     ObjectOptions *object_options; /* per object; material indexes `materials` */
     ObjectTransform *object_transforms; /* per object */
     TextureDesc *textures;   /* the "textures" block */
@@ -55,7 +59,7 @@ typedef struct {
     int num_materials;
 } SceneDesc;
 
-/* Reads a scene description. path: a .json scene, a bare .obj, or a folder holding scene.json.
+/* Reads a scene description. path: a .json scene, a bare .obj or .ply, or a folder holding scene.json.
  * Errors name the file and line (malformed JSON) or the key (unknown key, wrong type, bad value). */
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err);
 void scene_desc_free(SceneDesc *desc);

@@ -73,7 +73,7 @@ static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc
 
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj", "material", "smooth", "transform", "transform_end",
+    static const char *const keys[] = {"obj", "ply", "material", "smooth", "transform", "transform_end",
                                        NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
@@ -83,9 +83,10 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
     if (count == 0)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     d->objects = calloc((size_t)count, sizeof *d->objects);
+    d->object_formats = calloc((size_t)count, sizeof *d->object_formats);
     d->object_options = calloc((size_t)count, sizeof *d->object_options);
     d->object_transforms = calloc((size_t)count, sizeof *d->object_transforms);
-    if (!d->objects || !d->object_options || !d->object_transforms)
+    if (!d->objects || !d->object_formats || !d->object_options || !d->object_transforms)
         return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
     /* The camera is read before the objects: a transform_end needs its shutter interval. */
     bool has_shutter = d->camera.shutter_close > d->camera.shutter_open;
@@ -95,10 +96,19 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         snprintf(key, sizeof key, "objects[%d]", i);
         if (!json_check_object(p, e, key, keys))
             return false;
-        snprintf(key, sizeof key, "objects[%d].obj", i);
-        const cJSON *obj = json_member(e, "obj");
-        if (!obj)
-            return json_fail(p, ERR_JSON_VALUE, key, "missing");
+        /* Exactly one of "obj" and "ply" names the mesh; the key, not the extension, says how
+         * to read it. */
+        const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply");
+        if (obj && ply)
+            return json_fail(p, ERR_JSON_VALUE, key, "has both \"obj\" and \"ply\" (give one)");
+        if (!obj && !ply) {
+            snprintf(key, sizeof key, "objects[%d].obj", i);
+            return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\": the mesh file)");
+        }
+        d->object_formats[i] = ply ? MESH_PLY : MESH_OBJ;
+        if (ply)
+            obj = ply;
+        snprintf(key, sizeof key, "objects[%d].%s", i, ply ? "ply" : "obj");
         if (!cJSON_IsString(obj))
             return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
         if (!obj->valuestring[0])
