@@ -25,19 +25,26 @@ typedef struct {
     PlyHeader *h;
 } HeaderParser;
 
+bool ply_failv(const char *path, Error *err, ErrorCode code, int line, const char *fmt,
+               va_list args)
+{
+    char message[768];
+    vsnprintf(message, sizeof message, fmt, args);
+    if (line > 0)
+        error_set(err, code, path, line, "%s: line %d: %s", path, line, message);
+    else
+        error_set(err, code, path, 0, "%s: %s", path, message);
+    return false;
+}
+
 static bool fail(HeaderParser *p, ErrorCode code, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 static bool fail(HeaderParser *p, ErrorCode code, int line, const char *fmt, ...)
 {
-    char message[768];
     va_list args;
     va_start(args, fmt);
-    vsnprintf(message, sizeof message, fmt, args);
+    ply_failv(p->path, p->err, code, line, fmt, args);
     va_end(args);
-    if (line > 0)
-        error_set(p->err, code, p->path, line, "%s: line %d: %s", p->path, line, message);
-    else
-        error_set(p->err, code, p->path, 0, "%s: %s", p->path, message);
     return false;
 }
 

@@ -4,6 +4,7 @@
 #ifndef PT_PLY_HEADER_H
 #define PT_PLY_HEADER_H
 
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -52,5 +53,10 @@ typedef struct {
  * allocated for a file too small for it. Errors (ERR_OBJ_PARSE, ERR_TOO_LARGE) name the path and
  * the header line. */
 bool ply_header_parse(const char *path, const char *data, size_t size, PlyHeader *out, Error *err);
+
+/* Sets err to "path: line L: message" (line 0: "path: message") with code; returns false. The
+ * header's and the body's error reporting. */
+bool ply_failv(const char *path, Error *err, ErrorCode code, int line, const char *fmt,
+               va_list args);
 
 #endif

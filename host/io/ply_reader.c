@@ -40,15 +40,10 @@ static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
 {
-    char message[768];
     va_list args;
     va_start(args, fmt);
-    vsnprintf(message, sizeof message, fmt, args);
+    ply_failv(p->path, p->err, code, line, fmt, args);
     va_end(args);
-    if (line > 0)
-        error_set(p->err, code, p->path, line, "%s: line %d: %s", p->path, line, message);
-    else
-        error_set(p->err, code, p->path, 0, "%s: %s", p->path, message);
     return false;
 }
 
