@@ -1,0 +1,98 @@
+/* SPDX-License-Identifier: MIT */
+/* shared/material.h: material types, texture slots, materials and textures. Part of cl/shared.h (read its rules); the host includes it through
+ * shared.h, the kernels' program has it right after shared.h (Makefile CL_SOURCES). */
+#ifndef PT_SHARED_MATERIAL_H
+#define PT_SHARED_MATERIAL_H
+
+/* ---- Materials and textures ---------------------------------------------------------------- */
+
+/* Material types: X(NAME, "json name"). The values are the kernels' Material.type. */
+#define MATERIAL_TYPES(X)                                                                          \
+    X(DIFFUSE, "diffuse")       /* Lambert */                                                      \
+    X(CONDUCTOR, "conductor")   /* GGX, complex Fresnel; roughness 0 = perfect mirror */           \
+    X(DIELECTRIC, "dielectric") /* GGX (Walter 2007); roughness 0 = smooth glass */                \
+    X(PRINCIPLED, "principled") /* glTF 2.0 metallic-roughness */                                  \
+    X(MIX, "mix")               /* (1 - weight) a + weight b, resolved stochastically per hit */
+#define MATERIAL_TYPE_ENUM(name, json) MATERIAL_##name,
+enum { MATERIAL_TYPES(MATERIAL_TYPE_ENUM) MATERIAL_TYPE_COUNT };
+#undef MATERIAL_TYPE_ENUM
+
+/* Texture slots of a Material: X(NAME, "json key"). A slot holds a texture index or NO_TEXTURE;
+ * a textured colour multiplies the constant, a textured scalar replaces it (its red channel). */
+#define MATERIAL_TEXTURE_SLOTS(X)                                                                  \
+    X(BASE, "base")           /* albedo | reflectance | tint | base_color (rgb, multiplies) */     \
+    X(EMISSION, "emission")   /* rgb, multiplies emission */                                       \
+    X(ROUGHNESS, "roughness") /* scalar */                                                         \
+    X(METALLIC, "metallic")   /* scalar */                                                         \
+    X(OPACITY, "opacity")     /* scalar (an RGBA base texture's alpha is put here by the host) */  \
+    X(WEIGHT, "weight")       /* scalar, mix */                                                    \
+    X(NORMAL, "normal_map")   /* tangent-space normal, linear */                                   \
+    X(BUMP, "bump_map")       /* height, red channel */
+#define MATERIAL_TEXTURE_SLOT_ENUM(name, json) MATERIAL_TEX_##name,
+enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
+#undef MATERIAL_TEXTURE_SLOT_ENUM
+
+#define MATERIAL_FLAG_FRESNEL_ONE 1u  /* conductor without eta/k: Fresnel 1 */
+#define MATERIAL_FLAG_CUTOUT 2u       /* opacity < 1 somewhere: rays may pass through */
+#define MATERIAL_FLAG_BASE_ALPHA 4u   /* the BASE texture's alpha multiplies the opacity */
+
+#define NO_TEXTURE 0xffffffffu
+/* Material features a scene may use. The kernels are built with -DPT_MATERIAL_FEATURES=mask of the
+ * scene's (host/scene/materials.c material_features; cl/core/util.cl defaults to all): the code of
+ * the others leaves shade_surface, whose registers it would cost plain scenes (measured on the
+ * H200: every lobe inlined made a diffuse-only box's shading 50% slower). */
+#define MATERIAL_FEATURE_ROUGH_CONDUCTOR 1u   /* a conductor that is not a perfect mirror */
+#define MATERIAL_FEATURE_CONDUCTOR_FRESNEL 2u /* a conductor with eta/k (not Fresnel 1) */
+#define MATERIAL_FEATURE_ROUGH_DIELECTRIC 4u  /* a dielectric that is not smooth */
+#define MATERIAL_FEATURE_PRINCIPLED 8u
+#define MATERIAL_FEATURE_MIX 16u
+#define MATERIAL_FEATURE_SURFACE_DETAIL 32u   /* normal or bump map, or anisotropy */
+#define MATERIAL_FEATURE_TEXTURED_SCALARS 64u /* roughness, metallic or mix weight from a texture */
+#define MATERIAL_FEATURE_ABSORPTION 128u      /* a dielectric with Beer-Lambert absorption */
+#define MATERIAL_FEATURE_NOISE_TEXTURE 256u   /* a procedural texture (fBm, inlined at every lookup) */
+#define MATERIAL_FEATURE_EMISSION_TEXTURE 512u
+#define MATERIAL_FEATURE_ALL 0x3ffu
+
+/* Mixes nest at most this deep (the host refuses deeper ones and cycles). */
+#define MATERIAL_MIX_DEPTH_LIMIT 8u
+
+/* One material as the kernels see it (shared/DESIGN.md "Materials"); textures are looked up at
+ * the hit. Unused members of a type are 0 (textures NO_TEXTURE). */
+typedef struct {
+    float4 base;           /* rgb: diffuse albedo, conductor reflectance, dielectric tint or
+                              principled base_color; w unused */
+    float4 emission;       /* rgb: emitted radiance times emission_strength (one-sided, front =
+                              counter-clockwise side); w: luminance, times the emission texture's
+                              mean luminance when textured (the light table's weight) */
+    float4 eta;            /* rgb: conductor eta; w unused */
+    float4 k;              /* rgb: conductor k; w unused */
+    float4 absorption;     /* rgb: dielectric Beer-Lambert sigma per scene unit; w unused */
+    float4 specular_color; /* rgb: principled specular_color; w unused */
+    float roughness;       /* [0, 1]; GGX alpha = roughness^2 */
+    float anisotropy;      /* [0, 1) */
+    float metallic;        /* principled */
+    float opacity;         /* [0, 1]; 1 = opaque */
+    float ior;             /* dielectric and principled */
+    float specular;        /* principled (KHR_materials_specular) */
+    float weight;          /* mix: weight of b */
+    float bump_scale;
+    uint type;             /* MATERIAL_* */
+    uint flags;            /* MATERIAL_FLAG_* */
+    uint mix_a, mix_b;     /* mix: material indices */
+    uint tex[MATERIAL_TEX_COUNT]; /* MATERIAL_TEX_* slots: texture index or NO_TEXTURE */
+} Material;
+
+#define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */
+#define TEXTURE_RGBA32F 1u    /* four uints per texel (float bits), linear */
+/* Procedural fBm Perlin noise in object space: `offset` points to 9 uints, color0 rgb, color1 rgb,
+ * frequency (float bits), octaves, seed (uint); width = height = 1. */
+#define TEXTURE_NOISE 2u
+
+typedef struct {
+    uint offset; /* first uint of the texture in the texel buffer */
+    uint width;
+    uint height;
+    uint format; /* TEXTURE_* */
+} TextureInfo;
+
+#endif

@@ -1,0 +1,174 @@
+/* SPDX-License-Identifier: MIT */
+/* shared/render.h: camera and per-render parameters, lights, the scene buffers, the wavefront path state and the film. Part of cl/shared.h (read its rules); the host includes it through
+ * shared.h, the kernels' program has it right after shared.h (Makefile CL_SOURCES). */
+#ifndef PT_SHARED_RENDER_H
+#define PT_SHARED_RENDER_H
+
+/* ---- Camera and per-render parameters ------------------------------------------------------- */
+
+typedef struct {
+    float4 eye;     /* xyz: position; w: lens radius (0 = pinhole) */
+    float4 right;   /* unit vector, image +x; w: focus distance */
+    float4 up;      /* unit vector, image -y (rows go down); w: tan(fov_y / 2) */
+    float4 forward; /* unit vector toward the target; w: aspect (width / height) */
+} Camera;
+
+#define AOV_ALBEDO 0u
+#define AOV_NORMAL 1u
+#define AOV_DEPTH 2u
+
+typedef struct {
+    Camera camera;
+    float4 background; /* radiance of escaped rays */
+    uint width;
+    uint height;
+    uint seed;
+    uint max_depth;
+    uint sample_index;   /* sample index of the batch's first path */
+    uint num_bvh_prims;  /* entries of bvh_tris: triangles (2-wide) or triangle packs (wide) */
+    uint num_emissive;   /* emissive triangles in the light table */
+    uint aov;            /* AOV_* for render_aov */
+    float emissive_power; /* total emitted power of the light table (for pdfs) */
+    uint flags;          /* RENDER_* */
+    uint batch_start;    /* pixel of the window's first sample (see PATH_STATE_FIELDS) */
+    uint batch_size;     /* samples in the window */
+    uint env_width;      /* environment map texels across (0: no map, background is the sky) */
+    uint env_height;
+    float env_rotation;  /* the map's rotation theta as a fraction of a turn */
+    float env_pick_pdf;  /* probability that the light table picks the environment */
+    uint num_analytic;   /* entries of analytic_lights (escaped rays look for suns there) */
+    float shutter_open;  /* camera.shutter: each camera path draws its time uniformly in */
+    float shutter_close; /* [open, close] (PT_FEATURE_MOTION); equal: no motion blur */
+    uint num_instances;  /* entries of instances */
+} RenderParams;
+
+#define RENDER_NO_NEE 1u
+#define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
+
+/* ---- Lights --------------------------------------------------------------------------------- */
+
+/* One entry of the alias table over emissive triangles, chosen in proportion to emitted power
+ * (area x luminance of Ke). Vose's method, built on the host (host/scene/lights.c). */
+typedef struct {
+    float prob;    /* probability of keeping this entry rather than its alias */
+    uint alias;    /* entry taken otherwise */
+    uint triangle; /* emissive triangle index, or LIGHT_ENVIRONMENT */
+    float pdf;     /* probability of choosing this triangle */
+    uint instance; /* the instance whose triangle it is (each instance's emitters are lights) */
+    uint pad0, pad1, pad2;
+} LightEntry;
+/* LightEntry.triangle of the environment map's entry (its power: mean luminance x 4 pi R^2, R the
+ * scene's bounding-sphere radius; triangles count area x luminance: both are power / pi). */
+#define LIGHT_ENVIRONMENT 0xffffffffu
+/* LightEntry.triangle of analytic light i (analytic_lights[i]): LIGHT_ANALYTIC_BASE + i. Triangle
+ * indices stay far below (BVH_QUANTIZED_MAX_TRIANGLES). */
+#define LIGHT_ANALYTIC_BASE 0x80000000u
+
+/* One entry of the environment map's alias table over its texels (host/scene/environment.c):
+ * texel i is kept with probability prob, else its alias is taken. */
+typedef struct {
+    float prob;
+    uint alias;
+} EnvAlias;
+
+/* Analytic lights (JSON "lights", shared/DESIGN.md "Lights"; host/scene/analytic_lights.c). */
+#define LIGHT_POINT 0u
+#define LIGHT_SPOT 1u
+#define LIGHT_DIRECTIONAL 2u
+#define LIGHT_SUN 3u
+typedef struct {
+    float4 position; /* point/spot: position; directional/sun: unit direction the light travels */
+    float4 color;    /* point/spot: intensity (W/sr, rgb); directional/sun: irradiance; w: luminance */
+    float4 axis;     /* spot: unit axis (where it shines) */
+    float4 params;   /* spot: x cone, y falloff half-angles (radians); sun: x cos(half-angle),
+                        y radiance / irradiance = 1 / (pi sin^2(half-angle)), z 1 / cone solid angle
+                        (0 for angle 0: a delta light); w: the light table's pick probability */
+    uint type;       /* LIGHT_POINT .. LIGHT_SUN */
+    uint pad0, pad1, pad2;
+} AnalyticLight;
+
+/* ---- Scene buffers ------------------------------------------------------------------------- */
+
+/* The scene's read-only device buffers: element type (as the kernels see it) and name. The
+ * host's SceneBuffers, its upload and release (host/render/scene_upload.c), the kernels' parameter
+ * list (SCENE_PARAMS, cl/stages/path_state.cl), the host's argument binding and the SceneView
+ * that kernels hand to their helpers all expand from this list: a new buffer is one line here
+ * plus where its data comes from in scene_buffers_upload. bvh_tris holds BvhTriangles (2-wide)
+ * or triangle packs (wide layouts). */
+#define SCENE_BUFFERS(X)                                                                           \
+    X(TraversalNode, bvh_nodes)                                                                     \
+    X(TraversalPrim, bvh_tris)                                                                      \
+    X(float4, positions)                                                                            \
+    X(float4, normals)                                                                              \
+    X(float2, uvs)                                                                                  \
+    X(Triangle, triangles)                                                                          \
+    X(uint, material_ids)                                                                           \
+    X(Material, materials)                                                                          \
+    X(uint, texels)                                                                                 \
+    X(TextureInfo, textures)                                                                        \
+    X(LightEntry, lights)                                                                           \
+    X(AnalyticLight, analytic_lights)                                                               \
+    X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
+    X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */           \
+    X(Instance, instances)                                                                          \
+    X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */
+
+#define SCENE_BUFFER_COUNT_ONE(type, name) +1
+#define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
+
+#ifdef __OPENCL_C_VERSION__
+/* The scene as kernels pass it to helpers: one private struct of the kernel's own buffer
+ * parameters, built at kernel entry (OpenCL C 1.2 allows pointers to global memory in a private
+ * struct, not in a kernel argument). Helpers take `const SceneView *scene`; once inlined, each
+ * member is the kernel parameter itself, restrict and read-only. */
+#define SCENE_VIEW_MEMBER(type, name) const global type *restrict name;
+typedef struct {
+    SCENE_BUFFERS(SCENE_VIEW_MEMBER)
+} SceneView;
+#undef SCENE_VIEW_MEMBER
+#endif
+
+/* ---- Wavefront path state ------------------------------------------------------------------ */
+
+/* Structure of arrays. The host renders a window of batch_size samples at a time: window sample k
+ * traces pixel (batch_start + k) % num_pixels, sample index sample_index + (batch_start + k) /
+ * num_pixels. A pool of path slots (often fewer than the window's samples) traces them: a slot
+ * whose path ends is refilled with the window's next sample (generate_camera_rays), so the pool
+ * stays full until the window runs dry. PATH_STATE_FIELDS are per slot, SAMPLE_STATE_FIELDS per
+ * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
+ * expand from these lists. */
+#define PATH_STATE_FIELDS(X)                                                                       \
+    X(float4, ray_origin)          /* xyz; w unused */                                              \
+    X(float4, ray_direction)       /* xyz; w: solid-angle pdf of the BSDF sample, 0 if specular */  \
+    X(float4, throughput)          /* rgb path weight; w unused */                                 \
+    X(float4, hit)                 /* t, u, v, as_float(triangle) or HIT_NONE */                    \
+    X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
+    X(float4, shadow_direction)    /* xyz; w unused */                                             \
+    X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
+    X(uint, hit_instance)          /* the instance hit (PT_FEATURE_INSTANCES; else unused) */     \
+    X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE_MOTION, else 0) */ \
+    X(uint, sample_id)             /* the window sample k the slot traces */                       \
+    X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
+#define SAMPLE_STATE_FIELDS(X)                                                                     \
+    X(float4, radiance)            /* rgb gathered so far by sample k's path */
+
+/* Wavefront counters (one uint buffer). */
+#define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */
+#define COUNTER_SHADOW_RAYS 1 /* shadow rays traced in the current batch */
+#define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current batch */
+#define COUNTER_COUNT 4
+
+/* ---- Film ---------------------------------------------------------------------------------- */
+
+/* The film: FILM_WORDS 64-bit words per pixel (a ulong4 on the device, cl_ulong on the host):
+ * the sums of r, g and b in fixed point, FILM_FRACTION_BITS bits after the point, then the
+ * sample count. Each channel of a sample is clamped to [0, FILM_SAMPLE_MAX] and rounded to the
+ * nearest step 2^-FILM_FRACTION_BITS; sums saturate at 2^64 - 1. Saturating integer addition of
+ * non-negative numbers is associative and commutative, so the film's bits do not depend on how
+ * the samples are split or in which order they arrive. Read it with film_sums_to_rgb
+ * (host/render/film.h). */
+#define FILM_WORDS 4
+#define FILM_FRACTION_BITS 24
+#define FILM_SAMPLE_MAX 1048576.0f /* 2^20 */
+
+#endif
