@@ -54,11 +54,11 @@ for f in host/*.c host/*.h; do
     [ "$f" = host/main.c ] || echo "$f: only main.c lives at the top of host/" >>/tmp/check-layers.$$
 done
 
-# cl/: the assembled order must follow core -> geometry -> material -> light -> lensing -> stages;
-# parallel/ and post/ may come anywhere after core/.
+# cl/: the assembled order must follow shared.h and its parts (cl/shared/) -> core -> geometry ->
+# material -> light -> lensing -> stages; parallel/ and post/ may come anywhere after core/.
 rank() {
     case $1 in
-        shared.h) echo 0 ;; core) echo 1 ;; geometry) echo 2 ;; material) echo 3 ;;
+        shared.h|shared) echo 0 ;; core) echo 1 ;; geometry) echo 2 ;; material) echo 3 ;;
         light) echo 4 ;; lensing) echo 5 ;; stages) echo 6 ;; parallel|post) echo P ;; *) echo "?" ;;
     esac
 }
