@@ -238,7 +238,8 @@ Test(instances_render, a_mirrored_emitter_shines_where_its_normal_points, .timeo
 
 /* ---- Motion blur ------------------------------------------------------------------------------ */
 
-/* A lamp quad (scaled 0.3) moving from (-1, 0, 0) to (1, 0, 0) while turning 90 degrees about z,
+/* A lamp bar (the quad scaled to 1.2 x 0.3: a turn shows, unlike a square's) moving from
+ * (-1, 0, 0) to (1, 0, 0) while turning 90 degrees about z,
  * seen from z = 10 (max_depth 1); `transform` overrides the motion with a fixed matrix. */
 static float *render_lamp_motion(const char *dir, const char *object, int spp, unsigned seed)
 {
@@ -258,7 +259,7 @@ static float *render_lamp_motion(const char *dir, const char *object, int spp, u
 
 static Affine lamp_pose(double x, double angle)
 {
-    Affine scale = affine_scale(0.3, 0.3, 0.3), rotate, translate = affine_translate(x, 0, 0);
+    Affine scale = affine_scale(0.6, 0.15, 0.3), rotate, translate = affine_translate(x, 0, 0);
     const double z_axis[3] = {0, 0, 1};
     cr_assert(affine_rotate(z_axis, angle, &rotate));
     Affine rs = affine_mul(&rotate, &scale);
@@ -277,8 +278,8 @@ Test(instances_render, motion_blur_is_the_average_over_the_shutter, .timeout = 3
 {
     const char *dir = test_temp_dir();
     quad_obj(dir, "lamp.obj", 0);
-    const char *motion = "\"transform\": [{\"scale\": 0.3}, {\"translate\": [-1, 0, 0]}], "
-                         "\"transform_end\": [{\"scale\": 0.3}, {\"rotate\": {\"axis\": [0, 0, 1], "
+    const char *motion = "\"transform\": [{\"scale\": [0.6, 0.15, 0.3]}, {\"translate\": [-1, 0, 0]}], "
+                         "\"transform_end\": [{\"scale\": [0.6, 0.15, 0.3]}, {\"rotate\": {\"axis\": [0, 0, 1], "
                          "\"angle\": 90}}, {\"translate\": [1, 0, 0]}]";
     const int K = 16, spp_each = 32;
     float *moving = render_lamp_motion(dir, motion, K * spp_each, 1);
@@ -303,7 +304,7 @@ Test(instances_render, motion_blur_is_the_average_over_the_shutter, .timeout = 3
             average[i] += still[3 * i] / K;
         free(still);
     }
-    float *at_open = render_lamp_motion(dir, "\"transform\": [{\"scale\": 0.3}, {\"translate\": [-1, 0, 0]}]",
+    float *at_open = render_lamp_motion(dir, "\"transform\": [{\"scale\": [0.6, 0.15, 0.3]}, {\"translate\": [-1, 0, 0]}]",
                                         64, 2);
     /* 4 x 4 blocks: each pixel's value is the fraction of (time, position) samples on the lamp;
      * a block's difference is within the Monte Carlo noise (p (1 - p) / n per pixel) and the
