@@ -7,6 +7,7 @@
 #include "app/cli.h"
 #include "app/render_cmd.h"
 #include "base/error.h"
+#include "base/version.h"
 #include "device/device.h"
 #include "viewer/viewer.h"
 
@@ -20,6 +21,9 @@ int main(int argc, char **argv)
     case CMD_HELP:
     case CMD_NONE:
         cli_print_help();
+        return 0;
+    case CMD_VERSION:
+        printf("pt %s\n", PT_VERSION);
         return 0;
     case CMD_DEVICES:
         if (!device_list(stdout, &err))

@@ -2,9 +2,12 @@
 #include "app/cli.h"
 
 #include "io/obj_loader.h"
+#include "render/aov_layers.h"
 #include "scene/scene.h"
 
 #include <errno.h>
+#include <getopt.h>
+#include <math.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,8 +26,9 @@ void cli_print_help(void)
          "                              per mode, and the profile to FILE_stages.csv, FILE_live.csv)\n"
          "  pt devices                  list OpenCL platforms and devices\n"
          "  pt help                     this text\n"
-         "\n"
-         "options:\n"
+         "  pt --version                the version\n"
+         "\n");
+    puts("options:\n"
          "  --spp N            samples per pixel (default: the scene's, else 64)\n"
          "  --max-depth D      path segments from the camera: 1 = emitters seen directly,\n"
          "                     2 adds direct light (default: the scene's, else 8)\n"
@@ -35,8 +39,21 @@ void cli_print_help(void)
          "  -o FILE            output .exr (linear) or .png (sRGB); overwrites FILE. Without -o:\n"
          "                     out/<scene>.exr and .png, numbered so nothing is overwritten\n"
          "  --preview          with -o FILE.exr, also write FILE.png\n"
-         "  --exposure EV      exposure in stops applied to PNG output (default 0)\n"
-         "  --aov albedo|normal|depth   write a first-hit AOV instead of the path-traced image\n"
+         "  --exposure EV      exposure in stops for PNG output and the viewer (default 0)\n"
+         "  --tonemap NAME     display curve for PNG output and the viewer: agx (default), aces,\n"
+         "                     filmic, pbr-neutral, reinhard or clamp (EXR stays linear)\n"
+         "  --bloom S[,R]      glow around bright areas for PNG and the viewer: strength S in\n"
+         "                     [0, 1], radius R in pixels\n"
+         "  --clamp MAX        clamp each indirect sample's radiance to MAX (removes fireflies,\n"
+         "                     biases the image; off by default)\n"
+         "  --aov LIST         add layers to the EXR beside the image: albedo, normal, depth,\n"
+         "                     variance, spp (comma-separated) or all\n"
+         "  --noise-threshold T   adaptive sampling: pixels stop once their relative error is\n"
+         "                     below T (after --min-spp samples); --spp is the most a pixel gets\n"
+         "  --min-spp N        samples every pixel gets before adaptive sampling decides\n"
+         "  --time-limit S     stop after S seconds at a whole sample (the image is partial)\n"
+         "  --camera JSON      replace the scene's camera (render) or set the start pose (view),\n"
+         "                     e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
          "  --no-nee           pure BSDF sampling (validation; same converged image)\n"
          "  --sort-materials, --no-sort-materials   shade paths grouped by the material they hit,\n"
          "                     or not (same image). Default: sorted when the scene has materials\n"
@@ -58,12 +75,12 @@ void cli_print_help(void)
          "                     \"pt: progress: D/N spp (P%), S s\" after the first window, then at\n"
          "                     most once a second\n"
          "\n"
-         "pt render stops early on SIGINT (Ctrl-C), SIGTERM or SIGHUP: it writes the image so far\n"
+         "");
+    puts("pt render stops early on SIGINT (Ctrl-C), SIGTERM or SIGHUP: it writes the image so far\n"
          "and exits with 130, 143 or 129 (128 + the signal).\n"
          "\n"
          "pt view (keys: press H in the window; --spp N stops sampling at N):\n"
-         "  --camera JSON      start pose, e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
-         "                     (keys of the scene's camera; the C key prints one)\n"
+         "  --camera JSON      start pose (keys of the scene's camera; the C key prints one)\n"
          "  --frames N         quit after N frames\n"
          "  --screenshot FILE  at exit, save the film as FILE.exr (linear, as pt render writes it)\n"
          "                     or else the window's framebuffer as a PNG\n"
@@ -108,27 +125,166 @@ static bool parse_seed(const char *arg, const char *value, unsigned *out, Error 
     return true;
 }
 
-static bool parse_float(const char *arg, const char *value, float *out, Error *err)
+/* A finite number in [min, max]. */
+static bool parse_number(const char *arg, const char *value, double min, double max, double *out,
+                         Error *err)
 {
     char *end;
-    if (!value || (strtof(value, &end), end == value || *end)) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s needs a number", arg);
+    double v = value ? strtod(value, &end) : 0.0;
+    if (!value || end == value || *end || !isfinite(v) || v < min || v > max) {
+        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not a number in [%g, %g]", arg,
+                  value ? value : "", min, max);
         return false;
     }
-    *out = strtof(value, NULL);
+    *out = v;
     return true;
 }
 
-static bool need_value(const char *arg, const char *value, Error *err)
+static bool parse_float_in(const char *arg, const char *value, double min, double max, float *out,
+                           Error *err)
 {
-    if (!value)
-        error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", arg);
-    return value != NULL;
+    double v;
+    if (!parse_number(arg, value, min, max, &v, err))
+        return false;
+    *out = (float)v;
+    return true;
+}
+
+/* --bloom STRENGTH[,RADIUS]: strength in [0, 1] (the share of the bright part's energy spread
+ * out), radius in pixels. */
+static bool parse_bloom(const char *value, Options *o, Error *err)
+{
+    char strength[64];
+    size_t len = strcspn(value, ",");
+    if (len >= sizeof strength) {
+        error_set(err, ERR_USAGE, NULL, 0, "--bloom: '%s' is not STRENGTH[,RADIUS]", value);
+        return false;
+    }
+    memcpy(strength, value, len);
+    strength[len] = '\0';
+    if (!parse_float_in("--bloom (strength)", strength, 0.0, 1.0, &o->bloom_strength, err))
+        return false;
+    return !value[len] ||
+           parse_float_in("--bloom (radius in pixels)", value + len + 1, 0.5, 1024.0,
+                          &o->bloom_radius, err);
+}
+
+/* Long options: the flag of those without a value, or a code for those with one. */
+enum {
+    OPT_SPP = 1000, OPT_MAX_DEPTH, OPT_WIDTH, OPT_HEIGHT, OPT_SEED, OPT_DEVICE, OPT_CSV, OPT_FRAMES,
+    OPT_SCREENSHOT, OPT_CAMERA, OPT_EXPOSURE, OPT_INSTANCING, OPT_AOV, OPT_TONEMAP, OPT_BLOOM,
+    OPT_CLAMP, OPT_NOISE_THRESHOLD, OPT_MIN_SPP, OPT_TIME_LIMIT, OPT_VERSION, OPT_PREVIEW,
+    OPT_PROGRESS, OPT_NO_NEE, OPT_SORT, OPT_NO_SORT, OPT_NO_COMPACTION, OPT_PROFILE, OPT_NO_CACHE,
+    OPT_NO_DEFAULT_LIGHT, OPT_EVENTS,
+};
+
+static const struct option long_options[] = {
+    {"spp", required_argument, NULL, OPT_SPP},
+    {"max-depth", required_argument, NULL, OPT_MAX_DEPTH},
+    {"width", required_argument, NULL, OPT_WIDTH},
+    {"height", required_argument, NULL, OPT_HEIGHT},
+    {"seed", required_argument, NULL, OPT_SEED},
+    {"device", required_argument, NULL, OPT_DEVICE},
+    {"output", required_argument, NULL, 'o'},
+    {"csv", required_argument, NULL, OPT_CSV},
+    {"frames", required_argument, NULL, OPT_FRAMES},
+    {"screenshot", required_argument, NULL, OPT_SCREENSHOT},
+    {"camera", required_argument, NULL, OPT_CAMERA},
+    {"exposure", required_argument, NULL, OPT_EXPOSURE},
+    {"instancing", required_argument, NULL, OPT_INSTANCING},
+    {"aov", required_argument, NULL, OPT_AOV},
+    {"tonemap", required_argument, NULL, OPT_TONEMAP},
+    {"bloom", required_argument, NULL, OPT_BLOOM},
+    {"clamp", required_argument, NULL, OPT_CLAMP},
+    {"noise-threshold", required_argument, NULL, OPT_NOISE_THRESHOLD},
+    {"min-spp", required_argument, NULL, OPT_MIN_SPP},
+    {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
+    {"quiet", no_argument, NULL, 'q'},
+    {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, OPT_VERSION},
+    {"preview", no_argument, NULL, OPT_PREVIEW},
+    {"progress", no_argument, NULL, OPT_PROGRESS},
+    {"no-nee", no_argument, NULL, OPT_NO_NEE},
+    {"sort-materials", no_argument, NULL, OPT_SORT},
+    {"no-sort-materials", no_argument, NULL, OPT_NO_SORT},
+    {"no-compaction", no_argument, NULL, OPT_NO_COMPACTION},
+    {"profile", no_argument, NULL, OPT_PROFILE},
+    {"no-cache", no_argument, NULL, OPT_NO_CACHE},
+    {"no-default-light", no_argument, NULL, OPT_NO_DEFAULT_LIGHT},
+    {"events", no_argument, NULL, OPT_EVENTS},
+    {NULL, 0, NULL, 0},
+};
+
+static bool parse_option(int code, const char *a, const char *v, Options *o, Error *err)
+{
+    switch (code) {
+    case OPT_SPP: return parse_int(a, v, 1, INT_MAX, &o->spp, err);
+    case OPT_MAX_DEPTH: return parse_int(a, v, 1, MAX_DEPTH_LIMIT, &o->max_depth, err);
+    case OPT_WIDTH: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->width, err);
+    case OPT_HEIGHT: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->height, err);
+    case OPT_SEED: o->seed_given = true; return parse_seed(a, v, &o->seed, err);
+    case OPT_DEVICE: o->device = v; return true;
+    case 'o': o->output = v; return true;
+    case OPT_CSV: o->csv = v; return true;
+    case OPT_FRAMES: return parse_int(a, v, 1, INT_MAX, &o->frames, err);
+    case OPT_SCREENSHOT: o->screenshot = v; return true;
+    case OPT_CAMERA: o->camera_json = v; return true;
+    case OPT_EXPOSURE: return parse_float_in(a, v, -64.0, 64.0, &o->exposure, err);
+    case OPT_INSTANCING:
+        if (!strcmp(v, "auto")) o->instancing = INSTANCING_AUTO;
+        else if (!strcmp(v, "always")) o->instancing = INSTANCING_ALWAYS;
+        else if (!strcmp(v, "never")) o->instancing = INSTANCING_NEVER;
+        else {
+            error_set(err, ERR_USAGE, NULL, 0, "--instancing: '%s' is not auto, always or never", v);
+            return false;
+        }
+        return true;
+    case OPT_AOV: return aov_parse_list(v, &o->aov_mask, err);
+    case OPT_TONEMAP:
+        if (!tonemap_from_name(v, &o->tonemap)) {
+            char known[128] = "";
+            for (int t = 0; t < TONEMAP_COUNT; t++)
+                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s",
+                         t ? ", " : "", tonemap_name((Tonemap)t));
+            error_set(err, ERR_USAGE, NULL, 0, "--tonemap: '%s' is not a tone map (%s)", v, known);
+            return false;
+        }
+        return true;
+    case OPT_BLOOM: return parse_bloom(v, o, err);
+    case OPT_CLAMP: return parse_float_in(a, v, 1e-6, 1e30, &o->clamp_max, err);
+    case OPT_NOISE_THRESHOLD: return parse_float_in(a, v, 1e-9, 1e9, &o->noise_threshold, err);
+    case OPT_MIN_SPP: return parse_int(a, v, 1, INT_MAX, &o->min_spp, err);
+    case OPT_TIME_LIMIT: return parse_number(a, v, 1e-3, 1e9, &o->time_limit, err);
+    case 'q':
+        o->quiet = true;
+        obj_loader_set_quiet(true); /* MTL statements pt does not use: no warnings */
+        return true;
+    case 'h': o->command = CMD_HELP; return true;
+    case OPT_VERSION: o->command = CMD_VERSION; return true;
+    case OPT_PREVIEW: o->preview = true; return true;
+    case OPT_PROGRESS: o->progress = true; return true;
+    case OPT_NO_NEE: o->no_nee = true; return true;
+    case OPT_SORT: o->sort_materials = SORT_MATERIALS_ON; return true;
+    case OPT_NO_SORT: o->sort_materials = SORT_MATERIALS_OFF; return true;
+    case OPT_NO_COMPACTION: o->no_compaction = true; return true;
+    case OPT_PROFILE: o->profile = true; return true;
+    case OPT_NO_CACHE: o->no_cache = true; return true;
+    case OPT_NO_DEFAULT_LIGHT: o->no_default_light = true; return true;
+    case OPT_EVENTS: o->print_events = true; return true;
+    }
+    return true;
+}
+
+/* The option as the user wrote it (argv[optind - 1] after getopt_long), for messages. */
+static const char *option_as_written(char **argv, int index)
+{
+    return index > 0 ? argv[index - 1] : "?";
 }
 
 bool cli_parse(int argc, char **argv, Options *o, Error *err)
 {
     memset(o, 0, sizeof *o);
+    o->tonemap = TONEMAP_DEFAULT;
     if (argc < 2) {
         o->command = CMD_HELP;
         return true;
@@ -139,72 +295,48 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
     else if (!strcmp(cmd, "devices")) o->command = CMD_DEVICES;
     else if (!strcmp(cmd, "bench")) o->command = CMD_BENCH;
     else if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) o->command = CMD_HELP;
+    else if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) o->command = CMD_VERSION;
     else {
         error_set(err, ERR_USAGE, NULL, 0, "unknown command '%s' (try 'pt help')", cmd);
         return false;
     }
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool ok = true, takes_value = true;
-        if (!strcmp(a, "--spp")) ok = parse_int(a, v, 1, INT_MAX, &o->spp, err);
-        else if (!strcmp(a, "--max-depth")) ok = parse_int(a, v, 1, MAX_DEPTH_LIMIT, &o->max_depth, err);
-        else if (!strcmp(a, "--width")) ok = parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->width, err);
-        else if (!strcmp(a, "--height")) ok = parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->height, err);
-        else if (!strcmp(a, "--seed")) ok = parse_seed(a, v, &o->seed, err), o->seed_given = true; else if (!strcmp(a, "--device")) ok = need_value(a, v, err), o->device = v;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--output")) ok = need_value(a, v, err), o->output = v;
-        else if (!strcmp(a, "--csv")) ok = need_value(a, v, err), o->csv = v;
-        else if (!strcmp(a, "--frames")) ok = parse_int(a, v, 1, INT_MAX, &o->frames, err);
-        else if (!strcmp(a, "--screenshot")) ok = need_value(a, v, err), o->screenshot = v;
-        else if (!strcmp(a, "--camera")) ok = need_value(a, v, err), o->camera_json = v;
-        else if (!strcmp(a, "--exposure")) ok = parse_float(a, v, &o->exposure, err);
-        else if (!strcmp(a, "--instancing")) {
-            ok = need_value(a, v, err);
-            if (ok && !strcmp(v, "auto")) o->instancing = INSTANCING_AUTO;
-            else if (ok && !strcmp(v, "always")) o->instancing = INSTANCING_ALWAYS;
-            else if (ok && !strcmp(v, "never")) o->instancing = INSTANCING_NEVER;
-            else if (ok) {
-                error_set(err, ERR_USAGE, NULL, 0, "--instancing: '%s' is not auto, always or never", v);
-                ok = false;
-            }
-        }
-        else if (!strcmp(a, "--aov")) {
-            ok = need_value(a, v, err);
-            if (ok && strcmp(v, "albedo") && strcmp(v, "normal") && strcmp(v, "depth")) {
-                error_set(err, ERR_USAGE, NULL, 0, "--aov: '%s' is not albedo, normal or depth", v);
-                ok = false;
-            }
-            o->aov = v;
-        } else {
-            takes_value = false;
-            if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-                o->quiet = true;
-                obj_loader_set_quiet(true); /* MTL statements pt does not use: no warnings */
-            }
-            else if (!strcmp(a, "--preview")) o->preview = true;
-            else if (!strcmp(a, "--progress")) o->progress = true;
-            else if (!strcmp(a, "--no-nee")) o->no_nee = true;
-            else if (!strcmp(a, "--sort-materials")) o->sort_materials = SORT_MATERIALS_ON;
-            else if (!strcmp(a, "--no-sort-materials")) o->sort_materials = SORT_MATERIALS_OFF;
-            else if (!strcmp(a, "--no-compaction")) o->no_compaction = true;
-            else if (!strcmp(a, "--profile")) o->profile = true;
-            else if (!strcmp(a, "--no-cache")) o->no_cache = true;
-            else if (!strcmp(a, "--no-default-light")) o->no_default_light = true;
-            else if (!strcmp(a, "--events")) o->print_events = true;
-            else if (!strcmp(a, "--help") || !strcmp(a, "-h")) o->command = CMD_HELP;
-            else if (a[0] == '-' && a[1]) {
-                error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", a);
-                return false;
-            } else if (!o->scene) o->scene = a;
-            else {
-                error_set(err, ERR_USAGE, NULL, 0, "unexpected argument '%s'", a);
-                return false;
-            }
-        }
-        if (!ok)
+    /* getopt_long over the arguments after the command: --opt VALUE and --opt=VALUE alike,
+     * options and the SCENE in any order ("--" ends the options). opterr = 0: pt words its own
+     * messages. */
+    int sub_argc = argc - 1;
+    char **sub_argv = argv + 1;
+    opterr = 0;
+    optind = 0; /* 0, not 1: glibc's full reset, so that cli_parse can run more than once */
+    int code;
+    while ((code = getopt_long(sub_argc, sub_argv, ":o:qh", long_options, NULL)) != -1) {
+        if (code == '?') {
+            const char *written = option_as_written(sub_argv, optind);
+            if (optopt && optopt < 256)
+                error_set(err, ERR_USAGE, NULL, 0, "unknown option '-%c' (try 'pt help')", optopt);
+            else
+                error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", written);
             return false;
-        if (takes_value)
-            i++;
+        }
+        if (code == ':') {
+            error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", option_as_written(sub_argv, optind));
+            return false;
+        }
+        char name[64];
+        const char *written = option_as_written(sub_argv, optind);
+        /* "--spp=x" is named "--spp" in messages; a value given separately is argv[optind - 1]. */
+        if (optarg && written == optarg && optind >= 2)
+            written = sub_argv[optind - 2];
+        snprintf(name, sizeof name, "%.*s", (int)strcspn(written, "="), written);
+        if (!parse_option(code, name, optarg, o, err))
+            return false;
+    }
+    for (int i = optind; i < sub_argc; i++) {
+        if (!o->scene)
+            o->scene = sub_argv[i];
+        else {
+            error_set(err, ERR_USAGE, NULL, 0, "unexpected argument '%s'", sub_argv[i]);
+            return false;
+        }
     }
     if ((o->command == CMD_RENDER || o->command == CMD_VIEW || o->command == CMD_BENCH) && !o->scene) {
         error_set(err, ERR_USAGE, NULL, 0, "'pt %s' needs a SCENE (a .json scene or an .obj)", cmd);
@@ -218,7 +350,7 @@ RenderDesc cli_render_desc(const Options *o)
     return (RenderDesc){.scene = o->scene, .device = o->device, .width = o->width,
                         .height = o->height, .spp = o->spp, .max_depth = o->max_depth,
                         .no_cache = o->no_cache, .no_default_light = o->no_default_light,
-                        .instancing = o->instancing};
+                        .instancing = o->instancing, .camera_json = o->camera_json};
 }
 
 ViewerDesc cli_viewer_desc(const Options *o)

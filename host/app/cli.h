@@ -6,21 +6,30 @@
 #include <stdbool.h>
 
 #include "base/error.h"
+#include "io/tonemap.h"
 #include "render/session.h"
 #include "viewer/viewer.h"
 
-typedef enum { CMD_NONE, CMD_HELP, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
+typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
 
 typedef struct {
     Command command;
     const char *scene;  /* SCENE argument */
     const char *device; /* --device, NULL = default */
     const char *output; /* -o, NULL = out/<scene name>.{exr,png}, never overwriting */
-    const char *aov;    /* --aov albedo|normal|depth, NULL = path tracing */
+    unsigned aov_mask;  /* --aov LIST: AOV_MASK bits (render/aov_layers.h), EXR layers beside the
+                         * beauty; 0 = none */
     int spp, max_depth, width, height; /* 0 = from the scene */
     unsigned seed;
     bool seed_given;
-    float exposure; /* stops, PNG only */
+    float exposure; /* stops, PNG and the viewer */
+    Tonemap tonemap;      /* --tonemap, PNG and the viewer; TONEMAP_DEFAULT unless asked */
+    float bloom_strength; /* --bloom STRENGTH[,RADIUS]: 0 = no bloom */
+    float bloom_radius;   /* pixels; 0 = the default radius (render/bloom.h) */
+    float clamp_max;      /* --clamp MAX: per-sample clamp of indirect radiance; 0 = off */
+    float noise_threshold; /* --noise-threshold T: adaptive sampling; 0 = the scene's setting */
+    int min_spp;          /* --min-spp N: samples every pixel gets first; 0 = the scene's */
+    double time_limit;    /* --time-limit SECONDS: stop at the next whole sample; 0 = none */
     bool quiet;
     bool progress;  /* progress as lines on stderr, even when it is not a terminal */
     bool preview;   /* with -o X.exr, also write X.png */
@@ -33,7 +42,8 @@ typedef struct {
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* pt view: at exit, the film (FILE.exr) or the framebuffer (PNG) */
     bool print_events;       /* pt view --events: stdout lines for scripts to wait on */
-    const char *camera_json; /* pt view: start pose, a JSON object like the scene's camera */
+    const char *camera_json; /* --camera: the scene's camera replaced (render) or the start pose
+                              * (view), a JSON object with the keys of the scene's camera */
 } Options;
 
 /* Parses argv; returns false with ERR_USAGE naming the offending argument. */

@@ -15,6 +15,7 @@
 #include "base/fs.h"
 #include "io/image_io.h"
 #include "render/aov.h"
+#include "render/aov_layers.h"
 #include "render/session.h"
 #include "render/wavefront.h"
 
@@ -81,28 +82,6 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
     return true;
 }
 
-static unsigned aov_from_name(const char *name)
-{
-    if (!strcmp(name, "normal")) return AOV_NORMAL;
-    if (!strcmp(name, "depth")) return AOV_DEPTH;
-    return AOV_ALBEDO;
-}
-
-/* PNG previews of AOVs: normals mapped from [-1, 1] to [0, 1], depth scaled by its maximum. */
-static void aov_png_remap(unsigned aov, float *rgb, size_t n)
-{
-    if (aov == AOV_NORMAL) {
-        for (size_t i = 0; i < 3 * n; i++)
-            rgb[i] = 0.5f * rgb[i] + 0.5f;
-    } else if (aov == AOV_DEPTH) {
-        float max_depth = 0.0f;
-        for (size_t i = 0; i < 3 * n; i++)
-            max_depth = rgb[i] > max_depth ? rgb[i] : max_depth;
-        for (size_t i = 0; i < 3 * n && max_depth > 0.0f; i++)
-            rgb[i] /= max_depth;
-    }
-}
-
 /* PT_TEST_RAISE=SIGNAL@write raises its signal between a temporary file and its rename. */
 static void raise_at_write_point(void) { stop_signals_test_point("write"); }
 
@@ -150,10 +129,7 @@ int command_render(const Options *o)
     if (!stop_signals_configure(&err) || !session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
-    char suffix[32] = "";
-    if (o->aov)
-        snprintf(suffix, sizeof suffix, "-%s", o->aov);
-    if (!plan_outputs(o, suffix, &out, &err))
+    if (!plan_outputs(o, "", &out, &err))
         die("%s", err.message);
     if (!o->quiet)
         session_print_summary(&session);
@@ -164,16 +140,11 @@ int command_render(const Options *o)
     if (!rgb)
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
-    unsigned aov = AOV_ALBEDO;
     int spp = desc->spp, spp_done = spp;
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
     fs_set_before_rename_hook(raise_at_write_point);
-    if (o->aov) {
-        aov = aov_from_name(o->aov);
-        stop_signals_test_point("render");
-        aov_render(&session.dev, &session.scene, &session.buffers, aov, desc->spp, seed, rgb);
-    } else {
+    {
         RenderSettings settings = {
             .spp = desc->spp,
             .max_depth = desc->max_depth,
@@ -182,6 +153,10 @@ int command_render(const Options *o)
             .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
             .no_compaction = o->no_compaction,
             .profile = o->profile,
+            .clamp_indirect = o->clamp_max,
+            .noise_threshold = o->noise_threshold,
+            .min_spp = o->min_spp,
+            .moments = o->noise_threshold > 0.0f || (o->aov_mask & AOV_MASK(AOV_LAYER_VARIANCE)),
         };
         RenderStats stats;
         if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
@@ -203,8 +178,6 @@ int command_render(const Options *o)
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
-        if (o->aov)
-            aov_png_remap(aov, rgb, num_pixels);
         if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);

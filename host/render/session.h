@@ -18,6 +18,7 @@ typedef struct {
     bool no_cache;      /* compile the kernels even if the kernel cache has them */
     bool no_default_light; /* leave a scene without any light dark (scene_add_default_light) */
     int instancing;     /* InstancingMode (scene/scene.h); 0 = INSTANCING_AUTO */
+    const char *camera_json; /* pt render --camera: replaces the scene's camera; NULL = keep it */
 } RenderDesc;
 
 typedef struct {

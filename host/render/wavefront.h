@@ -26,6 +26,12 @@ typedef struct {
     bool shadow_flags;   /* intersect_shadow checks a flag per active path instead of reading
                           * the queue that shade_surface appends to with atomics (the default:
                           * 1.5 to 6% faster on an H100; pt bench measures both) */
+    float clamp_indirect; /* > 0: each sample's radiance from paths of 2 or more bounces is
+                           * clamped to this (--clamp; biased, off by default) */
+    float noise_threshold; /* > 0: adaptive sampling: a pixel stops once its relative error is
+                            * below this, decided at fixed sample counts after min_spp */
+    int min_spp;          /* adaptive sampling: samples every pixel gets first (0 = default) */
+    bool moments;         /* also sum the samples' squares (the variance AOV, adaptive sampling) */
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
