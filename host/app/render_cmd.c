@@ -87,9 +87,7 @@ static void raise_at_write_point(void) { stop_signals_test_point("write"); }
 
 static ProgressStyle progress_style(const Options *o)
 {
-    if (o->progress)
-        return PROGRESS_LINES;
-    return !o->quiet && isatty(STDERR_FILENO) ? PROGRESS_TERMINAL : PROGRESS_NONE;
+    return render_loop_progress_style(o->quiet, o->progress, isatty(STDERR_FILENO));
 }
 
 static void report_render(const Options *o, const RenderStats *stats)
@@ -141,6 +139,7 @@ int command_render(const Options *o)
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     int spp = desc->spp, spp_done = spp;
+    RenderStop stop = RENDER_COMPLETE; /* anything else: the image is partial */
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
     fs_set_before_rename_hook(raise_at_write_point);
@@ -159,7 +158,8 @@ int command_render(const Options *o)
             .moments = o->noise_threshold > 0.0f || (o->aov_mask & AOV_MASK(AOV_LAYER_VARIANCE)),
         };
         RenderStats stats;
-        if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
+        RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
+        if (!render_loop_run(&session, &settings, &loop, rgb, &stats, &stop, &err))
             die("%s", err.message);
         report_render(o, &stats);
         spp_done = stats.spp_done;
@@ -187,5 +187,8 @@ int command_render(const Options *o)
     if (stop_signal_received())
         fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",
                 stop_signal_name(stop_signal_received()), spp_done, spp);
-    return stop_exit_status();
+    else if (stop == RENDER_STOPPED_BY_TIME_LIMIT)
+        fprintf(stderr, "pt: stopped by the time limit: the image holds %d of %d spp\n", spp_done,
+                spp);
+    return stop_exit_status(); /* 0 after a time limit: the render the user asked for */
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* render_loop.h: the path-traced render of `pt render`: window after window until every sample
- * is done or a stop signal arrives (app/stop_signals.h), keeping what is done. */
+ * is done, a stop signal arrives (app/stop_signals.h) or the time limit passes, keeping what is
+ * done. */
 #ifndef PT_RENDER_LOOP_H
 #define PT_RENDER_LOOP_H
 
@@ -10,14 +11,35 @@
 #include "render/wavefront.h"
 
 typedef enum {
-    PROGRESS_NONE,     /* --quiet, or stderr is not a terminal */
-    PROGRESS_TERMINAL, /* one line, rewritten in place */
+    PROGRESS_NONE,     /* --quiet */
+    PROGRESS_TERMINAL, /* stderr is a terminal: one line, rewritten in place */
     PROGRESS_LINES,    /* --progress: a line after the first window, then at most one a second,
                         * and one at the end: "pt: progress: D/N spp (P%), S s" */
+    PROGRESS_LOG,      /* stderr is not a terminal (a CI log, a pipe): the same lines, at most
+                        * one every LOG_UPDATE_SECONDS (render_loop.c) */
 } ProgressStyle;
 
-/* Renders into rgb (the mean of the samples so far per pixel); stats->spp_done says how many. */
-bool render_loop_run(Session *session, const RenderSettings *settings, ProgressStyle progress,
-                     float *rgb, RenderStats *stats, Error *err);
+/* The progress style for the command line: --quiet none, --progress lines every second, else
+ * the terminal line when stderr is one and log lines when it is not. */
+ProgressStyle render_loop_progress_style(bool quiet, bool progress_lines, bool stderr_is_terminal);
+
+typedef struct {
+    ProgressStyle progress;
+    double time_limit; /* --time-limit: seconds of rendering (loading and the kernel build not
+                        * counted) after which the loop stops at the next whole sample; 0 = none */
+} RenderLoopDesc;
+
+/* Why the loop ended. Anything but RENDER_COMPLETE leaves a partial image (fewer spp than asked)
+ * that the EXR header marks partial. */
+typedef enum {
+    RENDER_COMPLETE,            /* every sample asked for */
+    RENDER_STOPPED_BY_SIGNAL,   /* SIGINT, SIGTERM or SIGHUP (stop_signal_received says which) */
+    RENDER_STOPPED_BY_TIME_LIMIT, /* --time-limit passed; the image holds whole samples */
+} RenderStop;
+
+/* Renders into rgb (the mean of the samples so far per pixel); stats->spp_done says how many and
+ * *stop why the loop ended. */
+bool render_loop_run(Session *session, const RenderSettings *settings, const RenderLoopDesc *desc,
+                     float *rgb, RenderStats *stats, RenderStop *stop, Error *err);
 
 #endif

@@ -7,9 +7,17 @@
 
 #include "base/clock.h"
 #include "base/error.h"
+#include "scene/camera_json.h"
 
 static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
 {
+    /* --camera: the keys it has replace the scene's (or the framed default camera's), read by
+     * the scene's own camera reader, so a render with it equals one of a scene file with it. */
+    if (o->camera_json) {
+        if (!camera_desc_parse_option(o->camera_json, &d->camera, err))
+            return false;
+        d->camera_given = true;
+    }
     if (o->width) d->width = o->width;
     if (o->height) d->height = o->height;
     if (o->spp) d->spp = o->spp;

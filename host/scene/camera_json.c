@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "scene/camera_json.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* Camera coordinates within +-CAMERA_COORDINATE_LIMIT (json_read_vec3 has already rejected
  * non-finite ones). */
@@ -120,4 +123,50 @@ bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
         return false;
     *inout = c;
     return true;
+}
+
+/* Parses text; the fragment `"camera": {...}` (what the viewer's C key prints) is read as
+ * {"camera": {...}}. */
+static cJSON *parse_option_text(const char *json, Error *err)
+{
+    const char *start = json;
+    while (isspace((unsigned char)*start))
+        start++;
+    char *wrapped = NULL;
+    if (*start == '"') {
+        size_t n = strlen(start);
+        wrapped = malloc(n + 3);
+        if (!wrapped)
+            die("out of memory");
+        snprintf(wrapped, n + 3, "{%s}", start);
+    }
+    const char *text = wrapped ? wrapped : json, *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(text, &end, true);
+    if (!root)
+        error_set(err, ERR_JSON_SYNTAX, NULL, 0, "--camera: malformed JSON near '%.24s'",
+                  end && *end ? end : "(end of text)");
+    free(wrapped);
+    return root;
+}
+
+bool camera_desc_parse_option(const char *json, CameraDesc *c, Error *err)
+{
+    cJSON *root = parse_option_text(json, err);
+    if (!root)
+        return false;
+    const cJSON *object = root;
+    const cJSON *inner = cJSON_GetObjectItemCaseSensitive(root, "camera");
+    if (inner && cJSON_GetArraySize(root) == 1)
+        object = inner;
+    bool ok = cJSON_IsObject(object);
+    if (!ok)
+        error_set(err, ERR_JSON_TYPE, NULL, 0,
+                  "--camera: expected a JSON object like the scene's camera, e.g. "
+                  "{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}");
+    /* The scene's camera reader: keys present replace the values, and the same checks with the
+     * same messages, named "--camera: camera.<key>: ...". */
+    JsonParser p = {.file = "--camera", .text = NULL, .err = err};
+    ok = ok && camera_desc_from_json(&p, object, "camera", false, c);
+    cJSON_Delete(root);
+    return ok;
 }

@@ -18,4 +18,11 @@
 bool camera_desc_from_json(JsonParser *p, const cJSON *obj, const char *path,
                            bool require_eye_target, CameraDesc *inout);
 
+/* The --camera option of pt render and pt view: a JSON object like the scene's "camera" (or the
+ * fragment `"camera": {...}` that the viewer's C key prints) read over *c with
+ * camera_desc_from_json: keys present replace the values, others are kept. Errors are one line
+ * that names the key ("--camera: camera.eye: expected an array of 3 numbers") or the position of
+ * malformed JSON. *c is unchanged on error. */
+bool camera_desc_parse_option(const char *json, CameraDesc *c, Error *err);
+
 #endif

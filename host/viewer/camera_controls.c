@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "viewer/camera_controls.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -121,49 +120,9 @@ float viewer_camera_axis_distance(const CameraDesc *c, const float dir[3], float
 
 /* ---- JSON ----------------------------------------------------------------------------------- */
 
-/* Parses text; the fragment `"camera": {...}` (what 'C' prints) is read as {"camera": {...}}. */
-static cJSON *parse_text(const char *json, Error *err)
-{
-    const char *start = json;
-    while (isspace((unsigned char)*start))
-        start++;
-    char *wrapped = NULL;
-    if (*start == '"') {
-        size_t n = strlen(start);
-        wrapped = malloc(n + 3);
-        if (!wrapped)
-            die("out of memory");
-        snprintf(wrapped, n + 3, "{%s}", start);
-    }
-    const char *text = wrapped ? wrapped : json, *end = NULL;
-    cJSON *root = cJSON_ParseWithOpts(text, &end, true);
-    if (!root)
-        error_set(err, ERR_JSON_SYNTAX, NULL, 0, "--camera: malformed JSON near '%.24s'",
-                  end && *end ? end : "(end of text)");
-    free(wrapped);
-    return root;
-}
-
 bool viewer_camera_parse(const char *json, CameraDesc *c, Error *err)
 {
-    cJSON *root = parse_text(json, err);
-    if (!root)
-        return false;
-    const cJSON *object = root;
-    const cJSON *inner = cJSON_GetObjectItemCaseSensitive(root, "camera");
-    if (inner && cJSON_GetArraySize(root) == 1)
-        object = inner;
-    bool ok = cJSON_IsObject(object);
-    if (!ok)
-        error_set(err, ERR_JSON_TYPE, NULL, 0,
-                  "--camera: expected a JSON object like the scene's camera, e.g. "
-                  "{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}");
-    /* The scene's camera reader: keys present replace the values, and the same checks with the
-     * same messages, named "--camera: camera.<key>: ...". */
-    JsonParser p = {.file = "--camera", .text = NULL, .err = err};
-    ok = ok && camera_desc_from_json(&p, object, "camera", false, c);
-    cJSON_Delete(root);
-    return ok;
+    return camera_desc_parse_option(json, c, err); /* pt render --camera reads it the same way */
 }
 
 /* The shortest %g text (6 to 9 digits) that reads back as exactly x: a pasted camera gives the
