@@ -19,6 +19,13 @@ static const char no_platform_help[] =
     "pocl-opencl-icd; for an NVIDIA GPU, register its driver: mkdir -p /tmp/icd && echo "
     "libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd && export OCL_ICD_VENDORS=/tmp/icd";
 
+/* What `pt devices` and --device gpu say when the machine shows no GPU: the driver is often
+ * installed but not registered with the ICD loader (containers). */
+static const char no_gpu_hint[] =
+    "For an NVIDIA GPU whose driver is installed but not registered: mkdir -p /tmp/icd && echo "
+    "libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd && cp /etc/OpenCL/vendors/*.icd /tmp/icd/ && "
+    "export OCL_ICD_VENDORS=/tmp/icd";
+
 static cl_uint get_platforms(cl_platform_id *platforms)
 {
     kernel_cache_prepare(); /* before PoCL reads its cache folder */
@@ -96,10 +103,7 @@ bool device_list(FILE *out, Error *err)
         }
     }
     if (!any_gpu)
-        fprintf(out,
-                "no GPU found. For an NVIDIA GPU whose driver is installed but not registered: "
-                "mkdir -p /tmp/icd && echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd && cp "
-                "/etc/OpenCL/vendors/*.icd /tmp/icd/ && export OCL_ICD_VENDORS=/tmp/icd\n");
+        fprintf(out, "no GPU found. %s\n", no_gpu_hint);
     return true;
 }
 
@@ -178,7 +182,11 @@ static void report_missing_device(const char *spec, cl_platform_id *platforms,
     char devices[512];
     describe_devices(platforms, num_platforms, devices, sizeof devices);
     bool gpu = spec && !strcmp(spec, "gpu"), cpu = spec && !strcmp(spec, "cpu");
-    if (gpu || cpu || !spec || !*spec)
+    if (gpu)
+        error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
+                  "--device gpu: this machine has no GPU OpenCL device, only: %s. %s", devices,
+                  no_gpu_hint);
+    else if (cpu || !spec || !*spec)
         error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
                   "--device %s: there is no %s OpenCL device; the devices are: %s (see 'pt devices')",
                   spec && *spec ? spec : "(default)", gpu ? "GPU" : cpu ? "CPU" : "GPU or CPU",

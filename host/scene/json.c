@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-/* json.c: cJSON keeps no positions, so a key's line is found again by searching the text for each
- * component of its path; good enough for messages, and it keeps the parser a plain library. */
+/* json.c: cJSON keeps no positions, so a key's line is found again by walking the text along the
+ * key's path (key_line); it keeps the parser a plain library. */
 #include "scene/json.h"
 
 #include <ctype.h>
@@ -35,44 +35,116 @@ cJSON *json_parse_text(const char *file, const char *text, Error *err)
     return root;
 }
 
-/* Finds `"name"` followed by a colon at or after from; returns its offset or -1. */
-static long find_key(const char *text, size_t from, const char *name, size_t name_len)
+/* ---- Finding a key's line -------------------------------------------------------------------
+ * The text has parsed (cJSON accepted it), so a small walker over its structure can follow a key
+ * path member by member and element by element: the key found is the one the path means, not
+ * the first text that looks like it (an unknown key in objects[2] is not searched for in
+ * objects[0]). */
+
+static const char *skip_space(const char *s)
 {
-    for (const char *s = strchr(text + from, '"'); s; s = strchr(s + 1, '"')) {
-        if (strncmp(s + 1, name, name_len) != 0 || s[1 + name_len] != '"')
-            continue;
-        const char *after = s + 2 + name_len;
-        while (isspace((unsigned char)*after))
-            after++;
-        if (*after == ':')
-            return (long)(s - text);
-    }
-    return -1;
+    while (isspace((unsigned char)*s))
+        s++;
+    return s;
 }
 
-/* The line of a key path such as "camera.fov_y" or "objects[1].obj", found by searching the text
- * for each component in turn. An index [n] skips to the n-th match of the next component. Returns
- * the deepest line found, 0 when none. */
+/* s at a string's opening quote: the character after its closing quote. */
+static const char *skip_string(const char *s)
+{
+    for (s++; *s && *s != '"'; s++)
+        if (*s == '\\' && s[1])
+            s++;
+    return *s ? s + 1 : s;
+}
+
+/* s at a value: the character after it. */
+static const char *skip_value(const char *s)
+{
+    if (*s == '"')
+        return skip_string(s);
+    if (*s != '{' && *s != '[') {
+        while (*s && *s != ',' && *s != '}' && *s != ']' && !isspace((unsigned char)*s))
+            s++;
+        return s;
+    }
+    int depth = 0;
+    do {
+        if (*s == '"') {
+            s = skip_string(s);
+            continue;
+        }
+        depth += (*s == '{' || *s == '[') - (*s == '}' || *s == ']');
+        s++;
+    } while (*s && depth > 0);
+    return s;
+}
+
+/* The object at value: the opening quote of its member `name` (the last one, so that a duplicate
+ * key's message points at the duplicate), *member_value its value; NULL when absent. */
+static const char *find_member(const char *value, const char *name, size_t len,
+                               const char **member_value)
+{
+    const char *s = skip_space(value), *found = NULL;
+    if (*s != '{')
+        return NULL;
+    for (s = skip_space(s + 1); *s == '"'; s = skip_space(s + 1)) {
+        const char *key = s;
+        s = skip_space(skip_string(s));
+        if (*s != ':')
+            return found;
+        s = skip_space(s + 1);
+        if ((size_t)(s - key) >= len + 2 && strncmp(key + 1, name, len) == 0 && key[1 + len] == '"')
+            found = key, *member_value = s;
+        s = skip_space(skip_value(s));
+        if (*s != ',')
+            break;
+    }
+    return found;
+}
+
+/* The array at value: its element `index`, NULL when absent. */
+static const char *find_element(const char *value, long index)
+{
+    const char *s = skip_space(value);
+    if (*s != '[')
+        return NULL;
+    for (s = skip_space(s + 1); *s && *s != ']'; s = skip_space(s + 1)) {
+        if (index-- == 0)
+            return s;
+        s = skip_space(skip_value(s));
+        if (*s != ',')
+            break;
+    }
+    return NULL;
+}
+
+/* The line of a key path such as "camera.fov_y", "objects[1].obj" or "materials.my.gold.ior" (a
+ * name with dots: the longest run of components that is a member). Returns the line of the
+ * deepest component found, 0 when none (or no text). */
 static int key_line(const char *text, const char *path)
 {
     if (!text)
         return 0;
-    size_t from = 0;
-    int line = 0, skip = 0;
+    const char *value = skip_space(text);
+    int line = 0;
     while (*path) {
-        size_t len = strcspn(path, ".[");
-        long at = -1;
-        for (int i = 0; i <= skip; i++) {
-            at = find_key(text, from, path, len);
-            if (at < 0)
-                return line;
-            from = (size_t)at + len + 2;
+        size_t len = strcspn(path, "[."), try_len = len;
+        const char *key = NULL, *member_value = NULL;
+        while (try_len && !(key = find_member(value, path, try_len, &member_value)) &&
+               path[try_len] == '.')
+            try_len += 1 + strcspn(path + try_len + 1, "[.");
+        if (len && !key)
+            return line;
+        if (key) {
+            line = json_line_at(text, (size_t)(key - text));
+            value = member_value;
+            path += try_len;
         }
-        line = json_line_at(text, (size_t)at);
-        path += len;
-        skip = 0;
-        if (*path == '[') {
-            skip = atoi(path + 1);
+        while (*path == '[') {
+            value = find_element(value, strtol(path + 1, NULL, 10));
+            if (!value)
+                return line;
+            line = json_line_at(text, (size_t)(value - text));
             path += strcspn(path, "]");
             path += *path == ']';
         }
@@ -171,11 +243,11 @@ bool json_check_object(JsonParser *p, const cJSON *item, const char *path, const
         for (int i = 0; keys[i] && !known; i++)
             known = strcmp(child->string, keys[i]) == 0;
         if (!known) {
-            char list[256] = "";
+            char list[400] = "";
             for (int i = 0; keys[i]; i++)
                 snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "",
                          keys[i]);
-            return json_fail(p, ERR_JSON_UNKNOWN_KEY, key, "unknown key (known: %s)", list);
+            return json_fail(p, ERR_JSON_UNKNOWN_KEY, key, "unknown key (accepted: %s)", list);
         }
         for (const cJSON *other = item->child; other != child; other = other->next)
             if (strcmp(other->string, child->string) == 0)

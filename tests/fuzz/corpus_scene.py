@@ -60,6 +60,13 @@ def json_cases(rng):
         node["bogus_key"] = 1
         scene_case("unknown-key-%s" % (where or "root"), json.dumps(scene), "error",
                    needle="bogus_key")
+    # The message gives the unknown key's own line: the path is followed member by member
+    # (objects[2], not the first object with such a key), past strings holding quotes and braces.
+    lines = ['{', ' "objects": [', '  {"obj": "tri.obj", "smooth": true},',
+             '  {"obj": "tri.obj", "material": "a \\"{[b"},', '  {"obj": "tri.obj",',
+             '   "bogus_key": 1}', ' ],', ' "materials": {"a \\"{[b": {"type": "diffuse"}}', '}']
+    scene_case("unknown-key-line", "\n".join(lines) + "\n", "error",
+               needle="scene.json:6: objects[2].bogus_key: unknown key (accepted: ")
     scene_case("deep-array", '{"objects": ' + "[" * 20000 + "]" * 20000 + "}", "error")
     scene_case("deep-object", '{"camera": ' + '{"a":' * 5000 + "1" + "}" * 5000 + "}", "error")
     long_name = "d" * 5000 + ".obj"
