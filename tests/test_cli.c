@@ -14,54 +14,8 @@
 
 #include "app/cli.h"
 #include "scene/scene.h"
+#include "cli_run.h"
 #include "support.h"
-
-typedef struct {
-    int exit_code; /* -1 when killed by a signal */
-    char out[8192], err[8192];
-} Run;
-
-/* Runs pt with args (a shell fragment) in folder dir (NULL = here), with the environment
- * assignments env (a shell fragment such as "PT_LOCAL_SIZE=0"; NULL = none) added. */
-static Run run_pt_env(const char *dir, const char *env, const char *args)
-{
-    Run r;
-    memset(&r, 0, sizeof r);
-    char out_path[256], err_path[256];
-    snprintf(out_path, sizeof out_path, "/tmp/pt-cli-out-%d", (int)getpid());
-    snprintf(err_path, sizeof err_path, "/tmp/pt-cli-err-%d", (int)getpid());
-    size_t size = strlen(args) + (dir ? strlen(dir) : 0) + (env ? strlen(env) : 0) + PATH_MAX + 1100;
-    char *cmd = malloc(size);
-    cr_assert(cmd);
-    snprintf(cmd, size, "%s%s%s env %s '%s' %s >%s 2>%s", dir ? "cd '" : "", dir ? dir : "",
-             dir ? "' && " : "", env ? env : "", test_pt_bin(), args, out_path, err_path);
-    int status = system(cmd);
-    free(cmd);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    char *text = test_read_file(out_path, NULL);
-    snprintf(r.out, sizeof r.out, "%s", text ? text : "");
-    free(text);
-    text = test_read_file(err_path, NULL);
-    snprintf(r.err, sizeof r.err, "%s", text ? text : "");
-    free(text);
-    unlink(out_path), unlink(err_path);
-    return r;
-}
-
-static Run run_pt(const char *dir, const char *args) { return run_pt_env(dir, NULL, args); }
-
-/* One clear line: exit 1, stderr is a single "pt: ..." line containing every needle. */
-static void expect_clean_error(Run r, const char *what, const char *needle1, const char *needle2)
-{
-    cr_expect_eq(r.exit_code, 1, "%s: exit %d (stderr: %s)", what, r.exit_code, r.err);
-    cr_expect(strncmp(r.err, "pt: ", 4) == 0, "%s: stderr starts with 'pt: ': %s", what, r.err);
-    const char *newline = strchr(r.err, '\n');
-    cr_expect(newline && newline[1] == '\0', "%s: exactly one line: %s", what, r.err);
-    if (needle1)
-        cr_expect(strstr(r.err, needle1), "%s: '%s' not in: %s", what, needle1, r.err);
-    if (needle2)
-        cr_expect(strstr(r.err, needle2), "%s: '%s' not in: %s", what, needle2, r.err);
-}
 
 Test(cli, help_lists_the_commands)
 {
@@ -195,6 +149,8 @@ Test(cli, missing_gpu_is_named_as_missing, .timeout = 60)
         cr_skip_test("this machine has a GPU");
     Run r = run_pt(NULL, "render scenes/cornell-box --device gpu --quiet");
     expect_clean_error(r, "no GPU", "no GPU", "0:0");
+    /* ... with the hint that pt devices gives for a GPU whose driver is not registered. */
+    cr_expect(strstr(r.err, "OCL_ICD_VENDORS=/tmp/icd"), "no ICD hint in: %s", r.err);
     cr_expect(!strstr(r.err, "unknown device"), "%s", r.err);
 }
 

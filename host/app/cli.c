@@ -338,6 +338,11 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             return false;
         }
     }
+    /* (A scene's spp below --min-spp is the render's to refuse: the scene is not read yet.) */
+    if (o->min_spp && o->spp && o->min_spp > o->spp) {
+        error_set(err, ERR_USAGE, NULL, 0, "--min-spp %d is more than --spp %d", o->min_spp, o->spp);
+        return false;
+    }
     if ((o->command == CMD_RENDER || o->command == CMD_VIEW || o->command == CMD_BENCH) && !o->scene) {
         error_set(err, ERR_USAGE, NULL, 0, "'pt %s' needs a SCENE (a .json scene or an .obj)", cmd);
         return false;

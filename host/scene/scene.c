@@ -64,9 +64,30 @@ static void set_defaults(SceneDesc *d)
     d->environment_scale = 1.0f;
 }
 
+/* Scene and mesh formats of other tools that pt does not read: named as such, not reported as
+ * malformed JSON. */
+static bool refuse_foreign_format(const char *path, Error *err)
+{
+    static const char *const foreign[] = {".fbx", ".dae", ".3ds", ".blend", ".usd", ".usda",
+                                          ".usdc", ".usdz", ".stl", ".abc", ".x3d", ".wrl",
+                                          ".3mf", ".off", ".max", ".ma", ".mb", ".c4d", ".lwo",
+                                          ".dxf", ".step", ".stp", ".iges", ".igs", ".ifc", NULL};
+    for (int i = 0; foreign[i]; i++)
+        if (fs_has_suffix(path, foreign[i])) {
+            const char *dot = path + strlen(path) - strlen(foreign[i]);
+            error_set(err, ERR_FILE_READ, path, 0,
+                      "%s: pt does not read %s files; pt reads .json scenes, .obj, .ply, .gltf and "
+                      ".glb (export to one of them, e.g. glTF from Blender)", path, dot);
+            return true;
+        }
+    return false;
+}
+
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
 {
     set_defaults(out);
+    if (refuse_foreign_format(path, err))
+        return false;
     struct stat st;
     if (stat(path, &st) != 0) {
         ErrorCode code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
