@@ -133,14 +133,15 @@ Test(cli_options, bad_camera_json_names_the_key)
 }
 
 /* An absurdly small limit stops after the first window, at a whole sample: fewer spp than asked,
- * a valid image, exit status 0 (a time limit is what the user asked for, not an error). */
+ * a valid image, exit status 0 (a time limit is what the user asked for, not an error). Without
+ * the limit the render takes seconds, not hours: the test fails rather than hangs. */
 Test(cli_options, time_limit_stops_with_a_partial_image, .timeout = 120)
 {
     const char *dir = test_temp_dir();
     char out[600], args[800];
     snprintf(out, sizeof out, "%s/limited.exr", dir);
     snprintf(args, sizeof args,
-             "render scenes/cornell-box --width 32 --height 32 --spp 1000000 --time-limit 0.001 "
+             "render scenes/cornell-box --width 8 --height 8 --spp 200000 --time-limit 0.001 "
              "--device cpu --quiet -o '%s'", out);
     Run r = run_pt(NULL, args);
     cr_assert_eq(r.exit_code, 0, "%s", r.err);
@@ -148,14 +149,14 @@ Test(cli_options, time_limit_stops_with_a_partial_image, .timeout = 120)
     int done = 0, asked = 0;
     cr_assert(holds && sscanf(holds, "the image holds %d of %d spp", &done, &asked) == 2, "%s",
               r.err);
-    cr_expect(done >= 1 && done < asked && asked == 1000000, "%d of %d spp", done, asked);
+    cr_expect(done >= 1 && done < asked && asked == 200000, "%d of %d spp", done, asked);
     float *rgb = NULL;
     int width = 0, height = 0;
     Error err = {0};
     cr_assert(image_read_exr(out, &rgb, &width, &height, &err), "%s", err.message);
-    cr_assert(width == 32 && height == 32);
+    cr_assert(width == 8 && height == 8);
     double sum = 0.0;
-    for (int i = 0; i < 32 * 32 * RGB_CHANNELS; i++) {
+    for (int i = 0; i < 8 * 8 * RGB_CHANNELS; i++) {
         cr_assert(isfinite(rgb[i]) && rgb[i] >= 0.0f, "pixel value %d is %g", i, rgb[i]);
         sum += rgb[i];
     }
@@ -176,8 +177,8 @@ Test(cli_options, progress_lines_when_stderr_is_not_a_terminal, .timeout = 120)
     for (const char *next = first; (next = strstr(next + 1, "pt: progress: "));)
         last = next;
     int done = 0, spp = 0;
-    cr_expect(sscanf(first, "pt: progress: %d/%d spp", &done, &spp) == 2 && done >= 1 &&
-                  spp == 2, "%s", first);
+    cr_expect(sscanf(first, "pt: progress: %d/%d spp", &done, &spp) == 2 && done >= 0 &&
+                  done <= 2 && spp == 2, "%s", first);
     cr_expect(strncmp(last, "pt: progress: 2/2 spp (100.0%), ", 32) == 0, "last line: %s", last);
     char quiet[256];
     snprintf(quiet, sizeof quiet, "%s --quiet", render);
