@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 /* render_cmd.c: `pt render`: open the session, plan the outputs (never overwriting without -o),
- * render (path tracing or an AOV), write EXR and/or PNG, and report; SIGINT, SIGTERM and SIGHUP
- * stop the render and keep the image. */
+ * path-trace the beauty, run the AOV pass when asked (--aov), write the EXR (beauty, layers and
+ * metadata, app/render_output.h) and/or the PNG (the beauty alone), and report; SIGINT, SIGTERM
+ * and SIGHUP stop the render and keep the image, marked partial. */
 #include "app/render_cmd.h"
 
 #include <stdio.h>
@@ -12,9 +13,10 @@
 
 #include "app/render_loop.h"
 #include "app/stop_signals.h"
+#include "base/clock.h"
 #include "base/fs.h"
 #include "io/image_io.h"
-#include "render/aov.h"
+#include "app/render_output.h"
 #include "render/aov_layers.h"
 #include "render/session.h"
 #include "render/wavefront.h"
@@ -45,6 +47,13 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
                 snprintf(paths->png, sizeof paths->png, "%.*s.png", (int)strlen(o->output) - 4,
                          o->output);
         } else if (fs_has_suffix(o->output, ".png")) {
+            /* A PNG holds no layers: writing an EXR the user did not name would surprise. */
+            if (o->aov_mask) {
+                error_set(err, ERR_USAGE, NULL, 0,
+                          "--aov: AOV layers go into the EXR, and -o %s writes only a PNG: name "
+                          "an .exr (with --preview for the PNG too)", o->output);
+                return false;
+            }
             snprintf(paths->png, sizeof paths->png, "%s", o->output);
         } else {
             error_set(err, ERR_USAGE, NULL, 0, "-o %s: the output must end in .exr or .png", o->output);
@@ -136,53 +145,66 @@ int command_render(const Options *o)
 
     const SceneDesc *desc = &session.scene.desc;
     size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
-    float *rgb = malloc(num_pixels * 3 * sizeof *rgb);
-    if (!rgb)
+    RenderImages images;
+    /* The EXR's layers; without an EXR (-o x.png is refused above with --aov) none. */
+    if (!render_images_alloc(&images, out.exr[0] ? o->aov_mask : 0u, num_pixels))
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     int spp = desc->spp, spp_done = spp;
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
     fs_set_before_rename_hook(raise_at_write_point);
-    {
-        RenderSettings settings = {
-            .spp = desc->spp,
-            .max_depth = desc->max_depth,
-            .seed = seed,
-            .no_nee = o->no_nee,
-            .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
-            .no_compaction = o->no_compaction,
-            .profile = o->profile,
-            .clamp_indirect = o->clamp_max,
-            .noise_threshold = o->noise_threshold,
-            .min_spp = o->min_spp,
-            .moments = o->noise_threshold > 0.0f || (o->aov_mask & AOV_MASK(AOV_LAYER_VARIANCE)),
-        };
-        RenderStats stats;
-        if (!render_loop_run(&session, &settings, progress_style(o), rgb, &stats, &err))
-            die("%s", err.message);
-        report_render(o, &stats);
-        spp_done = stats.spp_done;
-        if (stats.paths == 0) {
-            fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
-                    stop_signal_name(stop_signal_received()));
-            free(rgb);
-            session_close(&session);
-            return stop_exit_status();
-        }
+    RenderSettings settings = {
+        .spp = desc->spp,
+        .max_depth = desc->max_depth,
+        .seed = seed,
+        .no_nee = o->no_nee,
+        .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
+        .no_compaction = o->no_compaction,
+        .profile = o->profile,
+        .clamp_indirect = o->clamp_max,
+        .noise_threshold = o->noise_threshold,
+        .min_spp = o->min_spp,
+        .moments = o->noise_threshold > 0.0f || (images.mask & AOV_MASK(AOV_LAYER_VARIANCE)),
+    };
+    RenderStats stats;
+    if (!render_loop_run(&session, &settings, progress_style(o), &images, &stats, &err))
+        die("%s", err.message);
+    report_render(o, &stats);
+    spp_done = stats.spp_done;
+    if (stats.paths == 0) {
+        fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
+                stop_signal_name(stop_signal_received()));
+        render_images_free(&images);
+        session_close(&session);
+        return stop_exit_status();
     }
+    /* After the beauty, from its own camera samples: the beauty's bits cannot depend on it. */
+    double aov_start = seconds_now();
+    if (!render_images_aov_pass(&images, &session, &settings, spp_done, &err))
+        die("%s", err.message);
+    if (!o->quiet && (images.mask & (AOV_MASK(AOV_LAYER_ALBEDO) | AOV_MASK(AOV_LAYER_NORMAL) |
+                                     AOV_MASK(AOV_LAYER_DEPTH))))
+        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_pass_spp(spp_done),
+                seconds_now() - aov_start);
 
     if (out.exr[0]) {
-        if (!image_write_exr(out.exr, rgb, desc->width, desc->height, &err))
+        RenderRecord record = {.spp_done = spp_done,
+                               .spp_requested = spp,
+                               .seed = seed,
+                               .render_seconds = stats.seconds,
+                               .scene = o->scene,
+                               .partial = spp_done < spp};
+        if (!render_write_exr(out.exr, &images, &session, &record, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
-        if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
+        if (!image_write_png(out.png, images.rgb, desc->width, desc->height, o->exposure, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }
-    free(rgb);
+    render_images_free(&images);
     session_close(&session);
     if (stop_signal_received())
         fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",

@@ -27,7 +27,7 @@ static void print_progress(ProgressStyle style, int spp_done, int spp, uint64_t 
 }
 
 bool render_loop_run(Session *session, const RenderSettings *settings, ProgressStyle progress,
-                     float *rgb, RenderStats *stats, Error *err)
+                     RenderImages *images, RenderStats *stats, Error *err)
 {
     Wavefront *w = wavefront_create(&session->dev, &session->scene, &session->buffers, settings, err);
     if (!w)
@@ -54,7 +54,8 @@ bool render_loop_run(Session *session, const RenderSettings *settings, ProgressS
     if (stop_signal_received())
         fprintf(stderr, "pt: %s received: stopping with %d spp done\n",
                 stop_signal_name(stop_signal_received()), wavefront_spp_done(w));
-    wavefront_read_film(w, rgb);
+    wavefront_read_film(w, images->rgb);
+    render_images_read_film(images, w);
     *stats = *wavefront_stats(w);
     wavefront_destroy(w);
     return true;

@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 
+#include "app/render_output.h"
 #include "render/session.h"
 #include "render/wavefront.h"
 
@@ -16,8 +17,9 @@ typedef enum {
                         * and one at the end: "pt: progress: D/N spp (P%), S s" */
 } ProgressStyle;
 
-/* Renders into rgb (the mean of the samples so far per pixel); stats->spp_done says how many. */
+/* Renders into images->rgb (the mean of the samples so far per pixel) and the film's layers
+ * (render_images_read_film); stats->spp_done says how many. */
 bool render_loop_run(Session *session, const RenderSettings *settings, ProgressStyle progress,
-                     float *rgb, RenderStats *stats, Error *err);
+                     RenderImages *images, RenderStats *stats, Error *err);
 
 #endif
