@@ -47,13 +47,6 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
                 snprintf(paths->png, sizeof paths->png, "%.*s.png", (int)strlen(o->output) - 4,
                          o->output);
         } else if (fs_has_suffix(o->output, ".png")) {
-            /* A PNG holds no layers: writing an EXR the user did not name would surprise. */
-            if (o->aov_mask) {
-                error_set(err, ERR_USAGE, NULL, 0,
-                          "--aov: AOV layers go into the EXR, and -o %s writes only a PNG: name "
-                          "an .exr (with --preview for the PNG too)", o->output);
-                return false;
-            }
             snprintf(paths->png, sizeof paths->png, "%s", o->output);
         } else {
             error_set(err, ERR_USAGE, NULL, 0, "-o %s: the output must end in .exr or .png", o->output);
@@ -88,6 +81,19 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
         return false;
     if (paths->png[0] && !fs_check_writable(paths->png, err))
         return false;
+    return true;
+}
+
+/* A PNG holds no layers, and writing an EXR the user did not name would surprise: -o X.png with
+ * --aov is refused before anything is loaded. */
+static bool check_aov_output(const Options *o, Error *err)
+{
+    if (o->aov_mask && o->output && fs_has_suffix(o->output, ".png")) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "--aov: AOV layers go into the EXR, and -o %s writes only a PNG: name an .exr "
+                  "(with --preview for the PNG too)", o->output);
+        return false;
+    }
     return true;
 }
 
@@ -135,7 +141,8 @@ int command_render(const Options *o)
     Error err = {0};
     Session session;
     RenderDesc render = cli_render_desc(o);
-    if (!stop_signals_configure(&err) || !session_open(&session, &render, &err))
+    if (!check_aov_output(o, &err) || !stop_signals_configure(&err) ||
+        !session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
     if (!plan_outputs(o, "", &out, &err))
@@ -146,8 +153,7 @@ int command_render(const Options *o)
     const SceneDesc *desc = &session.scene.desc;
     size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
     RenderImages images;
-    /* The EXR's layers; without an EXR (-o x.png is refused above with --aov) none. */
-    if (!render_images_alloc(&images, out.exr[0] ? o->aov_mask : 0u, num_pixels))
+    if (!render_images_alloc(&images, o->aov_mask, num_pixels))
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     int spp = desc->spp, spp_done = spp;
