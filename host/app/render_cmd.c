@@ -213,7 +213,8 @@ int command_render(const Options *o)
     render_images_free(&images);
     session_close(&session);
     if (stop_signal_received())
-        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",
-                stop_signal_name(stop_signal_received()), spp_done, spp);
+        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp%s\n",
+                stop_signal_name(stop_signal_received()), spp_done, spp,
+                spp_done < spp && out.exr[0] ? " (its EXR header says partial = 1)" : "");
     return stop_exit_status();
 }

@@ -26,12 +26,13 @@ void render_images_free(RenderImages *images);
 /* The film's layers (spp, variance), read before the wavefront is released. */
 void render_images_read_film(RenderImages *images, Wavefront *w);
 
-/* Runs the AOV pass for the albedo, normal and depth layers held, over the first samples of the
- * render's (at most AOV_PASS_MAX_SPP of spp_done, at least 1). */
+/* Runs the AOV pass for the albedo, normal and depth layers held, over the first aov_pass_spp
+ * samples of the render's camera samples. */
 bool render_images_aov_pass(RenderImages *images, Session *session, const RenderSettings *settings,
                             int spp_done, Error *err);
 
-/* The samples the AOV pass takes of a render holding spp_done per pixel. */
+/* The samples the AOV pass takes of a render holding spp_done per pixel: a quarter, at least 1,
+ * at most 16 (render_output.c says why). */
 int aov_pass_spp(int spp_done);
 
 /* The metadata of the EXR header. */
