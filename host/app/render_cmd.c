@@ -12,11 +12,11 @@
 #include <unistd.h>
 
 #include "app/render_loop.h"
+#include "app/render_output.h"
 #include "app/stop_signals.h"
 #include "base/clock.h"
 #include "base/fs.h"
 #include "io/image_io.h"
-#include "app/render_output.h"
 #include "render/aov_layers.h"
 #include "render/session.h"
 #include "render/wavefront.h"

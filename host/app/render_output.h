@@ -44,9 +44,10 @@ typedef struct {
     bool partial;             /* fewer samples than asked (a stop signal or a time limit) */
 } RenderRecord;
 
-/* Writes the EXR: beauty, layers, and the header attributes spp, spp_requested, seed (a string:
- * the full unsigned range), render_time (float seconds), devices, pt_version, scene, camera (the
- * JSON object `--camera` takes) and partial (int 1/0). */
+/* Writes the EXR: beauty, layers (every channel 32-bit float, the spp counts too: what Blender's
+ * compositor reads best; exact up to 2^24 samples) and the header attributes spp, spp_requested,
+ * seed (a string: the full unsigned range), render_time (float seconds of path tracing), devices,
+ * pt_version, scene, camera (the JSON object `--camera` takes) and partial (int 1/0). */
 bool render_write_exr(const char *path, const RenderImages *images, const Session *session,
                       const RenderRecord *record, Error *err);
 
