@@ -4,7 +4,9 @@
  * whose stderr the test reads; signals are sent only after an event (the first "pt: progress:"
  * line of --progress, i.e. a window is done) or raised by pt itself at a named point
  * (PT_TEST_RAISE), never after a sleep. The renders ask for far more samples than they can finish,
- * so a signal sent after the event always finds the render running. */
+ * so a signal sent after the event always finds the render running. The EXR of an interrupted
+ * render says so in its header (partial = 1, spp = the samples it holds, read back with OpenEXR's
+ * C API). */
 #define _XOPEN_SOURCE 700 /* realpath, mkdtemp */
 #include <criterion/criterion.h>
 #include <dirent.h>
@@ -16,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "exr_inspect.h"
 #include "io/image_io.h"
 #include "support.h"
 
@@ -149,6 +152,24 @@ static int expect_stopped_message(const Child *c, const char *name, int at_least
     return held;
 }
 
+/* The EXR's header: partial as expected, spp = the samples held (as pt said), spp_requested; with
+ * the spp layer, every pixel holds at least that many samples. */
+static void expect_header(const Child *c, int partial, int held, int requested, bool spp_layer)
+{
+    ExrInspect f;
+    exr_inspect_open(&f, c->output);
+    cr_expect_eq(exr_inspect_int(&f, "partial"), partial, "stderr:\n%s", c->log);
+    cr_expect_eq(exr_inspect_int(&f, "spp"), held);
+    cr_expect_eq(exr_inspect_int(&f, "spp_requested"), requested);
+    if (spp_layer) {
+        float *spp = exr_inspect_channel(&f, "spp.Y");
+        for (int i = 0; i < f.width * f.height; i++)
+            cr_expect_geq(spp[i], (float)held, "spp.Y[%d] = %g", i, spp[i]);
+        free(spp);
+    }
+    exr_inspect_close(&f);
+}
+
 static void signal_after_first_window(int signal_number, int count, const char *name, int status)
 {
     Child c;
@@ -159,7 +180,8 @@ static void signal_after_first_window(int signal_number, int count, const char *
     for (int i = 0; i < count; i++)
         cr_assert_eq(kill(c.pid, signal_number), 0);
     cr_expect_eq(finish(&c), status, "stderr:\n%s", c.log);
-    expect_stopped_message(&c, name, done, atoi(ENDLESS_SPP));
+    int held = expect_stopped_message(&c, name, done, atoi(ENDLESS_SPP));
+    expect_header(&c, 1, held, atoi(ENDLESS_SPP), false);
     expect_image_and_no_temporary_file(&c);
 }
 
@@ -200,14 +222,46 @@ Test(signals, sighup_keeps_the_image, .timeout = 300)
     signal_after_first_window(SIGHUP, 1, "SIGHUP", 129);
 }
 
-/* A signal during an AOV render: the AOV is finished and written. */
-Test(signals, sigint_during_aov_writes_the_aov, .timeout = 300)
+/* SIGINT or SIGTERM raised by pt itself right after its first window (no timing involved), with
+ * every AOV asked for: the AOV pass still runs on what is held, the file has every layer, and the
+ * header says partial with the samples held, fewer than asked. */
+static void raise_mid_render_with_aovs(const char *env, const char *name, int status)
+{
+    Child c;
+    const char *extra[] = {"--aov", "all", "--spp", ENDLESS_SPP, NULL};
+    start_pt(&c, env, 0, extra);
+    cr_expect_eq(finish(&c), status, "stderr:\n%s", c.log);
+    int held = expect_stopped_message(&c, name, 1, atoi(ENDLESS_SPP));
+    cr_expect_lt(held, atoi(ENDLESS_SPP));
+    expect_header(&c, 1, held, atoi(ENDLESS_SPP), true);
+    ExrInspect f;
+    exr_inspect_open(&f, c.output);
+    cr_expect_eq(f.channel_count, 14, "beauty and every layer's channels");
+    cr_expect_geq(exr_inspect_find(&f, "albedo.R"), 0);
+    exr_inspect_close(&f);
+    expect_image_and_no_temporary_file(&c);
+}
+
+Test(signals, sigint_mid_render_writes_every_layer_marked_partial, .timeout = 300)
+{
+    raise_mid_render_with_aovs("PT_TEST_RAISE=INT@render", "SIGINT", 130);
+}
+
+Test(signals, sigterm_mid_render_writes_every_layer_marked_partial, .timeout = 300)
+{
+    raise_mid_render_with_aovs("PT_TEST_RAISE=TERM@render", "SIGTERM", 143);
+}
+
+/* A signal once every sample is done (the first window holds all 4): the image is whole, so not
+ * partial, though the exit status still reports the signal. */
+Test(signals, signal_after_the_last_sample_is_not_partial, .timeout = 300)
 {
     Child c;
     const char *extra[] = {"--aov", "albedo", "--spp", "4", NULL};
     start_pt(&c, "PT_TEST_RAISE=SIGINT@render", 0, extra);
     cr_expect_eq(finish(&c), 130, "stderr:\n%s", c.log);
     expect_stopped_message(&c, "SIGINT", 4, 4);
+    expect_header(&c, 0, 4, 4, false);
     expect_image_and_no_temporary_file(&c);
 }
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 /* render_cmd.c: `pt render`: open the session, plan the outputs (never overwriting without -o),
- * render (path tracing or an AOV), write EXR and/or PNG, and report; SIGINT, SIGTERM and SIGHUP
- * stop the render and keep the image. */
+ * path-trace the beauty, run the AOV pass when asked (--aov), write the EXR (beauty, layers and
+ * metadata, app/render_output.h) and/or the PNG (the beauty alone), and report; SIGINT, SIGTERM
+ * and SIGHUP stop the render and keep the image, marked partial. */
 #include "app/render_cmd.h"
 
 #include <stdio.h>
@@ -11,10 +12,11 @@
 #include <unistd.h>
 
 #include "app/render_loop.h"
+#include "app/render_output.h"
 #include "app/stop_signals.h"
+#include "base/clock.h"
 #include "base/fs.h"
 #include "io/image_io.h"
-#include "render/aov.h"
 #include "render/aov_layers.h"
 #include "render/session.h"
 #include "render/wavefront.h"
@@ -82,6 +84,19 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
     return true;
 }
 
+/* A PNG holds no layers, and writing an EXR the user did not name would surprise: -o X.png with
+ * --aov is refused before anything is loaded. */
+static bool check_aov_output(const Options *o, Error *err)
+{
+    if (o->aov_mask && o->output && fs_has_suffix(o->output, ".png")) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "--aov: AOV layers go into the EXR, and -o %s writes only a PNG: name an .exr "
+                  "(with --preview for the PNG too)", o->output);
+        return false;
+    }
+    return true;
+}
+
 /* PT_TEST_RAISE=SIGNAL@write raises its signal between a temporary file and its rename. */
 static void raise_at_write_point(void) { stop_signals_test_point("write"); }
 
@@ -124,7 +139,8 @@ int command_render(const Options *o)
     Error err = {0};
     Session session;
     RenderDesc render = cli_render_desc(o);
-    if (!stop_signals_configure(&err) || !session_open(&session, &render, &err))
+    if (!check_aov_output(o, &err) || !stop_signals_configure(&err) ||
+        !session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
     if (!plan_outputs(o, "", &out, &err))
@@ -134,8 +150,8 @@ int command_render(const Options *o)
 
     const SceneDesc *desc = &session.scene.desc;
     size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
-    float *rgb = malloc(num_pixels * 3 * sizeof *rgb);
-    if (!rgb)
+    RenderImages images;
+    if (!render_images_alloc(&images, o->aov_mask, num_pixels))
         die("out of memory for a %dx%d film", desc->width, desc->height);
     unsigned seed = o->seed_given ? o->seed : 0u;
     int spp = desc->spp, spp_done = spp;
@@ -143,52 +159,65 @@ int command_render(const Options *o)
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
     fs_set_before_rename_hook(raise_at_write_point);
-    {
-        RenderSettings settings = {
-            .spp = desc->spp,
-            .max_depth = desc->max_depth,
-            .seed = seed,
-            .no_nee = o->no_nee,
-            .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
-            .no_compaction = o->no_compaction,
-            .profile = o->profile,
-            .clamp_indirect = o->clamp_max,
-            .noise_threshold = o->noise_threshold,
-            .min_spp = o->min_spp,
-            .moments = o->noise_threshold > 0.0f || (o->aov_mask & AOV_MASK(AOV_LAYER_VARIANCE)),
-        };
-        RenderStats stats;
-        RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
-        if (!render_loop_run(&session, &settings, &loop, rgb, &stats, &stop, &err))
-            die("%s", err.message);
-        report_render(o, &stats);
-        spp_done = stats.spp_done;
-        if (stats.paths == 0) {
-            fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
-                    stop_signal_name(stop_signal_received()));
-            free(rgb);
-            session_close(&session);
-            return stop_exit_status();
-        }
+    RenderSettings settings = {
+        .spp = desc->spp,
+        .max_depth = desc->max_depth,
+        .seed = seed,
+        .no_nee = o->no_nee,
+        .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
+        .no_compaction = o->no_compaction,
+        .profile = o->profile,
+        .clamp_indirect = o->clamp_max,
+        .noise_threshold = o->noise_threshold,
+        .min_spp = o->min_spp,
+        .moments = o->noise_threshold > 0.0f || (images.mask & AOV_MASK(AOV_LAYER_VARIANCE)),
+    };
+    RenderStats stats;
+    RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
+    if (!render_loop_run(&session, &settings, &loop, &images, &stats, &stop, &err))
+        die("%s", err.message);
+    report_render(o, &stats);
+    spp_done = stats.spp_done;
+    if (stats.paths == 0) {
+        fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
+                stop_signal_name(stop_signal_received()));
+        render_images_free(&images);
+        session_close(&session);
+        return stop_exit_status();
     }
+    /* After the beauty, from its own camera samples: the beauty's bits cannot depend on it. */
+    double aov_start = seconds_now();
+    if (!render_images_aov_pass(&images, &session, &settings, spp_done, &err))
+        die("%s", err.message);
+    if (!o->quiet && (images.mask & (AOV_MASK(AOV_LAYER_ALBEDO) | AOV_MASK(AOV_LAYER_NORMAL) |
+                                     AOV_MASK(AOV_LAYER_DEPTH))))
+        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_pass_spp(spp_done),
+                seconds_now() - aov_start);
 
     if (out.exr[0]) {
-        if (!image_write_exr(out.exr, rgb, desc->width, desc->height, &err))
+        RenderRecord record = {.spp_done = spp_done,
+                               .spp_requested = spp,
+                               .seed = seed,
+                               .render_seconds = stats.seconds,
+                               .scene = o->scene,
+                               .partial = spp_done < spp};
+        if (!render_write_exr(out.exr, &images, &session, &record, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
-        if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
+        if (!image_write_png(out.png, images.rgb, desc->width, desc->height, o->exposure, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }
-    free(rgb);
+    render_images_free(&images);
     session_close(&session);
     if (stop_signal_received())
-        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp\n",
-                stop_signal_name(stop_signal_received()), spp_done, spp);
+        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp%s\n",
+                stop_signal_name(stop_signal_received()), spp_done, spp,
+                spp_done < spp && out.exr[0] ? " (its EXR header says partial = 1)" : "");
     else if (stop == RENDER_STOPPED_BY_TIME_LIMIT)
-        fprintf(stderr, "pt: stopped by the time limit: the image holds %d of %d spp\n", spp_done,
-                spp);
+        fprintf(stderr, "pt: stopped by the time limit: the image holds %d of %d spp%s\n", spp_done,
+                spp, out.exr[0] ? " (its EXR header says partial = 1)" : "");
     return stop_exit_status(); /* 0 after a time limit: the render the user asked for */
 }

@@ -46,7 +46,7 @@ static void print_progress(ProgressStyle style, int spp_done, int spp, uint64_t 
 }
 
 bool render_loop_run(Session *session, const RenderSettings *settings, const RenderLoopDesc *desc,
-                     float *rgb, RenderStats *stats, RenderStop *stop, Error *err)
+                     RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err)
 {
     Wavefront *w = wavefront_create(&session->dev, &session->scene, &session->buffers, settings, err);
     if (!w)
@@ -92,7 +92,8 @@ bool render_loop_run(Session *session, const RenderSettings *settings, const Ren
         fprintf(stderr, "pt: time limit of %g s reached: stopping with %d of %d spp done\n",
                 desc->time_limit, wavefront_spp_done(w), settings->spp);
     }
-    wavefront_read_film(w, rgb);
+    wavefront_read_film(w, images->rgb);
+    render_images_read_film(images, w);
     *stats = *wavefront_stats(w);
     wavefront_destroy(w);
     return true;

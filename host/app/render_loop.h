@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 
+#include "app/render_output.h"
 #include "render/session.h"
 #include "render/wavefront.h"
 
@@ -37,9 +38,9 @@ typedef enum {
     RENDER_STOPPED_BY_TIME_LIMIT, /* --time-limit passed; the image holds whole samples */
 } RenderStop;
 
-/* Renders into rgb (the mean of the samples so far per pixel); stats->spp_done says how many and
- * *stop why the loop ended. */
+/* Renders into images->rgb (the mean of the samples so far per pixel) and the film's layers
+ * (render_images_read_film); stats->spp_done says how many and *stop why the loop ended. */
 bool render_loop_run(Session *session, const RenderSettings *settings, const RenderLoopDesc *desc,
-                     float *rgb, RenderStats *stats, RenderStop *stop, Error *err);
+                     RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err);
 
 #endif

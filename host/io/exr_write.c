@@ -1,25 +1,100 @@
 // SPDX-License-Identifier: MIT
 /* exr_write.c: film output through OpenEXR's C API (OpenEXRCore) as single-part scanline images
- * with 32-bit float channels R, G, B and ZIP compression: lossless, so renders and reference
- * images round-trip bit-exactly, and every EXR reader supports it. ZIP deflates 16-line blocks,
- * which beats ZIPS's single lines on smooth images (40% vs 52% of raw on the Kerner HDR photo); on
- * noisy 32-bit renders no lossless codec saves more than a few percent. */
+ * with 32-bit float channels and ZIP compression: lossless, so renders and reference images
+ * round-trip bit-exactly, and every EXR reader supports it. ZIP deflates 16-line blocks, which
+ * beats ZIPS's single lines on smooth images (40% vs 52% of raw on the Kerner HDR photo); on noisy
+ * 32-bit renders no lossless codec saves more than a few percent. The beauty is R, G, B; each
+ * layer adds "<layer>.<letter>" channels (OpenEXR keeps the channel list sorted by name, so the
+ * file lists them alphabetically); attributes go into the header. */
 #include "io/image_io.h"
 
 #include <limits.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/fs.h"
 #include "io/exr_common.h"
 #include "io/image_write.h"
 
-/* Defines the header: one scanline part, data window = display window = the whole image. */
-static bool exr_define_header(exr_context_t ctxt, int *part, int width, int height,
+/* Longer names are legal in OpenEXR 2+, but 31 bytes keeps the file readable by OpenEXR 1.x. */
+#define EXR_CHANNEL_NAME_MAX 32
+
+/* Where one channel's values are: pixels[stride * pixel]. */
+typedef struct {
+    char name[EXR_CHANNEL_NAME_MAX];
+    const float *pixels;
+    int stride;
+} ChannelSource;
+
+/* The beauty's R, G, B and every layer's channels; false (ERR_OUTPUT) for a name that is empty,
+ * too long or lacks its pixels. *sources is malloc'ed. */
+static bool collect_channels(const ExrImage *image, const char *path, ChannelSource **sources,
+                             int *count, Error *err)
+{
+    int total = RGB_CHANNELS;
+    for (int l = 0; l < image->layer_count; l++)
+        total += (int)strlen(image->layers[l].channels ? image->layers[l].channels : "");
+    *sources = calloc((size_t)total, sizeof **sources);
+    if (!*sources) {
+        error_set(err, ERR_OUTPUT, path, 0, "%s: out of memory for %d channels", path, total);
+        return false;
+    }
+    static const char *const beauty[RGB_CHANNELS] = {"R", "G", "B"};
+    int n = 0;
+    for (int c = 0; c < RGB_CHANNELS; c++, n++) {
+        (*sources)[n] = (ChannelSource){.pixels = image->rgb + c, .stride = RGB_CHANNELS};
+        snprintf((*sources)[n].name, EXR_CHANNEL_NAME_MAX, "%s", beauty[c]);
+    }
+    for (int l = 0; l < image->layer_count; l++) {
+        const ImageLayer *layer = &image->layers[l];
+        const char *letters = layer->channels ? layer->channels : "";
+        int stride = (int)strlen(letters);
+        if (!layer->name || !layer->name[0] || !layer->pixels || stride == 0 ||
+            strlen(layer->name) + 2 >= EXR_CHANNEL_NAME_MAX) {
+            error_set(err, ERR_OUTPUT, path, 0, "%s: layer %d ('%s') has no name, channels or pixels",
+                      path, l, layer->name ? layer->name : "");
+            free(*sources);
+            return false;
+        }
+        for (int c = 0; c < stride; c++, n++) {
+            (*sources)[n] = (ChannelSource){.pixels = layer->pixels + c, .stride = stride};
+            snprintf((*sources)[n].name, EXR_CHANNEL_NAME_MAX, "%s.%c", layer->name, letters[c]);
+        }
+    }
+    *count = n;
+    return true;
+}
+
+static bool exr_set_attribute(exr_context_t ctxt, int part, const ImageAttribute *a,
                               const char *path, Error *err)
 {
-    static const char *const channel_names[RGB_CHANNELS] = {"R", "G", "B"};
-    exr_attr_box2i_t window = {.min = {.x = 0, .y = 0}, .max = {.x = width - 1, .y = height - 1}};
+    exr_result_t result;
+    switch (a->type) {
+    case IMAGE_ATTR_INT:
+        result = exr_attr_set_int(ctxt, part, a->name, a->int_value);
+        break;
+    case IMAGE_ATTR_FLOAT:
+        result = exr_attr_set_float(ctxt, part, a->name, a->float_value);
+        break;
+    default:
+        result = exr_attr_set_string(ctxt, part, a->name, a->string_value ? a->string_value : "");
+        break;
+    }
+    char step[128];
+    snprintf(step, sizeof step, "setting header attribute '%s'", a->name);
+    return exr_ok(result, step, path, ERR_OUTPUT, err);
+}
+
+/* Defines the header: one scanline part, data window = display window = the whole image, the
+ * channels and the attributes. */
+static bool exr_define_header(exr_context_t ctxt, int *part, const ExrImage *image,
+                              const ChannelSource *sources, int channel_count, const char *path,
+                              Error *err)
+{
+    exr_attr_box2i_t window = {.min = {.x = 0, .y = 0},
+                               .max = {.x = image->width - 1, .y = image->height - 1}};
     exr_attr_v2f_t screen_center = {.x = 0.0f, .y = 0.0f};
     if (!exr_ok(exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, part), "exr_add_part", path,
                 ERR_OUTPUT, err) ||
@@ -30,41 +105,55 @@ static bool exr_define_header(exr_context_t ctxt, int *part, int width, int heig
         !exr_ok(exr_set_compression(ctxt, *part, EXR_COMPRESSION_ZIP), "exr_set_compression",
                 path, ERR_OUTPUT, err))
         return false;
-    for (int c = 0; c < RGB_CHANNELS; c++) {
+    for (int c = 0; c < channel_count; c++) {
         /* Perceptual treatment only matters to the lossy B44 codecs. */
-        if (!exr_ok(exr_add_channel(ctxt, *part, channel_names[c], EXR_PIXEL_FLOAT,
+        if (!exr_ok(exr_add_channel(ctxt, *part, sources[c].name, EXR_PIXEL_FLOAT,
                                     EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1),
                     "exr_add_channel", path, ERR_OUTPUT, err))
             return false;
     }
+    for (int a = 0; a < image->attribute_count; a++)
+        if (!exr_set_attribute(ctxt, *part, &image->attributes[a], path, err))
+            return false;
     return exr_ok(exr_write_header(ctxt), "exr_write_header", path, ERR_OUTPUT, err);
 }
 
 /* Copies the chunk's lines into one plane per channel, non-finite values replaced by 0: this is
  * the last guard before the file, and planar input is the encoder's fast path. */
-static void fill_chunk_planes(float *planes, size_t plane_size, const float *rgb, int width,
-                              int first_line, int line_count)
+static void fill_chunk_planes(float *planes, size_t plane_size, const ChannelSource *sources,
+                              int channel_count, int width, int first_line, int line_count)
 {
-    for (int line = 0; line < line_count; line++) {
-        const float *row = rgb + ((size_t)(first_line + line) * (size_t)width) * RGB_CHANNELS;
-        for (int x = 0; x < width; x++) {
-            size_t pixel = (size_t)line * (size_t)width + (size_t)x;
-            for (int c = 0; c < RGB_CHANNELS; c++)
-                planes[c * plane_size + pixel] = image_finite_or_zero(row[x * RGB_CHANNELS + c]);
+    for (int c = 0; c < channel_count; c++) {
+        const ChannelSource *source = &sources[c];
+        for (int line = 0; line < line_count; line++) {
+            size_t row = (size_t)(first_line + line) * (size_t)width;
+            float *plane = planes + (size_t)c * plane_size + (size_t)line * (size_t)width;
+            for (int x = 0; x < width; x++)
+                plane[x] = image_finite_or_zero(
+                    source->pixels[(row + (size_t)x) * (size_t)source->stride]);
         }
     }
 }
 
-/* Encodes and writes every scanline chunk of part 0. */
-static bool exr_write_chunks(exr_context_t ctxt, int part, const float *rgb, int width, int height,
-                             const char *path, Error *err)
+static int channel_source_index(const ChannelSource *sources, int channel_count, const char *name)
+{
+    for (int c = 0; c < channel_count; c++)
+        if (!strcmp(sources[c].name, name))
+            return c;
+    return -1;
+}
+
+/* Encodes and writes every scanline chunk of the part. */
+static bool exr_write_chunks(exr_context_t ctxt, int part, const ChannelSource *sources,
+                             int channel_count, int width, int height, const char *path,
+                             Error *err)
 {
     int32_t lines_per_chunk = 0;
     if (!exr_ok(exr_get_scanlines_per_chunk(ctxt, part, &lines_per_chunk),
                 "exr_get_scanlines_per_chunk", path, ERR_OUTPUT, err))
         return false;
     size_t plane_size = (size_t)width * (size_t)lines_per_chunk;
-    float *planes = malloc(plane_size * RGB_CHANNELS * sizeof *planes);
+    float *planes = malloc(plane_size * (size_t)channel_count * sizeof *planes);
     if (!planes) {
         error_set(err, ERR_OUTPUT, path, 0, "%s: out of memory for a %dx%d chunk", path, width,
                   lines_per_chunk);
@@ -88,10 +177,17 @@ static bool exr_write_chunks(exr_context_t ctxt, int part, const float *rgb, int
         }
         if (!ok)
             break;
-        fill_chunk_planes(planes, plane_size, rgb, width, chunk.start_y, chunk.height);
-        for (int i = 0; i < encoder.channel_count; i++) {
+        fill_chunk_planes(planes, plane_size, sources, channel_count, width, chunk.start_y,
+                          chunk.height);
+        for (int i = 0; ok && i < encoder.channel_count; i++) {
             exr_coding_channel_info_t *channel = &encoder.channels[i];
-            int c = exr_rgb_index(channel->channel_name);
+            int c = channel_source_index(sources, channel_count, channel->channel_name);
+            if (c < 0) {
+                error_set(err, ERR_OUTPUT, path, 0, "%s: the encoder lists channel '%s', which "
+                          "was never added", path, channel->channel_name);
+                ok = false;
+                break;
+            }
             channel->encode_from_ptr = (const uint8_t *)(planes + (size_t)c * plane_size);
             channel->user_pixel_stride = (int32_t)sizeof(float);
             channel->user_line_stride = (int32_t)(sizeof(float) * (size_t)width);
@@ -99,7 +195,7 @@ static bool exr_write_chunks(exr_context_t ctxt, int part, const float *rgb, int
             channel->user_data_type = EXR_PIXEL_FLOAT;
         }
         /* The pack routine depends only on the channel layout, the same for every chunk. */
-        if (first_chunk)
+        if (ok && first_chunk)
             ok = exr_ok(exr_encoding_choose_default_routines(ctxt, part, &encoder),
                         "exr_encoding_choose_default_routines", path, ERR_OUTPUT, err);
         ok = ok && exr_ok(exr_encoding_run(ctxt, part, &encoder), "exr_encoding_run", path,
@@ -112,8 +208,8 @@ static bool exr_write_chunks(exr_context_t ctxt, int part, const float *rgb, int
     return ok;
 }
 
-static bool exr_write_file(const char *temp, const char *path, const float *rgb, int width,
-                           int height, Error *err)
+static bool exr_write_file(const char *temp, const char *path, const ExrImage *image,
+                           const ChannelSource *sources, int channel_count, Error *err)
 {
     exr_context_initializer_t init = exr_quiet_initializer();
     exr_context_t ctxt = NULL;
@@ -121,20 +217,33 @@ static bool exr_write_file(const char *temp, const char *path, const float *rgb,
     bool ok = exr_ok(exr_start_write(&ctxt, temp, EXR_WRITE_FILE_DIRECTLY, &init),
                      "exr_start_write", path, ERR_OUTPUT, err);
     int part = 0;
-    ok = ok && exr_define_header(ctxt, &part, width, height, path, err);
-    ok = ok && exr_write_chunks(ctxt, part, rgb, width, height, path, err);
+    ok = ok && exr_define_header(ctxt, &part, image, sources, channel_count, path, err);
+    ok = ok && exr_write_chunks(ctxt, part, sources, channel_count, image->width, image->height,
+                                path, err);
     /* exr_finish writes the chunk offset table, so its result decides whether the file is whole. */
     if (ctxt && !exr_ok(exr_finish(&ctxt), "exr_finish", path, ERR_OUTPUT, err))
         ok = false;
     return ok;
 }
 
-bool image_write_exr(const char *path, const float *rgb, int width, int height, Error *err)
+bool image_write_exr_layers(const char *path, const ExrImage *image, Error *err)
 {
-    if (!image_check_args(path, rgb, width, height, err) || !fs_check_writable(path, err))
+    if (!image_check_args(path, image->rgb, image->width, image->height, err) ||
+        !fs_check_writable(path, err))
+        return false;
+    ChannelSource *sources = NULL;
+    int channel_count = 0;
+    if (!collect_channels(image, path, &sources, &channel_count, err))
         return false;
     char temp[PATH_MAX];
     fs_temp_path(path, temp, sizeof temp);
-    bool written = exr_write_file(temp, path, rgb, width, height, err);
+    bool written = exr_write_file(temp, path, image, sources, channel_count, err);
+    free(sources);
     return fs_finish_atomic_write(temp, path, written, err);
+}
+
+bool image_write_exr(const char *path, const float *rgb, int width, int height, Error *err)
+{
+    ExrImage image = {.rgb = rgb, .width = width, .height = height};
+    return image_write_exr_layers(path, &image, err);
 }

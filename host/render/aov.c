@@ -5,39 +5,110 @@
 
 #include "scene/camera.h"
 
+/* aov_render's walk through mirrors and glass (the viewer's probe only reads the depth). */
+#define AOV_LEGACY_MAX_DEPTH 8
+
+static RenderParams aov_params(const Scene *scene, const SceneBuffers *buffers,
+                               const AovSettings *s)
+{
+    const SceneDesc *desc = &scene->desc;
+    return (RenderParams){
+        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
+        .width = (uint)desc->width,
+        .height = (uint)desc->height,
+        .seed = s->seed,
+        .max_depth = (uint)s->max_depth,
+        .sample_index = s->first_sample,
+        .num_bvh_prims = buffers->num_bvh_prims,
+        .shutter_open = desc->camera.shutter_open,
+        .shutter_close = desc->camera.shutter_close,
+        .num_instances = buffers->num_instances,
+    };
+}
+
+bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buffers,
+                       const AovSettings *settings, const AovImages *out, Error *err)
+{
+    const SceneDesc *desc = &scene->desc;
+    size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
+    RenderParams params = aov_params(scene, buffers, settings);
+    cl_mem params_buf = device_buffer(dev, "params", CL_MEM_READ_ONLY,
+                                      sizeof params, &params, err);
+    cl_mem albedo_buf = device_buffer(dev, "albedo AOV", CL_MEM_WRITE_ONLY,
+                                      num_pixels * sizeof(cl_float4), NULL, err);
+    cl_mem normal_buf = device_buffer(dev, "normal AOV", CL_MEM_WRITE_ONLY,
+                                      num_pixels * sizeof(cl_float4), NULL, err);
+    cl_float4 *albedo = malloc(num_pixels * sizeof *albedo);
+    cl_float4 *normal = malloc(num_pixels * sizeof *normal);
+    bool ok = !error_is_set(err) && albedo && normal;
+    if (ok) {
+        cl_kernel kernel = device_kernel(dev, "render_aov");
+        cl_uint spp = (cl_uint)(settings->spp > 0 ? settings->spp : 1);
+        cl_uint i = KERNEL_ARGS(kernel, 0, KARG(params_buf));
+        i = scene_buffers_set_args(buffers, kernel, i);
+        KERNEL_ARGS(kernel, i, KARG(spp), KARG(albedo_buf), KARG(normal_buf));
+        device_run(dev, kernel, num_pixels, 0, NULL);
+        device_read(dev, albedo_buf, 0, num_pixels * sizeof *albedo, albedo);
+        device_read(dev, normal_buf, 0, num_pixels * sizeof *normal, normal);
+        CL_CHECK(clReleaseKernel(kernel));
+        for (size_t p = 0; p < num_pixels; p++) {
+            for (int c = 0; c < 3; c++) {
+                if (out->albedo)
+                    out->albedo[3 * p + c] = albedo[p].s[c];
+                if (out->normal)
+                    out->normal[3 * p + c] = normal[p].s[c];
+            }
+            if (out->depth)
+                out->depth[p] = normal[p].s[3] > 0.0f ? albedo[p].s[3] : AOV_DEPTH_MISS;
+        }
+    } else if (!error_is_set(err)) {
+        error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for the AOVs of a %dx%d film",
+                  desc->width, desc->height);
+    }
+    free(albedo);
+    free(normal);
+    cl_mem buffers_made[] = {params_buf, albedo_buf, normal_buf};
+    for (int b = 0; b < 3; b++)
+        if (buffers_made[b])
+            CL_CHECK(clReleaseMemObject(buffers_made[b]));
+    return ok;
+}
+
 void aov_render(Device *dev, const Scene *scene, const SceneBuffers *buffers, unsigned aov, int spp,
                 unsigned seed, float *rgb)
 {
     const SceneDesc *desc = &scene->desc;
     size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
-    RenderParams params = {
-        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
-        .width = (uint)desc->width,
-        .height = (uint)desc->height,
-        .seed = seed,
-        .num_bvh_prims = buffers->num_bvh_prims,
-        .aov = aov,
-    };
+    float *layer = malloc(num_pixels * 3 * sizeof *layer);
+    if (!layer)
+        die("out of memory for a %dx%d AOV", desc->width, desc->height);
+    AovSettings settings = {.spp = spp, .max_depth = AOV_LEGACY_MAX_DEPTH, .seed = seed};
+    AovImages images = {0};
+    if (aov == AOV_ALBEDO)
+        images.albedo = layer;
+    else if (aov == AOV_NORMAL)
+        images.normal = layer;
+    else
+        images.depth = layer;
     Error err = {0};
-    cl_mem params_buf = device_buffer(dev, "params", CL_MEM_READ_ONLY, sizeof params, &params, &err);
-    cl_mem film = device_buffer(dev, "film", CL_MEM_WRITE_ONLY, num_pixels * sizeof(float4), NULL, &err);
-    if (error_is_set(&err))
+    if (!aov_render_layers(dev, scene, buffers, &settings, &images, &err))
         die("%s", err.message);
-    cl_kernel kernel = device_kernel(dev, "render_aov");
-    cl_uint spp_arg = (cl_uint)spp;
-    cl_uint i = KERNEL_ARGS(kernel, 0, KARG(params_buf));
-    i = scene_buffers_set_args(buffers, kernel, i);
-    KERNEL_ARGS(kernel, i, KARG(spp_arg), KARG(film));
-    device_run(dev, kernel, num_pixels, 0, NULL);
-    float4 *pixels = malloc(num_pixels * sizeof *pixels);
-    if (!pixels)
-        die("out of memory for a %dx%d film", desc->width, desc->height);
-    device_read(dev, film, 0, num_pixels * sizeof *pixels, pixels);
-    for (size_t i = 0; i < num_pixels; i++)
+    for (size_t p = 0; p < num_pixels; p++)
         for (int c = 0; c < 3; c++)
-            rgb[3 * i + c] = pixels[i].s[c];
-    free(pixels);
-    CL_CHECK(clReleaseKernel(kernel));
-    CL_CHECK(clReleaseMemObject(film));
-    CL_CHECK(clReleaseMemObject(params_buf));
+            rgb[3 * p + c] = images.depth ? (layer[p] < AOV_DEPTH_MISS ? layer[p] : 0.0f)
+                                          : layer[3 * p + c];
+    free(layer);
+}
+
+void aov_read_sample_counts(Wavefront *w, float *spp)
+{
+    const Film *film = wavefront_film(w);
+    uint64_t *sums = malloc((size_t)film->num_pixels * FILM_BYTES_PER_PIXEL);
+    if (!sums)
+        die("out of memory reading the film");
+    film_read_sums(film, sums);
+    /* The count is the word after the r, g, b sums (cl/shared/render.h, FILM_WORDS). */
+    for (uint32_t p = 0; p < film->num_pixels; p++)
+        spp[p] = (float)sums[(size_t)FILM_WORDS * p + 3];
+    free(sums);
 }
