@@ -178,7 +178,8 @@ int command_render(const Options *o)
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
-        if (!image_write_png(out.png, rgb, desc->width, desc->height, o->exposure, &err))
+        DisplaySettings display = {.exposure = o->exposure, .tonemap = o->tonemap};
+        if (!image_write_png(out.png, rgb, desc->width, desc->height, display, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }

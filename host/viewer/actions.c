@@ -133,9 +133,10 @@ void viewer_save_film(Viewer *v)
     float *rgb = read_film(v);
     Error err = {0};
     if (image_write_exr(exr, rgb, d->width, d->height, &err) &&
-        image_write_png(png, rgb, d->width, d->height, v->exposure, &err))
-        printf("wrote %s\nwrote %s (%d spp, exposure %+.1f)\n", exr, png,
-               wavefront_spp_done(v->wavefront), v->exposure);
+        image_write_png(png, rgb, d->width, d->height,
+                        (DisplaySettings){.exposure = v->exposure, .tonemap = v->tonemap}, &err))
+        printf("wrote %s\nwrote %s (%d spp, exposure %+.1f, %s)\n", exr, png,
+               wavefront_spp_done(v->wavefront), v->exposure, tonemap_name(v->tonemap));
     else
         fprintf(stderr, "pt: %s\n", err.message); /* the window stays open */
     free(rgb);

@@ -137,6 +137,10 @@ static void apply_input(Viewer *v, double seconds)
         v->exposure += 0.5f * (float)in->exposure_steps;
         printf("exposure %+.1f EV\n", v->exposure);
     }
+    if (in->actions & VIEWER_NEXT_TONEMAP) {
+        v->tonemap = (Tonemap)((v->tonemap + 1) % TONEMAP_COUNT);
+        printf("tone map %s\n", tonemap_name(v->tonemap));
+    }
     if (in->actions & VIEWER_PAUSE) {
         v->paused = !v->paused;
         printf("%s at %d spp\n", v->paused ? "paused" : "resumed", wavefront_spp_done(v->wavefront));
@@ -195,7 +199,8 @@ static void show_film(Viewer *v)
         viewer_display_upload_end(&v->display);
         v->film_changed = false;
     }
-    viewer_display_draw(&v->display, v->exposure, v->session.scene.desc.width,
+    DisplaySettings display = {.exposure = v->exposure, .tonemap = v->tonemap};
+    viewer_display_draw(&v->display, display, v->session.scene.desc.width,
                         v->session.scene.desc.height);
 }
 
@@ -267,6 +272,7 @@ int command_view(const ViewerDesc *o)
     memset(v, 0, sizeof *v);
     v->options = o;
     v->exposure = o->exposure;
+    v->tonemap = o->tonemap;
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
         die("cannot open a window: no display (%s); use 'pt render' to render to a file",
