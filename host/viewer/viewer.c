@@ -192,11 +192,33 @@ static void render_step(Viewer *v)
         viewer_print_event(&v->input, "converged %d spp", wavefront_spp_done(v->wavefront));
 }
 
+/* The film into the display's texture; with --bloom, bloomed on a copy first (the mapped pixel
+ * buffer is write-only). */
+static void upload_film(Viewer *v)
+{
+    if (v->options->bloom_strength <= 0.0f) {
+        wavefront_read_film(v->wavefront, viewer_display_upload_begin(&v->display));
+        viewer_display_upload_end(&v->display);
+        return;
+    }
+    const SceneDesc *d = &v->session.scene.desc;
+    size_t bytes = (size_t)d->width * (size_t)d->height * 3 * sizeof(float);
+    float *rgb = malloc(bytes);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    wavefront_read_film(v->wavefront, rgb);
+    Error err = {0};
+    if (!viewer_bloom(v, rgb, &err))
+        die("%s", err.message);
+    memcpy(viewer_display_upload_begin(&v->display), rgb, bytes);
+    viewer_display_upload_end(&v->display);
+    free(rgb);
+}
+
 static void show_film(Viewer *v)
 {
     if (v->film_changed) {
-        wavefront_read_film(v->wavefront, viewer_display_upload_begin(&v->display));
-        viewer_display_upload_end(&v->display);
+        upload_film(v);
         v->film_changed = false;
     }
     DisplaySettings display = {.exposure = v->exposure, .tonemap = v->tonemap};
