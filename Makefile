@@ -171,7 +171,8 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 # The BVH tests share tests/bvh_fixtures*.c (bvh_fixtures.h).
 $(filter $(BUILD)/tests/test_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/bvh_fixtures*.c))
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
-$(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: $(BUILD)/tests/viewer_session.o
+$(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
+    $(BUILD)/tests/viewer_session.o
 
 # Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
 # the tests' header-only helpers, hence -Itests).

@@ -269,12 +269,12 @@ Test(png, exposure_plus_one_doubles_linear_values)
     }
     const char *folder = test_temp_dir();
     Error err = {0};
-    cr_assert(image_write_png(join(folder, "a.png"), half_values, width, height, clamp_at(1.0f), &err), "%s",
-              err.message);
-    cr_assert(image_write_png(join(folder, "b.png"), values, width, height, clamp_at(0.0f), &err), "%s",
-              err.message);
-    cr_assert(image_write_png(join(folder, "c.png"), half_values, width, height, clamp_at(0.0f), &err), "%s",
-              err.message);
+    cr_assert(image_write_png(join(folder, "a.png"), half_values, width, height, clamp_at(1.0f),
+                              &err), "%s", err.message);
+    cr_assert(image_write_png(join(folder, "b.png"), values, width, height, clamp_at(0.0f), &err),
+              "%s", err.message);
+    cr_assert(image_write_png(join(folder, "c.png"), half_values, width, height, clamp_at(0.0f),
+                              &err), "%s", err.message);
     unsigned char *exposed = load_png(join(folder, "a.png"), width, height);
     unsigned char *doubled = load_png(join(folder, "b.png"), width, height);
     unsigned char *plain = load_png(join(folder, "c.png"), width, height);

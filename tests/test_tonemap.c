@@ -106,7 +106,10 @@ Test(tonemap, every_curve_matches_its_reference_at_the_tabulated_points)
  * channels, which keep growing through the inset's crosstalk (the path to white); and AgX's
  * luminance along a green ramp dips by 7e-5 near 43 where the final clip to [0, 1] cuts a channel
  * (tonemap_reference.py's AgX does the same), hence 1e-4 on luminance. */
-static float luminance(const float c[3]) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+static float luminance(const float c[3])
+{
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
 
 Test(tonemap, curves_are_monotonic_black_at_zero_and_bounded)
 {

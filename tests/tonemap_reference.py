@@ -108,4 +108,5 @@ if __name__ == "__main__":
     for name, curve in CURVES:
         for c in INPUTS:
             out = curve(list(c))
-            print("    {TONEMAP_%s, {%.9g, %.9g, %.9g}, {%.9g, %.9g, %.9g}}," % ((name,) + c + tuple(out)))
+            values = (name,) + c + tuple(out)
+            print("    {TONEMAP_%s, {%.9g, %.9g, %.9g}, {%.9g, %.9g, %.9g}}," % values)

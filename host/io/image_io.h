@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* image_io.h: film output and EXR input. EXR through OpenEXR's C API (linear 32-bit float R, G, B;
  * exr_write.c, exr_read.c), PNG through stb_image_write (tone-mapped and sRGB-encoded after
- * exposure; png_write.c). Images are linear RGB float, RGB_CHANNELS floats a pixel, row 0 at the top. Files
- * are written atomically (base/fs.h: temporary name, flush, rename); fs_check_writable checks an
- * output path before rendering. */
+ * exposure; png_write.c). Images are linear RGB float, RGB_CHANNELS floats a pixel, row 0 at the
+ * top. Files are written atomically (base/fs.h: temporary name, flush, rename); fs_check_writable
+ * checks an output path before rendering. */
 #ifndef PT_IMAGE_IO_H
 #define PT_IMAGE_IO_H
 

@@ -34,7 +34,8 @@ int bloom_weights(float radius, float *weights, int max_taps)
 static bool check_args(const float *rgb, int width, int height, float strength, float radius,
                        Error *err)
 {
-    if (!rgb || width < 1 || height < 1 || (size_t)width * (size_t)height > INT_MAX / RGB_CHANNELS) {
+    if (!rgb || width < 1 || height < 1 ||
+        (size_t)width * (size_t)height > INT_MAX / RGB_CHANNELS) {
         error_set(err, ERR_USAGE, NULL, 0, "bloom: a %dx%d image is not one it can work on", width,
                   height);
         return false;
