@@ -38,7 +38,7 @@ CL_SOURCES := cl/shared.h cl/shared/geometry.h cl/shared/material.h cl/shared/re
               cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \
               cl/material/bsdf.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
-              cl/parallel/scan.cl cl/parallel/sort_materials.cl \
+              cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \
               cl/stages/intersect_closest.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
               cl/stages/accumulate_film.cl
@@ -173,7 +173,8 @@ $(filter $(BUILD)/tests/test_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/test
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options: $(BUILD)/tests/cli_run.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
-$(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film: $(BUILD)/tests/viewer_session.o
+$(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
+    $(BUILD)/tests/viewer_session.o
 
 # Tools: one binary per tools/NAME.c, linked like the tests but without Criterion (they may share
 # the tests' header-only helpers, hence -Itests).

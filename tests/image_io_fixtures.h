@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/tonemap.h"
+
 static uint32_t rng_state = 0x9e3779b9u;
 
 static inline uint32_t next_random(void)
@@ -54,6 +56,12 @@ static inline float *random_image(int width, int height)
     for (size_t i = 0; i < count; i++)
         rgb[i] = random_finite_float();
     return rgb;
+}
+
+/* Exposure with the hard clip (--tonemap clamp): the PNG values these tests compute by hand. */
+static inline DisplaySettings clamp_at(float exposure)
+{
+    return (DisplaySettings){.exposure = exposure, .tonemap = TONEMAP_CLAMP};
 }
 
 /* "folder/name" in one of 8 rotating buffers, so a result can be joined again. */

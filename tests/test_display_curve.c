@@ -28,7 +28,7 @@ Test(display_curve, srgb_values_and_edges)
 
 Test(display_curve, the_shader_text_is_the_same_expression)
 {
-    const char *glsl = DISPLAY_CURVE_GLSL;
+    const char *glsl = DISPLAY_CURVE_GLSL_SRGB;
     cr_expect(strstr(glsl, "float srgb_from_linear(float linear)"), "%s", glsl);
     cr_expect(strstr(glsl, "clamp(linear, 0.0, 1.0)"), "%s", glsl);
     cr_expect(strstr(glsl, "12.92 * (x)") && strstr(glsl, "1.055 * pow((x), 1.0 / 2.4) - 0.055"),

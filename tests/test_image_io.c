@@ -241,7 +241,7 @@ Test(png, gradient_matches_the_srgb_formula_within_one_step)
     }
     const char *path = join(test_temp_dir(), "gradient.png");
     Error err = {0};
-    cr_assert(image_write_png(path, rgb, width, height, 0.0f, &err), "%s", err.message);
+    cr_assert(image_write_png(path, rgb, width, height, clamp_at(0.0f), &err), "%s", err.message);
     unsigned char *pixels = load_png(path, width, height);
     for (int i = 0; i < width * height * 3; i++) {
         int expected = expected_srgb8(rgb[i]);
@@ -250,7 +250,7 @@ Test(png, gradient_matches_the_srgb_formula_within_one_step)
     }
     /* Anchors: 18% grey is sRGB 118 (not 46 as a plain linear scale would give). */
     float grey[3] = {0.18f, 0.0f, 1.0f};
-    cr_assert(image_write_png(path, grey, 1, 1, 0.0f, &err), "%s", err.message);
+    cr_assert(image_write_png(path, grey, 1, 1, clamp_at(0.0f), &err), "%s", err.message);
     stbi_image_free(pixels);
     pixels = load_png(path, 1, 1);
     cr_assert(abs(pixels[0] - 118) <= 1 && pixels[1] == 0 && pixels[2] == 255,
@@ -269,12 +269,12 @@ Test(png, exposure_plus_one_doubles_linear_values)
     }
     const char *folder = test_temp_dir();
     Error err = {0};
-    cr_assert(image_write_png(join(folder, "a.png"), half_values, width, height, 1.0f, &err), "%s",
-              err.message);
-    cr_assert(image_write_png(join(folder, "b.png"), values, width, height, 0.0f, &err), "%s",
-              err.message);
-    cr_assert(image_write_png(join(folder, "c.png"), half_values, width, height, 0.0f, &err), "%s",
-              err.message);
+    cr_assert(image_write_png(join(folder, "a.png"), half_values, width, height, clamp_at(1.0f),
+                              &err), "%s", err.message);
+    cr_assert(image_write_png(join(folder, "b.png"), values, width, height, clamp_at(0.0f), &err),
+              "%s", err.message);
+    cr_assert(image_write_png(join(folder, "c.png"), half_values, width, height, clamp_at(0.0f),
+                              &err), "%s", err.message);
     unsigned char *exposed = load_png(join(folder, "a.png"), width, height);
     unsigned char *doubled = load_png(join(folder, "b.png"), width, height);
     unsigned char *plain = load_png(join(folder, "c.png"), width, height);
@@ -294,7 +294,7 @@ Test(png, non_finite_pixels_are_written_as_zero_and_large_ones_clamp)
                             1e30f, 3e38f, -5.0f, 0.5f, -NAN, 0.5f};
     const char *path = join(test_temp_dir(), "nonfinite.png");
     Error err = {0};
-    cr_assert(image_write_png(path, rgb, 2, 2, 1.0f, &err), "%s", err.message);
+    cr_assert(image_write_png(path, rgb, 2, 2, clamp_at(1.0f), &err), "%s", err.message);
     unsigned char *pixels = load_png(path, 2, 2);
     cr_assert(pixels[0] == 0 && pixels[1] == 0 && pixels[2] == 0, "NaN/Inf pixel is %d %d %d",
               pixels[0], pixels[1], pixels[2]);

@@ -43,7 +43,7 @@ Test(output, missing_folder_is_an_output_error)
     cr_assert_not(image_write_exr(path, rgb, 1, 1, &exr));
     cr_assert_eq(exr.code, ERR_OUTPUT, "%s", exr.message);
     cr_assert(strstr(exr.message, path), "%s", exr.message);
-    cr_assert_not(image_write_png(path, rgb, 1, 1, 0.0f, &png));
+    cr_assert_not(image_write_png(path, rgb, 1, 1, clamp_at(0.0f), &png));
     cr_assert_eq(png.code, ERR_OUTPUT, "%s", png.message);
 }
 
@@ -106,7 +106,7 @@ static void check_failed_write_leaves_previous_file(bool exr)
     float small[3 * 4] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f, 0.0f, 0.5f};
     Error err = {0};
     bool ok = exr ? image_write_exr(path, small, 2, 2, &err)
-                  : image_write_png(path, small, 2, 2, 0.0f, &err);
+                  : image_write_png(path, small, 2, 2, clamp_at(0.0f), &err);
     cr_assert(ok, "%s", err.message);
     size_t before_size = 0;
     char *before = test_read_file(path, &before_size);
@@ -118,7 +118,7 @@ static void check_failed_write_leaves_previous_file(bool exr)
     float *noise = random_image(257, 129); /* random bits: compresses to far more than 4 KiB */
     Error failed = {0};
     ok = exr ? image_write_exr(path, noise, 257, 129, &failed)
-             : image_write_png(path, noise, 257, 129, 0.0f, &failed);
+             : image_write_png(path, noise, 257, 129, clamp_at(0.0f), &failed);
     limit.rlim_cur = RLIM_INFINITY;
     cr_assert_eq(setrlimit(RLIMIT_FSIZE, &limit), 0);
 

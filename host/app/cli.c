@@ -364,6 +364,8 @@ RenderDesc cli_render_desc(const Options *o)
 ViewerDesc cli_viewer_desc(const Options *o)
 {
     return (ViewerDesc){.render = cli_render_desc(o), .seed = o->seed, .exposure = o->exposure,
+                        .tonemap = o->tonemap, .bloom_strength = o->bloom_strength,
+                        .bloom_radius = o->bloom_radius,
                         .no_nee = o->no_nee, .no_compaction = o->no_compaction,
                         .sort_materials = o->sort_materials, .quiet = o->quiet,
                         .frames = o->frames, .screenshot = o->screenshot,

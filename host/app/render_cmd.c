@@ -18,6 +18,7 @@
 #include "base/fs.h"
 #include "io/image_io.h"
 #include "render/aov_layers.h"
+#include "render/bloom.h"
 #include "render/session.h"
 #include "render/wavefront.h"
 
@@ -206,7 +207,13 @@ int command_render(const Options *o)
         printf("wrote %s\n", out.exr);
     }
     if (out.png[0]) {
-        if (!image_write_png(out.png, images.rgb, desc->width, desc->height, o->exposure, &err))
+        /* after the EXR, which stays the linear estimate without bloom */
+        if (o->bloom_strength > 0.0f &&
+            !bloom_apply(&session.dev, images.rgb, desc->width, desc->height, o->bloom_strength,
+                         o->bloom_radius, &err))
+            die("%s", err.message);
+        DisplaySettings display = {.exposure = o->exposure, .tonemap = o->tonemap};
+        if (!image_write_png(out.png, images.rgb, desc->width, desc->height, display, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* png_write.c: the 8-bit sRGB preview through stb_image_write, after exposure and the display
+/* png_write.c: the 8-bit sRGB preview through stb_image_write, after exposure and the tone
  * curve (io/display_curve.h), written atomically like the EXR. */
 #include "io/image_io.h"
 
@@ -15,10 +15,6 @@
 #include "io/display_curve.h"
 #include "io/image_write.h"
 
-static unsigned char srgb8_from_linear(float linear)
-{
-    return (unsigned char)lrintf(display_srgb_from_linear(linear) * 255.0f);
-}
 
 typedef struct {
     FILE *file;
@@ -54,13 +50,14 @@ static bool png_write_file(const char *temp, const char *path, const unsigned ch
     return true;
 }
 
-bool image_write_png(const char *path, const float *rgb, int width, int height, float exposure,
-                     Error *err)
+bool image_write_png(const char *path, const float *rgb, int width, int height,
+                     DisplaySettings display, Error *err)
 {
     if (!image_check_args(path, rgb, width, height, err))
         return false;
-    if (!isfinite(exposure)) {
-        error_set(err, ERR_USAGE, path, 0, "%s: exposure %g is not finite", path, exposure);
+    if (!isfinite(display.exposure)) {
+        error_set(err, ERR_USAGE, path, 0, "%s: exposure %g is not finite", path,
+                  display.exposure);
         return false;
     }
     /* stb_image_write measures the image in int bytes. */
@@ -78,9 +75,15 @@ bool image_write_png(const char *path, const float *rgb, int width, int height, 
                   height);
         return false;
     }
-    float scale = exp2f(exposure);
-    for (size_t i = 0; i < value_count; i++)
-        pixels[i] = srgb8_from_linear(image_finite_or_zero(rgb[i]) * scale);
+    float scale = exp2f(display.exposure);
+    for (size_t i = 0; i < value_count; i += RGB_CHANNELS) {
+        float linear[3], shown[3];
+        for (int c = 0; c < 3; c++)
+            linear[c] = image_finite_or_zero(rgb[i + (size_t)c]);
+        display_map(display.tonemap, scale, linear, shown);
+        for (int c = 0; c < 3; c++)
+            pixels[i + (size_t)c] = (unsigned char)lrintf(shown[c] * 255.0f);
+    }
     char temp[PATH_MAX];
     fs_temp_path(path, temp, sizeof temp);
     bool written = png_write_file(temp, path, pixels, width, height, err);

@@ -24,7 +24,9 @@ typedef enum {
     TONEMAP_COUNT
 } Tonemap;
 
-/* The default: AgX, as in Blender (4.0 and later) — see the README's "Tone mapping". */
+/* The default: AgX, Blender's default view transform since 4.0, so a Blender user sees the look
+ * they know: highlights roll off and desaturate toward white instead of clipping to a hue
+ * (io/display_curve.h has its definition and source). */
 #define TONEMAP_DEFAULT TONEMAP_AGX
 
 static inline const char *tonemap_name(Tonemap t)

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "render/aov.h"
+#include "render/bloom.h"
 #include "scene/camera.h"
 #include "io/image_io.h"
 #include "viewer/camera_controls.h"
@@ -117,6 +118,14 @@ bool viewer_write_film_exr(Viewer *v, const char *path, Error *err)
     return ok;
 }
 
+bool viewer_bloom(Viewer *v, float *rgb, Error *err)
+{
+    const SceneDesc *d = &v->session.scene.desc;
+    return v->options->bloom_strength <= 0.0f ||
+           bloom_apply(&v->session.dev, rgb, d->width, d->height, v->options->bloom_strength,
+                       v->options->bloom_radius, err);
+}
+
 /* PNG + EXR of the film as out/<scene>-view-N, N the first free number. */
 void viewer_save_film(Viewer *v)
 {
@@ -132,10 +141,11 @@ void viewer_save_film(Viewer *v)
     const SceneDesc *d = &v->session.scene.desc;
     float *rgb = read_film(v);
     Error err = {0};
-    if (image_write_exr(exr, rgb, d->width, d->height, &err) &&
-        image_write_png(png, rgb, d->width, d->height, v->exposure, &err))
-        printf("wrote %s\nwrote %s (%d spp, exposure %+.1f)\n", exr, png,
-               wavefront_spp_done(v->wavefront), v->exposure);
+    if (image_write_exr(exr, rgb, d->width, d->height, &err) && viewer_bloom(v, rgb, &err) &&
+        image_write_png(png, rgb, d->width, d->height,
+                        (DisplaySettings){.exposure = v->exposure, .tonemap = v->tonemap}, &err))
+        printf("wrote %s\nwrote %s (%d spp, exposure %+.1f, %s)\n", exr, png,
+               wavefront_spp_done(v->wavefront), v->exposure, tonemap_name(v->tonemap));
     else
         fprintf(stderr, "pt: %s\n", err.message); /* the window stays open */
     free(rgb);

@@ -15,6 +15,8 @@ void viewer_change_aperture(Viewer *v, int steps);
  * environment.rotation, DESIGN's sense); false (and a message) when the scene has no map. The
  * caller restarts the film with the new rotation. */
 bool viewer_turn_environment(Viewer *v, int steps);
+/* --bloom on the linear film rgb (the viewer's film size), in place; true without --bloom. */
+bool viewer_bloom(Viewer *v, float *rgb, Error *err);
 /* S: PNG + EXR of the film as out/<scene>-view-N, N the first free number; prints the names. */
 void viewer_save_film(Viewer *v);
 /* The linear film (the mean per pixel, as 'pt render -o FILE.exr' writes it) as an EXR. */

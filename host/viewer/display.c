@@ -19,23 +19,43 @@ static const char *const vertex_source =
     "varying vec2 film_uv;\n"
     "void main() { film_uv = gl_MultiTexCoord0.xy; gl_Position = gl_Vertex; }\n";
 
-/* Exposure, then the display curve of io/display_curve.h (the PNG writer's, the same text); the
- * framebuffer's float-to-8-bit conversion rounds to nearest like the writer's lrintf. */
-static const char *const fragment_source =
+/* The fragment shader: exposure, then io/display_curve.h's pipeline (the PNG writer's, the same
+ * text), the curve picked by the uniform `tonemap` (a Tonemap). The framebuffer's float-to-8-bit
+ * conversion rounds to nearest like the writer's lrintf. */
+static const char *const fragment_head =
     "#version 110\n"
     "uniform sampler2D film;\n"
     "uniform float exposure_scale;\n"
-    "varying vec2 film_uv;\n"
-    DISPLAY_CURVE_GLSL
-    "void main() {\n"
-    "    vec3 c = texture2D(film, film_uv).rgb * exposure_scale;\n"
-    "    gl_FragColor = vec4(srgb_from_linear(c.r), srgb_from_linear(c.g), srgb_from_linear(c.b), 1.0);\n"
-    "}\n";
+    "uniform int tonemap;\n"
+    "varying vec2 film_uv;\n";
 
-static GLuint compile_shader(GLenum type, const char *source, Error *err)
+/* main(): one branch per curve, numbered as the Tonemap enum. */
+static void fragment_main(char *text, size_t size)
+{
+    static const char *const curves[] = {
+#define CURVE_ENUM_NAME(e, name) #e,
+        TONEMAP_CURVES(CURVE_ENUM_NAME)
+#undef CURVE_ENUM_NAME
+    };
+    size_t used = (size_t)snprintf(text, size,
+                                   "void main() {\n"
+                                   "    vec3 c = texture2D(film, film_uv).rgb * exposure_scale;\n"
+                                   "    float r = c.r, g = c.g, b = c.b;\n"
+                                   "    display_prepare(r, g, b);\n");
+    for (int t = 0; t < TONEMAP_COUNT && used < size; t++)
+        used += (size_t)snprintf(text + used, size - used,
+                                 "    %sif (tonemap == %d) tonemap_%s(r, g, b);\n",
+                                 t ? "else " : "", t, curves[t]);
+    if (used < size)
+        snprintf(text + used, size - used,
+                 "    gl_FragColor = vec4(srgb_from_linear(r), srgb_from_linear(g), "
+                 "srgb_from_linear(b), 1.0);\n}\n");
+}
+
+static GLuint compile_shader(GLenum type, GLsizei count, const char *const *sources, Error *err)
 {
     GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, NULL);
+    glShaderSource(shader, count, (const GLchar **)sources, NULL);
     glCompileShader(shader);
     GLint ok = GL_FALSE;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -53,8 +73,14 @@ static GLuint compile_shader(GLenum type, const char *source, Error *err)
 
 static bool link_program(ViewerDisplay *d, Error *err)
 {
-    GLuint vertex = compile_shader(GL_VERTEX_SHADER, vertex_source, err);
-    GLuint fragment = vertex ? compile_shader(GL_FRAGMENT_SHADER, fragment_source, err) : 0;
+    char main_text[2048];
+    fragment_main(main_text, sizeof main_text);
+    const char *const fragment_parts[] = {fragment_head, DISPLAY_CURVE_GLSL_PARTS main_text};
+    GLuint vertex = compile_shader(GL_VERTEX_SHADER, 1, &vertex_source, err);
+    GLuint fragment = vertex ? compile_shader(GL_FRAGMENT_SHADER,
+                                              sizeof fragment_parts / sizeof *fragment_parts,
+                                              fragment_parts, err)
+                             : 0;
     if (!fragment) {
         glDeleteShader(vertex);
         return false;
@@ -75,6 +101,7 @@ static bool link_program(ViewerDisplay *d, Error *err)
     glUseProgram(d->program);
     glUniform1i(glGetUniformLocation(d->program, "film"), 0);
     d->exposure_scale_location = glGetUniformLocation(d->program, "exposure_scale");
+    d->tonemap_location = glGetUniformLocation(d->program, "tonemap");
     return true;
 }
 
@@ -137,14 +164,15 @@ void viewer_display_upload_end(ViewerDisplay *d)
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
-void viewer_display_draw(const ViewerDisplay *d, float exposure, int framebuffer_width,
+void viewer_display_draw(const ViewerDisplay *d, DisplaySettings display, int framebuffer_width,
                          int framebuffer_height)
 {
     glViewport(0, 0, framebuffer_width, framebuffer_height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glUseProgram(d->program);
-    glUniform1f(d->exposure_scale_location, exp2f(exposure));
+    glUniform1f(d->exposure_scale_location, exp2f(display.exposure));
+    glUniform1i(d->tonemap_location, (GLint)display.tonemap);
     glEnable(GL_TEXTURE_2D);
     glBindTexture(GL_TEXTURE_2D, d->texture);
     /* Film row 0 is the top of the image; texture row 0 is at t = 0, so t runs downward. */

@@ -1,18 +1,19 @@
 /* SPDX-License-Identifier: MIT */
 /* viewer_display.h: the film on screen with OpenGL 2.1 (what Mesa's llvmpipe and every desktop
  * driver offer). The linear film is streamed through a pixel buffer object into a float texture and
- * drawn as one quad; a fragment shader applies the exposure and the sRGB curve of the PNG writer,
- * so the window shows what 'pt render' writes. Needs a current GL context. */
+ * drawn as one quad; a fragment shader applies the exposure and the tone curve of the PNG writer
+ * (io/display_curve.h), so the window shows what 'pt render' writes. Needs a current GL context. */
 #ifndef PT_VIEWER_DISPLAY_H
 #define PT_VIEWER_DISPLAY_H
 
 #include <stdbool.h>
 
 #include "base/error.h"
+#include "io/tonemap.h"
 
 typedef struct {
     unsigned texture, pixel_buffer, program;
-    int exposure_scale_location;
+    int exposure_scale_location, tonemap_location;
     int width, height; /* the texture's size: the film's */
 } ViewerDisplay;
 
@@ -27,7 +28,7 @@ float *viewer_display_upload_begin(ViewerDisplay *d);
 void viewer_display_upload_end(ViewerDisplay *d);
 
 /* Draws the film over the whole viewport (framebuffer_width x framebuffer_height). */
-void viewer_display_draw(const ViewerDisplay *d, float exposure, int framebuffer_width,
+void viewer_display_draw(const ViewerDisplay *d, DisplaySettings display, int framebuffer_width,
                          int framebuffer_height);
 
 /* What was drawn into the back buffer (call before swapping) as an 8-bit sRGB PNG. */

@@ -54,6 +54,7 @@ void viewer_input_key(ViewerInput *in, int key, int action, int mods)
     case GLFW_KEY_F: in->actions |= VIEWER_FOCUS; break;
     case GLFW_KEY_C: in->actions |= VIEWER_PRINT_CAMERA; break;
     case GLFW_KEY_H: in->actions |= VIEWER_HELP; break;
+    case GLFW_KEY_T: in->actions |= VIEWER_NEXT_TONEMAP; break;
     case GLFW_KEY_S:
         if (mods & GLFW_MOD_CONTROL)
             in->actions |= VIEWER_SAVE;
@@ -179,6 +180,8 @@ void viewer_input_print_help(FILE *out)
           "  P               pause / resume sampling\n"
           "  R               reset the film\n"
           "  + / -           exposure up / down half a stop\n"
+          "  T               the next tone-map curve (agx, aces, filmic, pbr-neutral, reinhard,\n"
+          "                  clamp)\n"
           "  F               focus on the point under the cursor (thin lens)\n"
           "  [ / ]           aperture smaller / larger (0 = pinhole)\n"
           "  , / .           turn the environment map 15 degrees clockwise / counter-clockwise\n"

@@ -18,6 +18,7 @@ enum {
     VIEWER_SAVE = 1 << 3,         /* Ctrl+S: PNG + EXR of the film */
     VIEWER_PRINT_CAMERA = 1 << 4, /* C: the camera as JSON on stdout */
     VIEWER_HELP = 1 << 5,         /* H: the key list */
+    VIEWER_NEXT_TONEMAP = 1 << 6, /* T: the next tone-map curve */
 };
 
 typedef struct {

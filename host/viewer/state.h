@@ -25,6 +25,7 @@ typedef struct {
     char scene_name[256];
     int target_spp;
     float exposure;          /* stops */
+    Tonemap tonemap;         /* the display curve (T cycles) */
     bool paused, film_changed;
     float scene_size;        /* bounding-box diagonal: the scale of flying and of the lens */
     double paths_per_second; /* measured; 0 before the first window */

@@ -137,6 +137,10 @@ static void apply_input(Viewer *v, double seconds)
         v->exposure += 0.5f * (float)in->exposure_steps;
         printf("exposure %+.1f EV\n", v->exposure);
     }
+    if (in->actions & VIEWER_NEXT_TONEMAP) {
+        v->tonemap = (Tonemap)((v->tonemap + 1) % TONEMAP_COUNT);
+        printf("tone map %s\n", tonemap_name(v->tonemap));
+    }
     if (in->actions & VIEWER_PAUSE) {
         v->paused = !v->paused;
         printf("%s at %d spp\n", v->paused ? "paused" : "resumed", wavefront_spp_done(v->wavefront));
@@ -188,14 +192,37 @@ static void render_step(Viewer *v)
         viewer_print_event(&v->input, "converged %d spp", wavefront_spp_done(v->wavefront));
 }
 
+/* The film into the display's texture; with --bloom, bloomed on a copy first (the mapped pixel
+ * buffer is write-only). */
+static void upload_film(Viewer *v)
+{
+    if (v->options->bloom_strength <= 0.0f) {
+        wavefront_read_film(v->wavefront, viewer_display_upload_begin(&v->display));
+        viewer_display_upload_end(&v->display);
+        return;
+    }
+    const SceneDesc *d = &v->session.scene.desc;
+    size_t bytes = (size_t)d->width * (size_t)d->height * 3 * sizeof(float);
+    float *rgb = malloc(bytes);
+    if (!rgb)
+        die("out of memory for a %dx%d film", d->width, d->height);
+    wavefront_read_film(v->wavefront, rgb);
+    Error err = {0};
+    if (!viewer_bloom(v, rgb, &err))
+        die("%s", err.message);
+    memcpy(viewer_display_upload_begin(&v->display), rgb, bytes);
+    viewer_display_upload_end(&v->display);
+    free(rgb);
+}
+
 static void show_film(Viewer *v)
 {
     if (v->film_changed) {
-        wavefront_read_film(v->wavefront, viewer_display_upload_begin(&v->display));
-        viewer_display_upload_end(&v->display);
+        upload_film(v);
         v->film_changed = false;
     }
-    viewer_display_draw(&v->display, v->exposure, v->session.scene.desc.width,
+    DisplaySettings display = {.exposure = v->exposure, .tonemap = v->tonemap};
+    viewer_display_draw(&v->display, display, v->session.scene.desc.width,
                         v->session.scene.desc.height);
 }
 
@@ -267,6 +294,7 @@ int command_view(const ViewerDesc *o)
     memset(v, 0, sizeof *v);
     v->options = o;
     v->exposure = o->exposure;
+    v->tonemap = o->tonemap;
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
         die("cannot open a window: no display (%s); use 'pt render' to render to a file",

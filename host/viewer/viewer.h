@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 
+#include "io/tonemap.h"
 #include "render/session.h"
 
 /* What 'pt view' is asked for; zero means default. */
@@ -13,6 +14,8 @@ typedef struct {
     RenderDesc render;       /* .spp 0 = sample until closed */
     unsigned seed;
     float exposure;          /* stops */
+    Tonemap tonemap;         /* display curve (io/tonemap.h); 0 is AgX, the default */
+    float bloom_strength, bloom_radius; /* --bloom (render/bloom.h): 0 = none; radius 0 = default */
     bool no_nee, no_compaction, quiet;
     int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool print_events;       /* --events: a stdout line per input event and state change */
