@@ -27,11 +27,13 @@
 #define SCENE_VIEW {SCENE_BUFFERS(SCENE_VIEW_INIT)}
 
 /* The pixel and sample index of window sample k (see PATH_STATE_FIELDS in shared.h). Without
- * RENDER_ADAPTIVE the list is never read. */
+ * RENDER_ADAPTIVE the list (then one entry) is never read. */
 inline uint window_pixel(constant RenderParams *p, const global uint *active_pixels, uint k)
 {
     uint i = (p->batch_start + k) % p->window_pixels;
-    return (p->flags & RENDER_ADAPTIVE) ? active_pixels[i] : i;
+    if (p->flags & RENDER_ADAPTIVE)
+        i = active_pixels[i];
+    return i;
 }
 
 inline uint window_sample(constant RenderParams *p, uint k)

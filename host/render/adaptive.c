@@ -132,11 +132,15 @@ void adaptive_after_window(Wavefront *w)
     device_run(w->dev, a->select, w->num_pixels, 0, NULL);
     uint32_t active = compactor_run(a->compactor, a->pixel_flags, w->active_pixels, w->num_pixels);
     w->stats->active_pixels = active;
-    a->next_boundary += a->step;
     if (active == 0) {
         a->done = true;
         return;
     }
+    /* The next decision after about step x all pixels' worth of samples: the fewer pixels go on,
+     * the more samples each gets before it, so that windows stay long (a function of the film,
+     * like everything here, never of the device). */
+    uint64_t step = ((uint64_t)a->step * w->num_pixels + active - 1) / active;
+    a->next_boundary = step < a->spp - a->next_boundary ? a->next_boundary + (uint32_t)step : a->spp;
     w->params.window_pixels = active;
     w->params.flags |= RENDER_ADAPTIVE;
 }

@@ -3,9 +3,11 @@
  * film's second moments (render/film.h, shared/render.h MOMENT_WORDS).
  *
  * Adaptive sampling (RenderSettings.noise_threshold T > 0): every pixel gets min_spp samples; then
- * at fixed sample counts, min_spp + j * step (step = ADAPTIVE_STEP(min_spp)), film_variance
- * computes each pixel's relative error from the exact sums and adaptive_select stops the pixels
- * whose 8 neighbours are all below T (cl/stages/adaptive_select.cl says why not the pixel's own).
+ * at sample-count boundaries film_variance computes each pixel's relative error from the exact
+ * sums and adaptive_select stops the pixels whose 8 neighbours are all below T
+ * (cl/stages/adaptive_select.cl says why not the pixel's own). The first boundary is min_spp; the
+ * next comes step x pixels / active pixels samples later (step = ADAPTIVE_STEP(min_spp)), i.e.
+ * after about as many paths as step uniform samples, so that windows stay long as pixels stop.
  * The pixels still active are compacted, in increasing order, into active_pixels, and the next
  * windows cycle over that list only (window_pixel); all of them hold the same count, so a pixel's
  * samples keep the indices (and RNG streams) a uniform render gives them. The decisions read only
@@ -26,9 +28,9 @@
  * the budget, so that long renders look longer before deciding. */
 #define ADAPTIVE_MIN_SPP_FLOOR 16
 #define ADAPTIVE_MIN_SPP_DIVISOR 16
-/* Samples between decisions: half of min_spp (at least 1). A decision costs two passes over the
- * film and a compaction; a pixel converged just after a check overshoots by at most half the
- * samples it had there, and the windows over few active pixels stay long enough to fill a GPU. */
+/* Samples between decisions while every pixel is active: half of min_spp (at least 1). A decision
+ * costs two passes over the film and a compaction; a pixel converged just after the first check
+ * overshoots by at most half the samples it had there. */
 #define ADAPTIVE_STEP(min_spp) ((min_spp) / 2u > 0u ? (min_spp) / 2u : 1u)
 
 typedef struct {
