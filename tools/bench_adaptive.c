@@ -98,6 +98,11 @@ int main(int argc, char **argv)
     size_t pixels = (size_t)o.width * o.height, n = pixels * 3;
     Render ref = render(&s, &o, o.ref_spp, 0, 1000);
     fprintf(stderr, "reference: %d spp in %.2f s on %s\n", o.ref_spp, ref.seconds, s.dev.name);
+    /* A short adaptive render first: the device compiles its kernels at their first launch (PoCL
+     * does), which is no part of the time compared. */
+    Options warm = o;
+    warm.min_spp = 2;
+    free(render(&s, &warm, 4, o.threshold, 99).rgb);
     double mse[2] = {0, 0}, seconds[2] = {0, 0}, spp[2] = {0, 0};
     for (int seed = 1; seed <= o.seeds; seed++) {
         Render a = render(&s, &o, o.spp, o.threshold, (unsigned)seed);
