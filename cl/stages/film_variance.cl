@@ -5,7 +5,8 @@
  * pixel whose samples are all equal has variance 0, and the result does not depend on the order in
  * which samples arrived (nor does anything else: the inputs are exact sums).
  * Reads: film (FILM_WORDS per pixel), moments (MOMENT_WORDS per pixel). Writes: variance[pixel] =
- * (variance of the mean of r, g, b; w: relative error), INFINITY for w below 2 samples. */
+ * (variance of the mean of r, g, b; w: relative error), INFINITY for w below 2 samples.
+ * The 128-bit helpers u128_mul and u128_add come from accumulate_film.cl (before this file). */
 
 /* The relative error: sqrt(Var of the mean's luminance) / max(mean luminance, ADAPTIVE_EPSILON).
  * The variance is the luminance-weighted sum of the channels' (no cross-moments are kept): for

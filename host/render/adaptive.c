@@ -114,7 +114,9 @@ void adaptive_reset(Wavefront *w)
 uint32_t adaptive_window_end(const Wavefront *w, uint32_t max_spp)
 {
     const Adaptive *a = &w->adaptive;
-    return a->on && a->next_boundary < max_spp ? a->next_boundary : max_spp;
+    /* Past settings.spp (a viewer asking for more) there is no decision left to stop at. */
+    bool ahead = a->on && a->next_boundary > w->next_sample;
+    return ahead && a->next_boundary < max_spp ? a->next_boundary : max_spp;
 }
 
 void adaptive_compute_variance(Wavefront *w)
