@@ -54,7 +54,7 @@ typedef cl_uint uint;
         FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
-    STRUCT(RenderParams, 160) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
+    STRUCT(RenderParams, 176) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
         FIELD(RenderParams, width) FIELD(RenderParams, height) FIELD(RenderParams, seed)            \
         FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)                            \
         FIELD(RenderParams, num_bvh_prims) FIELD(RenderParams, num_emissive)                        \
@@ -64,6 +64,8 @@ typedef cl_uint uint;
         FIELD(RenderParams, env_rotation) FIELD(RenderParams, env_pick_pdf)                         \
         FIELD(RenderParams, num_analytic) FIELD(RenderParams, shutter_open)                         \
         FIELD(RenderParams, shutter_close) FIELD(RenderParams, num_instances)                       \
+        FIELD(RenderParams, window_pixels) FIELD(RenderParams, clamp_indirect)                      \
+        FIELD(RenderParams, film_pad0) FIELD(RenderParams, film_pad1)                               \
     STRUCT(LightEntry, 32) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf) FIELD(LightEntry, instance)              \
         FIELD(LightEntry, pad0) FIELD(LightEntry, pad1) FIELD(LightEntry, pad2)                     \

@@ -36,6 +36,7 @@ static CameraPaths generate(Device *dev, float open, float close)
     p.seed = 11;
     p.max_depth = 4;
     p.batch_size = SAMPLES;
+    p.window_pixels = SIDE * SIDE;
     p.shutter_open = open;
     p.shutter_close = close;
     Error err = {0};
@@ -58,6 +59,7 @@ static CameraPaths generate(Device *dev, float open, float close)
     num_state++;
     PATH_STATE_FIELDS(STATE_BUFFER)
     SAMPLE_STATE_FIELDS(STATE_BUFFER)
+    PIXEL_STATE_FIELDS(STATE_BUFFER)
 #undef STATE_BUFFER
     cl_mem active = device_buffer(dev, "active", CL_MEM_READ_WRITE, SAMPLES * sizeof(cl_uint), NULL,
                                   &err);

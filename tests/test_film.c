@@ -2,6 +2,7 @@
 /* The film's exact sums: the same bits whatever the window, the pool, or the order in which
  * blocks of samples arrive; counts past 2^24; clamping and saturation at the documented edges. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -180,5 +181,62 @@ Test(film, the_count_grows_past_2_24_and_sums_saturate, .timeout = 120)
     uint64_t a[FILM_WORDS] = {UINT64_MAX - 1, 5, 0, before}, b[FILM_WORDS] = {7, 6, 0, 1};
     film_sums_add(a, b, 1);
     cr_expect(a[0] == UINT64_MAX && a[1] == 11 && a[2] == 0 && a[3] == before + 1);
+    render_fixture_close(&f);
+}
+
+/* A panel glowing with radiance 3 on black, its edges across pixels: every sample is 0 or 3. */
+static const char *write_panel_scene(void)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "panel.mtl", "newmtl panel\nKd 0 0 0\nKe 3 3 3\n");
+    test_write_file(dir, "panel.obj", "mtllib panel.mtl\nusemtl panel\n"
+                                      "v -0.37 -0.41 0\nv 0.53 -0.41 0\nv 0.53 0.29 0\nv -0.37 0.29 0\n"
+                                      "f 1 2 3 4\n");
+    return test_write_file(dir, "scene.json",
+                           "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"fov_y\": 40},\n"
+                           " \"objects\": [{\"obj\": \"panel.obj\"}], \"background\": [0, 0, 0]}\n");
+}
+
+/* The moments: a pixel whose samples are all equal has variance exactly 0; one whose samples take
+ * the two values 0 and a has mean m and sample variance n / (n - 1) m (a - m), so the variance of
+ * its mean is m (a - m) / (n - 1). And keeping them leaves the film's bits as they were. */
+Test(film, the_variance_of_constant_and_two_valued_pixels, .timeout = 120)
+{
+    RenderFixture f;
+    render_fixture_open(&f, write_panel_scene(), 8, 8);
+    RenderSettings s = {.spp = 64, .max_depth = 2, .seed = 9, .moments = true};
+    Error err = {0};
+    Wavefront *w = wavefront_create(f.dev, &f.scene, &f.buffers, &s, &err);
+    cr_assert(w, "%s", err.message);
+    wavefront_advance(w, UINT64_MAX, s.spp);
+    float rgb[64 * 3], variance[64 * 3], spp[64];
+    wavefront_read_film(w, rgb);
+    cr_assert(wavefront_read_variance(w, variance));
+    wavefront_read_spp(w, spp);
+    wavefront_destroy(w);
+    int constant = 0, two_valued = 0;
+    for (int i = 0; i < 64; i++) {
+        cr_expect_eq(spp[i], 64.0f);
+        double m = rgb[3 * i], expected = m * (3.0 - m) / 63.0;
+        if (m == 0.0 || m == 3.0)
+            constant++;
+        else
+            two_valued++;
+        for (int c = 0; c < 3; c++)
+            cr_expect(fabs(variance[3 * i + c] - expected) <= 1e-6 * expected,
+                      "pixel %d: mean %g, variance of the mean %.9g, expected %.9g", i, m,
+                      variance[3 * i + c], expected);
+    }
+    cr_expect(constant > 10 && two_valued > 10, "%d constant and %d two-valued pixels", constant,
+              two_valued);
+    s.moments = false;
+    float *plain = render_fixture_render(&f, s, NULL);
+    cr_expect(memcmp(plain, rgb, sizeof rgb) == 0, "the moments changed the image");
+    free(plain);
+    /* Without moments there is no variance to read. */
+    w = wavefront_create(f.dev, &f.scene, &f.buffers, &s, &err);
+    cr_assert(w, "%s", err.message);
+    cr_expect(!wavefront_read_variance(w, variance));
+    wavefront_destroy(w);
     render_fixture_close(&f);
 }

@@ -40,10 +40,18 @@ typedef struct {
     float shutter_open;  /* camera.shutter: each camera path draws its time uniformly in */
     float shutter_close; /* [open, close] (PT_FEATURE_MOTION); equal: no motion blur */
     uint num_instances;  /* entries of instances */
+    /* Film and outputs (issue 19): adaptive sampling and the indirect clamp. */
+    uint window_pixels;  /* pixels a window's samples cycle over (see PATH_STATE_FIELDS): width *
+                          * height, or under RENDER_ADAPTIVE the length of active_pixels */
+    float clamp_indirect; /* RENDER_CLAMP_INDIRECT: the most any channel of one indirect
+                           * contribution may carry (shade_surface.cl, clamp_indirect) */
+    uint film_pad0, film_pad1;
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
 #define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
+#define RENDER_ADAPTIVE 4u     /* window sample k traces pixel active_pixels[...] (window_pixel) */
+#define RENDER_CLAMP_INDIRECT 8u /* contributions of 2+ bounces are clamped (clamp_indirect) */
 
 /* ---- Lights --------------------------------------------------------------------------------- */
 
@@ -131,8 +139,10 @@ typedef struct {
 /* ---- Wavefront path state ------------------------------------------------------------------ */
 
 /* Structure of arrays. The host renders a window of batch_size samples at a time: window sample k
- * traces pixel (batch_start + k) % num_pixels, sample index sample_index + (batch_start + k) /
- * num_pixels. A pool of path slots (often fewer than the window's samples) traces them: a slot
+ * traces pixel (batch_start + k) % window_pixels, sample index sample_index + (batch_start + k) /
+ * window_pixels (window_pixels = width * height; under RENDER_ADAPTIVE the pixel is
+ * active_pixels[(batch_start + k) % window_pixels], the pixels adaptive sampling still samples,
+ * which all hold sample_index samples when the window starts). A pool of path slots (often fewer than the window's samples) traces them: a slot
  * whose path ends is refilled with the window's next sample (generate_camera_rays), so the pool
  * stays full until the window runs dry. PATH_STATE_FIELDS are per slot, SAMPLE_STATE_FIELDS per
  * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
@@ -151,6 +161,9 @@ typedef struct {
     X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \
     X(float4, radiance)            /* rgb gathered so far by sample k's path */
+/* Per pixel (one entry when adaptive sampling is off): read by window_pixel. */
+#define PIXEL_STATE_FIELDS(X)                                                                      \
+    X(uint, active_pixels)         /* RENDER_ADAPTIVE: the pixels still sampled, ascending */
 
 /* Wavefront counters (one uint buffer). */
 #define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */
@@ -170,5 +183,14 @@ typedef struct {
 #define FILM_WORDS 4
 #define FILM_FRACTION_BITS 24
 #define FILM_SAMPLE_MAX 1048576.0f /* 2^20 */
+
+/* The film's second moments (RenderSettings.moments; a buffer of its own, so that the plain film
+ * and its accumulation are untouched without them): per pixel and channel the exact sum of the
+ * squares of the film's fixed-point samples x (the integers accumulate_film adds, x <= 2^44), as a
+ * 128-bit integer in a ulong2 (x: low word, y: high word), MOMENT_WORDS words per pixel. A square
+ * is at most 2^88, so the sum cannot wrap before 2^40 samples of the largest radiance (it
+ * saturates beyond); like the film it is integer addition, the same bits in any order. The
+ * variance of the mean follows exactly from these and the film's sums (film_variance.cl). */
+#define MOMENT_WORDS 6
 
 #endif

@@ -17,7 +17,7 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
         return;
     uint slot = fresh ? j : free_slots[j];
     uint k = first_sample + j;
-    uint pixel = window_pixel(p, k), sample = window_sample(p, k);
+    uint pixel = window_pixel(p, active_pixels, k), sample = window_sample(p, k);
     float3 origin, dir;
     camera_sample(p, pixel, sample, &origin, &dir);
     ray_origin[slot] = (float4)(origin, 0.0f);

@@ -32,7 +32,7 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
         /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
          * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
         uint k = sample_id[slot];
-        RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
         Hit h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time,
                                       brute_force,
                                       rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));

@@ -39,7 +39,7 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
             /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY
              * stream decides the cut-out pass-throughs. */
             uint k = sample_id[slot];
-            RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+            RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
             uint bounce = as_uint(shadow_direction[slot].w);
             bool occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w,
                                                    time, brute_force,

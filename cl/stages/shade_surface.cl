@@ -67,6 +67,19 @@ inline void add_radiance(global float4 *restrict radiance, uint k, float3 c)
         radiance[k] += (float4)(c, 0.0f);
 }
 
+/* --clamp (RENDER_CLAMP_INDIRECT), Cycles' "clamp indirect": a contribution that reaches the camera
+ * over two or more scattering vertices (an emitter or the sky hit by segment 3 or later, a light
+ * connection from the second vertex on) is scaled down so that its largest channel is at most
+ * clamp_indirect. Direct light (what the camera ray sees, the light at the first vertex by
+ * connection or by the BSDF's ray) is never clamped. A NaN passes through to the film's guard. */
+inline float3 clamp_indirect(constant RenderParams *p, float3 c, bool indirect)
+{
+    if (!(p->flags & RENDER_CLAMP_INDIRECT) || !indirect)
+        return c;
+    float largest = max3(c);
+    return largest > p->clamp_indirect ? c * (p->clamp_indirect / largest) : c;
+}
+
 /* Shades the path in slot; true when it queued a shadow ray. */
 PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
@@ -89,7 +102,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         float3 sky = environment_seen(p, &env, xyz(dir4), dir4.w, depth);
         if (PT_FEATURE_ANALYTIC && p->num_analytic > 0u)
             sky += suns_seen(p, scene->analytic_lights, xyz(dir4), dir4.w, depth);
-        add_radiance(radiance, k, beta * sky);
+        add_radiance(radiance, k, clamp_indirect(p, beta * sky, depth >= 3u));
         path_depth[slot] = 0u;
         return false;
     }
@@ -106,13 +119,13 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         ns = ng;
 
     float3 L = emission_seen(p, scene, m, hh, &surf, h.x, cos_o_geometric, dir4.w, depth);
-    float3 gathered = beta * L;
+    float3 gathered = clamp_indirect(p, beta * L, depth >= 3u);
 
     bool path_continues = depth < p->max_depth;
     bool queued = false;
     shadow_contribution[slot] = (float4)(0.0f);
     if (path_continues) {
-        RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
         uint bounce = depth - 1u;
         /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
          * a mix resolves to. */
@@ -174,7 +187,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
                 }
                 shadow_origin[slot] = (float4)(origin, dist);
                 shadow_direction[slot] = (float4)(to_target, as_float(bounce));
-                shadow_contribution[slot] = (float4)(contribution, 1.0f);
+                shadow_contribution[slot] =
+                    (float4)(clamp_indirect(p, contribution, depth >= 2u), 1.0f);
                 queued = true;
             }
         }

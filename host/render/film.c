@@ -16,11 +16,23 @@ bool film_init(Film *film, Device *dev, uint32_t num_pixels, Error *err)
     return true;
 }
 
+bool film_add_moments(Film *film, Error *err)
+{
+    film->moments = device_buffer(film->dev, "film_moments", CL_MEM_READ_WRITE,
+                                  (size_t)film->num_pixels * MOMENT_BYTES_PER_PIXEL, NULL, err);
+    if (!film->moments)
+        return false;
+    film_clear(film);
+    return true;
+}
+
 void film_release(Film *film)
 {
     if (film->sums)
         CL_CHECK(clReleaseMemObject(film->sums));
-    film->sums = NULL;
+    if (film->moments)
+        CL_CHECK(clReleaseMemObject(film->moments));
+    film->sums = film->moments = NULL;
 }
 
 void film_clear(Film *film)
@@ -28,6 +40,10 @@ void film_clear(Film *film)
     cl_ulong zero = 0;
     CL_CHECK(clEnqueueFillBuffer(film->dev->queue, film->sums, &zero, sizeof zero, 0,
                                  (size_t)film->num_pixels * FILM_BYTES_PER_PIXEL, 0, NULL, NULL));
+    if (film->moments)
+        CL_CHECK(clEnqueueFillBuffer(film->dev->queue, film->moments, &zero, sizeof zero, 0,
+                                     (size_t)film->num_pixels * MOMENT_BYTES_PER_PIXEL, 0, NULL,
+                                     NULL));
 }
 
 void film_read_sums(const Film *film, uint64_t *sums)

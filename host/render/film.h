@@ -15,12 +15,17 @@
 typedef struct {
     Device *dev;
     cl_mem sums;          /* FILM_WORDS cl_ulong per pixel */
+    cl_mem moments;       /* MOMENT_WORDS cl_ulong per pixel (shared/render.h); NULL unless
+                           * film_add_moments: the variance AOV and adaptive sampling */
     uint32_t num_pixels;
 } Film;
 
 #define FILM_BYTES_PER_PIXEL (FILM_WORDS * sizeof(cl_ulong))
+#define MOMENT_BYTES_PER_PIXEL (MOMENT_WORDS * sizeof(cl_ulong))
 
 bool film_init(Film *film, Device *dev, uint32_t num_pixels, Error *err);
+/* Gives the film its second moments (empty; cleared with the film from then on). */
+bool film_add_moments(Film *film, Error *err);
 void film_release(Film *film);
 void film_clear(Film *film); /* enqueued: no samples */
 

@@ -102,7 +102,8 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
             n_live = compact_paths(w, pool);
         }
     }
-    run(w, STAGE_ACCUMULATE, window_size < w->num_pixels ? window_size : w->num_pixels);
+    uint32_t np = w->params.window_pixels;
+    run(w, STAGE_ACCUMULATE, window_size < np ? window_size : np);
     w->stats->paths += window_size;
     w->stats->batches++;
     /* The per-window ray counters stay far below 2^32; fold them into the 64-bit totals. */
@@ -114,15 +115,17 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
     device_write(w->dev, w->counters, COUNTER_SHADOW_RAYS * sizeof(uint32_t), sizeof zeros, zeros);
 }
 
-/* The next window from the cursor: whole samples per pixel when the window holds the film, else a
- * slice of pixels of one sample. Returns the paths traced. */
+/* The next window from the cursor: whole samples per pixel when the window holds the film (the
+ * pixels adaptive sampling still samples), else a slice of pixels of one sample; never past the
+ * next adaptive decision. Returns the paths traced. */
 static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
 {
-    uint32_t window = w->stats->window_size, np = w->num_pixels, n;
+    uint32_t window = w->stats->window_size, np = w->params.window_pixels, n;
+    uint32_t end = adaptive_window_end(w, max_spp);
     if (window >= np && w->next_pixel == 0) {
         uint32_t k = window / np;
-        if (k > max_spp - w->next_sample)
-            k = max_spp - w->next_sample;
+        if (k > end - w->next_sample)
+            k = end - w->next_sample;
         n = k * np;
         render_window(w, 0, n, w->next_sample);
         w->next_sample += k;
@@ -133,7 +136,8 @@ static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
         if (w->next_pixel == np)
             w->next_pixel = 0, w->next_sample++;
     }
-    w->stats->spp_done = (int)w->next_sample;
+    adaptive_after_window(w);
+    w->stats->spp_done = wavefront_spp_done(w);
     return n;
 }
 
@@ -141,7 +145,7 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
 {
     double start = seconds_now();
     uint64_t done = 0;
-    while (done < min_paths && (int)w->next_sample < max_spp)
+    while (done < min_paths && wavefront_spp_done(w) < max_spp && !w->adaptive.done)
         done += render_next_window(w, (uint32_t)max_spp);
     CL_CHECK(clFinish(w->dev->queue));
     w->stats->seconds += seconds_now() - start;
@@ -157,7 +161,7 @@ bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffe
         return false;
     /* Progress and stopping early belong to the caller (app/render_loop.c drives
      * wavefront_advance itself); this is the plain whole render that bench and tests use. */
-    while ((int)w->next_sample < settings->spp)
+    while (wavefront_spp_done(w) < settings->spp)
         wavefront_advance(w, 1, settings->spp);
     wavefront_read_film(w, rgb);
     *stats = *w->stats;

@@ -26,12 +26,16 @@ typedef struct {
     bool shadow_flags;   /* intersect_shadow checks a flag per active path instead of reading
                           * the queue that shade_surface appends to with atomics (the default:
                           * 1.5 to 6% faster on an H100; pt bench measures both) */
-    float clamp_indirect; /* > 0: each sample's radiance from paths of 2 or more bounces is
-                           * clamped to this (--clamp; biased, off by default) */
-    float noise_threshold; /* > 0: adaptive sampling: a pixel stops once its relative error is
-                            * below this, decided at fixed sample counts after min_spp */
-    int min_spp;          /* adaptive sampling: samples every pixel gets first (0 = default) */
-    bool moments;         /* also sum the samples' squares (the variance AOV, adaptive sampling) */
+    float clamp_indirect; /* > 0: every contribution of indirect light (reaching the camera over
+                           * 2 or more scattering vertices) is scaled so that no channel exceeds
+                           * this (--clamp, Cycles' "clamp indirect"; biased, off by default; see
+                           * clamp_indirect in cl/stages/shade_surface.cl) */
+    float noise_threshold; /* > 0: adaptive sampling (render/adaptive.h); 0 = the scene's
+                            * render.noise_threshold (0 there too: off) */
+    int min_spp;          /* adaptive sampling: samples every pixel gets before the first
+                           * decision; 0 = the scene's render.min_spp, else ADAPTIVE_MIN_SPP */
+    bool moments;         /* also sum the samples' squares (the variance AOV; adaptive sampling
+                           * turns it on itself) */
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
@@ -56,6 +60,8 @@ typedef struct {
     uint32_t pool_size;
     uint32_t window_size;
     uint32_t batches;          /* windows rendered */
+    uint32_t active_pixels;    /* adaptive sampling: pixels still sampled (all before the first
+                                * decision, 0 once every pixel has stopped) */
     uint64_t device_bytes;     /* path state, window and film on the device */
     double stage_ms[STAGE_COUNT];   /* with settings.profile */
     uint32_t stage_launches[STAGE_COUNT];
@@ -72,8 +78,16 @@ Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers 
 /* Traces windows until at least min_paths camera paths are done or max_spp samples per pixel are
  * complete (lower settings.window_size for short steps); waits for them. */
 uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
-int wavefront_spp_done(const Wavefront *w); /* complete samples per pixel in the film so far */
+/* Complete samples per pixel in the film so far. With adaptive sampling: the samples that every
+ * pixel still sampled has (stopped pixels have fewer), and settings.spp once every pixel has
+ * stopped: the render is complete. */
+int wavefront_spp_done(const Wavefront *w);
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
+/* The variance of each pixel's mean per channel (the `variance` AOV: sample variance / n, 0 below
+ * 2 samples) into rgb; false (rgb untouched) unless the render keeps moments. */
+bool wavefront_read_variance(Wavefront *w, float *rgb);
+/* The samples each pixel holds (the film's count word; the `spp` AOV), one float per pixel. */
+void wavefront_read_spp(Wavefront *w, float *spp);
 Film *wavefront_film(Wavefront *w);                 /* its sums: to merge or resume films */
 void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
 void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */

@@ -6,6 +6,7 @@
 
 #include "parallel/compact.h"
 #include "parallel/material_sort.h"
+#include "render/adaptive.h"
 #include "render/film.h"
 #include "render/wavefront.h"
 
@@ -24,6 +25,7 @@ struct Wavefront {
 #define PATH_STATE_MEMBER(type, name) cl_mem name;
     PATH_STATE_FIELDS(PATH_STATE_MEMBER)
     SAMPLE_STATE_FIELDS(PATH_STATE_MEMBER)
+    PIXEL_STATE_FIELDS(PATH_STATE_MEMBER)
 #undef PATH_STATE_MEMBER
     cl_kernel kernels[STAGE_COUNT];
     cl_uint n_active_arg[STAGE_COUNT]; /* index of the n_active argument of the traced stages */
@@ -33,6 +35,7 @@ struct Wavefront {
     uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
                                        * film's samples: its index is first_sample + next_sample) */
     RenderStats own_stats;
+    Adaptive adaptive; /* adaptive sampling (render/adaptive.h); adaptive.on false: off */
 };
 
 #endif

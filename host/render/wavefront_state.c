@@ -2,6 +2,7 @@
 /* wavefront_state.c: what a render holds on the device: the path pool and window sized to the
  * device, the stage kernels with their arguments bound once, the compactor and material sorter;
  * and their release. The frame loop that drives them is render/wavefront.c. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -53,9 +54,12 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
 }
 
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
- * intersection kernels of its own, so that the production ones carry no branch for it. */
-static const char *stage_kernel(int stage, bool brute_force)
+ * intersection kernels of its own, so that the production ones carry no branch for it; so has the
+ * film with its second moments, so that the plain accumulation stays as it was. */
+static const char *stage_kernel(int stage, bool brute_force, bool moments)
 {
+    if (moments && stage == STAGE_ACCUMULATE)
+        return "accumulate_film_moments";
     if (brute_force && stage == STAGE_EXTEND)
         return "intersect_closest_brute_force";
     if (brute_force && stage == STAGE_CONNECT)
@@ -64,11 +68,18 @@ static const char *stage_kernel(int stage, bool brute_force)
 }
 
 static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
-                           const SceneBuffers *buffers, const RenderSettings *s, Error *err)
+                           const SceneBuffers *buffers, const RenderSettings *asked, Error *err)
 {
     memset(w, 0, sizeof *w);
     RenderStats *stats = &w->own_stats;
-    w->dev = dev, w->scene = buffers, w->settings = *s, w->stats = stats;
+    w->dev = dev, w->scene = buffers, w->settings = *asked, w->stats = stats;
+    const RenderSettings *s = &w->settings;
+    if (!(s->clamp_indirect >= 0.0f && isfinite(s->clamp_indirect))) {
+        error_set(err, ERR_USAGE, NULL, 0, "--clamp %g: must be a finite number > 0", s->clamp_indirect);
+        return false;
+    }
+    if (!adaptive_configure(w, scene, &w->settings, err))
+        return false;
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     uint32_t pool, window;
@@ -96,10 +107,13 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         .shutter_open = desc->camera.shutter_open,
         .shutter_close = desc->camera.shutter_close,
         .num_instances = buffers->num_instances,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE),
+        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+                 (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u),
+        .window_pixels = w->num_pixels,
+        .clamp_indirect = s->clamp_indirect,
     };
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
-    if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err))
+    if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err) || !adaptive_init(w, err))
         return false;
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
@@ -133,7 +147,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     }
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT && k != STAGE_SORT)
-            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force));
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force, s->moments));
     set_all_args(w);
     wavefront_reset(w);
     return true;
@@ -151,6 +165,7 @@ void wavefront_reset(Wavefront *w)
     w->stats->window_size = sizes.window_size;
     w->stats->device_bytes = sizes.device_bytes;
     w->next_sample = w->next_pixel = 0;
+    adaptive_reset(w);
 }
 
 void wavefront_set_camera(Wavefront *w, const Camera *camera)
@@ -167,7 +182,8 @@ static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
     if (with_scene)
         i = scene_buffers_set_args(w->scene, k, i);
 #define PATH_STATE_ARG(type, name) KARG(w->name),
-    KernelArg state[] = {PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)};
+    KernelArg state[] = {PATH_STATE_FIELDS(PATH_STATE_ARG) SAMPLE_STATE_FIELDS(PATH_STATE_ARG)
+                             PIXEL_STATE_FIELDS(PATH_STATE_ARG)};
 #undef PATH_STATE_ARG
     return kernel_set_args(k, i, sizeof state / sizeof state[0], state);
 }
@@ -200,10 +216,15 @@ static void set_all_args(Wavefront *w)
 
     cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
     i = set_path_args(w, accumulate, false);
-    KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
+    i = KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
+    if (w->settings.moments)
+        KERNEL_ARG(accumulate, i, w->film.moments);
 }
 
-int wavefront_spp_done(const Wavefront *w) { return (int)w->next_sample; }
+int wavefront_spp_done(const Wavefront *w)
+{
+    return w->adaptive.done ? (int)w->adaptive.spp : (int)w->next_sample;
+}
 Film *wavefront_film(Wavefront *w) { return &w->film; }
 RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
 
@@ -215,8 +236,36 @@ void wavefront_read_film(Wavefront *w, float *rgb)
     w->stats->nonfinite = counters[COUNTER_NONFINITE];
 }
 
+bool wavefront_read_variance(Wavefront *w, float *rgb)
+{
+    if (!w->settings.moments)
+        return false;
+    adaptive_compute_variance(w);
+    cl_float4 *variance = malloc(w->num_pixels * sizeof *variance);
+    if (!variance)
+        die("out of memory reading the variance");
+    device_read(w->dev, w->adaptive.variance, 0, w->num_pixels * sizeof *variance, variance);
+    for (uint32_t i = 0; i < w->num_pixels; i++)
+        for (int c = 0; c < 3; c++)
+            rgb[3 * i + c] = variance[i].s[c];
+    free(variance);
+    return true;
+}
+
+void wavefront_read_spp(Wavefront *w, float *spp)
+{
+    uint64_t *sums = malloc((size_t)w->num_pixels * FILM_BYTES_PER_PIXEL);
+    if (!sums)
+        die("out of memory reading the film");
+    film_read_sums(&w->film, sums);
+    for (uint32_t i = 0; i < w->num_pixels; i++)
+        spp[i] = (float)sums[FILM_WORDS * i + 3];
+    free(sums);
+}
+
 static void wavefront_release(Wavefront *w)
 {
+    adaptive_release(w);
     for (int k = 0; k < STAGE_COUNT; k++)
         if (w->kernels[k])
             CL_CHECK(clReleaseKernel(w->kernels[k]));

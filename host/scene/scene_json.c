@@ -36,11 +36,22 @@ static bool parse_film(JsonParser *p, const cJSON *obj, SceneDesc *d)
 
 static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
 {
-    static const char *const keys[] = {"spp", "max_depth", NULL};
-    return json_check_object(p, obj, "render", keys) &&
-           parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) &&
-           parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
-                              &d->max_depth);
+    static const char *const keys[] = {"spp", "max_depth", "noise_threshold", "min_spp", NULL};
+    if (!json_check_object(p, obj, "render", keys) ||
+        !parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) ||
+        !parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
+                            &d->max_depth) ||
+        !parse_positive_int(p, obj, "min_spp", "render.min_spp", 1, INT_MAX, &d->min_spp))
+        return false;
+    /* Adaptive sampling (render/wavefront.h); min_spp against the final spp is checked there,
+     * after the command line's overrides. */
+    const cJSON *item = json_member(obj, "noise_threshold");
+    if (item && !json_read_float(p, item, "render.noise_threshold", &d->noise_threshold))
+        return false;
+    if (item && !(d->noise_threshold > 0.0f))
+        return json_fail(p, ERR_JSON_VALUE, "render.noise_threshold", "%g must be > 0",
+                         d->noise_threshold);
+    return true;
 }
 
 /* objects[i].smooth (default false: a mesh without vn is shaded flat) and objects[i].material (a
