@@ -58,7 +58,7 @@ void render_images_free(RenderImages *images)
 void render_images_read_film(RenderImages *images, Wavefront *w)
 {
     if (images->layer[AOV_LAYER_SPP])
-        aov_read_sample_counts(w, images->layer[AOV_LAYER_SPP]);
+        wavefront_read_spp(w, images->layer[AOV_LAYER_SPP]);
     if (images->layer[AOV_LAYER_VARIANCE] &&
         !wavefront_read_variance(w, images->layer[AOV_LAYER_VARIANCE]))
         fprintf(stderr, "pt: warning: the film has no variance estimate: the variance layer is 0\n");

@@ -100,15 +100,3 @@ void aov_render(Device *dev, const Scene *scene, const SceneBuffers *buffers, un
     free(layer);
 }
 
-void aov_read_sample_counts(Wavefront *w, float *spp)
-{
-    const Film *film = wavefront_film(w);
-    uint64_t *sums = malloc((size_t)film->num_pixels * FILM_BYTES_PER_PIXEL);
-    if (!sums)
-        die("out of memory reading the film");
-    film_read_sums(film, sums);
-    /* The count is the word after the r, g, b sums (cl/shared/render.h, FILM_WORDS). */
-    for (uint32_t p = 0; p < film->num_pixels; p++)
-        spp[p] = (float)sums[(size_t)FILM_WORDS * p + 3];
-    free(sums);
-}

@@ -43,12 +43,4 @@ bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buff
 void aov_render(Device *dev, const Scene *scene, const SceneBuffers *buffers, unsigned aov, int spp,
                 unsigned seed, float *rgb);
 
-/* The film's sample count per pixel (spp AOV) as floats. */
-void aov_read_sample_counts(Wavefront *w, float *spp);
-
-/* Per-pixel, per-channel variance of the pixel mean (rgb, 3 floats a pixel), from the film's sums
- * of squares (RenderSettings.moments); false when the film has none. Implemented with the
- * adaptive sampling (render/wavefront*.c); see variance_stub.c until then. */
-bool wavefront_read_variance(Wavefront *w, float *rgb);
-
 #endif
