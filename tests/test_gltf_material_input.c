@@ -116,6 +116,7 @@ Test(gltf_material_input, embedded_bytes_decode_like_the_file)
     Loaded l;
     Error err = {0};
     cr_assert(fixture_gltf(&l, g, 2, images, 2, &err), "%s", err.message);
+    cr_assert_neq(l.materials[1].tex[MATERIAL_TEX_BASE], NO_TEXTURE, "the embedded image is used");
     expect_same_texture(&l, l.materials[0].tex[MATERIAL_TEX_BASE], &l,
                         l.materials[1].tex[MATERIAL_TEX_BASE], "embedded vs file");
     fixture_free(&l);
