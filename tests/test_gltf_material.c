@@ -162,28 +162,30 @@ Test(gltf_material, full_transmission_is_an_absorbing_dielectric)
                             "", "transmission 1");
 }
 
+/* Metallic 0.5: only the dielectric half transmits: weight 0.3, the surface's metallic 0.5 / 0.7
+ * so that the metal keeps half of the whole. Emission sits on the mix (what the triangles name). */
 Test(gltf_material, partial_transmission_mixes_surface_and_dielectric)
 {
-    GltfMaterial g;
-    gltf_material_default(&g);
-    g.transmission = 0.6f, g.metallic = 0.0f, g.roughness = 0.3f;
-    g.emissive[0] = 0.5f;
-    expect_gltf_equals_json(&g, 1, NULL, 0,
-                            "\"m\": {\"type\": \"mix\", \"a\": \"s\", \"b\": \"t\", \"weight\": 0.6, "
-                            "\"emission\": [0.5, 0, 0]}, "
-                            "\"s\": {\"type\": \"principled\", \"metallic\": 0, \"roughness\": 0.3}, "
-                            "\"t\": {\"type\": \"dielectric\", \"roughness\": 0.3}",
-                            "", "transmission 0.6");
-    /* Metallic 0.5: only the dielectric half transmits: weight 0.3, the surface's metallic
-     * 0.5 / 0.7 so that the metal keeps half of the whole. */
-    g.metallic = 0.5f;
-    g.emissive[0] = 0.0f;
-    expect_gltf_equals_json(&g, 1, NULL, 0,
-                            "\"m\": {\"type\": \"mix\", \"a\": \"s\", \"b\": \"t\", \"weight\": 0.3}, "
-                            "\"s\": {\"type\": \"principled\", \"metallic\": 0.71428571, "
-                            "\"roughness\": 0.3}, "
-                            "\"t\": {\"type\": \"dielectric\", \"roughness\": 0.3}",
-                            "", "transmission 0.6, metallic 0.5");
+    static const struct {
+        float metallic, emissive;
+        const char *mix, *surface_metallic;
+    } cases[] = {
+        {0.0f, 0.5f, "\"weight\": 0.6, \"emission\": [0.5, 0, 0]", "0"},
+        {0.5f, 0.0f, "\"weight\": 0.3", "0.71428571"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        GltfMaterial g;
+        gltf_material_default(&g);
+        g.transmission = 0.6f, g.metallic = cases[i].metallic, g.roughness = 0.3f;
+        g.emissive[0] = cases[i].emissive;
+        char json[1024];
+        snprintf(json, sizeof json,
+                 "\"m\": {\"type\": \"mix\", \"a\": \"s\", \"b\": \"t\", %s}, "
+                 "\"s\": {\"type\": \"principled\", \"metallic\": %s, \"roughness\": 0.3}, "
+                 "\"t\": {\"type\": \"dielectric\", \"roughness\": 0.3}",
+                 cases[i].mix, cases[i].surface_metallic);
+        expect_gltf_equals_json(&g, 1, NULL, 0, json, "", cases[i].mix);
+    }
 }
 
 Test(gltf_material, transmission_texture_is_the_mix_weight)
