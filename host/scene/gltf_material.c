@@ -61,27 +61,34 @@ static bool check_range(const GltfMaterial *g, const char *key, const float *v, 
 
 static bool check_material(const GltfMaterial *g, const char *path, Error *err)
 {
-    float cutoff = g->alpha_cutoff, strength = g->emissive_strength;
-    float distance = g->attenuation_distance;
-    return check_range(g, "pbrMetallicRoughness.baseColorFactor", g->base_color, 4, 0, 1, path, err) &&
-           check_range(g, "pbrMetallicRoughness.metallicFactor", &g->metallic, 1, 0, 1, path, err) &&
-           check_range(g, "pbrMetallicRoughness.roughnessFactor", &g->roughness, 1, 0, 1, path, err) &&
+    const float big = FLT_MAX, distance = g->attenuation_distance;
+    const float cutoff = g->alpha_cutoff, strength = g->emissive_strength;
+    const char *pbr = "pbrMetallicRoughness.", *ext = "extensions.KHR_materials_";
+    char k[10][96];
+    snprintf(k[0], sizeof k[0], "%sbaseColorFactor", pbr);
+    snprintf(k[1], sizeof k[1], "%smetallicFactor", pbr);
+    snprintf(k[2], sizeof k[2], "%sroughnessFactor", pbr);
+    snprintf(k[3], sizeof k[3], "%semissive_strength.emissiveStrength", ext);
+    snprintf(k[4], sizeof k[4], "%sspecular.specularFactor", ext);
+    snprintf(k[5], sizeof k[5], "%sspecular.specularColorFactor", ext);
+    snprintf(k[6], sizeof k[6], "%stransmission.transmissionFactor", ext);
+    snprintf(k[7], sizeof k[7], "%sior.ior", ext);
+    snprintf(k[8], sizeof k[8], "%svolume.attenuationColor", ext);
+    snprintf(k[9], sizeof k[9], "%svolume.attenuationDistance", ext);
+    return check_range(g, k[0], g->base_color, 4, 0, 1, path, err) &&
+           check_range(g, k[1], &g->metallic, 1, 0, 1, path, err) &&
+           check_range(g, k[2], &g->roughness, 1, 0, 1, path, err) &&
            check_range(g, "emissiveFactor", g->emissive, 3, 0, 1, path, err) &&
-           check_range(g, "KHR_materials_emissive_strength.emissiveStrength", &strength, 1, 0,
-                       FLT_MAX, path, err) &&
-           check_range(g, "alphaCutoff", &cutoff, 1, 0, FLT_MAX, path, err) &&
-           check_range(g, "normalTexture.scale", &g->normal_texture.amount, 1, -FLT_MAX, FLT_MAX,
-                       path, err) &&
-           check_range(g, "KHR_materials_specular.specularFactor", &g->specular, 1, 0, 1, path, err) &&
-           check_range(g, "KHR_materials_specular.specularColorFactor", g->specular_color, 3, 0,
-                       FLT_MAX, path, err) &&
-           check_range(g, "KHR_materials_transmission.transmissionFactor", &g->transmission, 1, 0,
-                       1, path, err) &&
-           check_range(g, "KHR_materials_ior.ior", &g->ior, 1, 1, FLT_MAX, path, err) &&
-           check_range(g, "KHR_materials_volume.attenuationColor", g->attenuation_color, 3, 0, 1,
-                       path, err) &&
-           (isinf(distance) || check_range(g, "KHR_materials_volume.attenuationDistance",
-                                           &distance, 1, FLT_MIN, FLT_MAX, path, err));
+           check_range(g, k[3], &strength, 1, 0, big, path, err) &&
+           check_range(g, "alphaCutoff", &cutoff, 1, 0, big, path, err) &&
+           check_range(g, "normalTexture.scale", &g->normal_texture.amount, 1, -big, big, path,
+                       err) &&
+           check_range(g, k[4], &g->specular, 1, 0, 1, path, err) &&
+           check_range(g, k[5], g->specular_color, 3, 0, big, path, err) &&
+           check_range(g, k[6], &g->transmission, 1, 0, 1, path, err) &&
+           check_range(g, k[7], &g->ior, 1, 1, big, path, err) &&
+           check_range(g, k[8], g->attenuation_color, 3, 0, 1, path, err) &&
+           (isinf(distance) || check_range(g, k[9], &distance, 1, FLT_MIN, big, path, err));
 }
 
 /* The principled part: base colour, metallic and roughness (the metallicRoughnessTexture's b and g
@@ -185,8 +192,8 @@ static bool grow(MaterialDesc **materials, int count, const char *gltf_path, Err
 /* Appends the parts of a transmissive material after the count top-level ones; returns the index
  * of the part. */
 static bool append_part(MaterialDesc **materials, int *num_materials, const Material *m,
-                        const char *name, const char *suffix, const char *gltf_path, uint32_t *index,
-                        Error *err)
+                        const char *name, const char *suffix, const char *gltf_path,
+                        uint32_t *index, Error *err)
 {
     if (!grow(materials, *num_materials + 1, gltf_path, err))
         return false;
