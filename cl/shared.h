@@ -50,8 +50,9 @@ typedef cl_uint uint;
         FIELD(Material, opacity) FIELD(Material, ior) FIELD(Material, specular)                     \
         FIELD(Material, weight) FIELD(Material, bump_scale) FIELD(Material, type)                   \
         FIELD(Material, flags) FIELD(Material, mix_a) FIELD(Material, mix_b) FIELD(Material, tex)   \
-    STRUCT(TextureInfo, 16) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
-        FIELD(TextureInfo, height) FIELD(TextureInfo, format)                                       \
+    STRUCT(TextureInfo, 48) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
+        FIELD(TextureInfo, height) FIELD(TextureInfo, format) FIELD(TextureInfo, flags)             \
+        FIELD(TextureInfo, scale) FIELD(TextureInfo, transform)                                     \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
     STRUCT(RenderParams, 176) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \

@@ -127,3 +127,51 @@ Test(texture_json, noise_stores_its_parameters_in_the_shared_layout)
     cr_expect(fabsf(set->stats[0].mean[0] - 0.55f) < 1e-6f, "mean: the colours' midpoint");
     scene_free(&scene);
 }
+
+/* The sampling keys land in TextureInfo.flags, scale and transform (a view sharing the file's
+ * texels); bad values name the key. */
+Test(texture_json, sampling_keys_make_views_of_the_file)
+{
+    const unsigned char px[] = {255, 128, 0, 64, 0, 0, 0, 255};
+    cr_assert(stbi_write_png(path_in_dir("a.png"), 2, 1, 4, px, 8));
+    Scene scene;
+    load("\"a\": {\"file\": \"a.png\"}, \"g\": {\"file\": \"a.png\", \"channel\": \"g\", "
+         "\"scale\": 0.5, \"wrap\": [\"clamp\", \"mirror\"], \"filter\": \"nearest\", "
+         "\"transform\": {\"offset\": [0.25, 0.5], \"rotation\": 90, \"scale\": [2, 4]}}",
+         &scene);
+    const TextureSet *set = &scene.data.textures;
+    cr_assert_eq(set->count, 2u, "the file, and its view");
+    TextureInfo plain = set->infos[0], view = set->infos[1];
+    cr_expect_eq(plain.flags, 0u);
+    cr_expect_eq(view.offset, plain.offset, "one copy of the texels");
+    cr_expect_eq(TEXTURE_FLAG_WRAP_S(view.flags), TEXTURE_WRAP_CLAMP);
+    cr_expect_eq(TEXTURE_FLAG_WRAP_T(view.flags), TEXTURE_WRAP_MIRROR);
+    cr_expect_eq(TEXTURE_FLAG_CHANNEL(view.flags), 1u);
+    cr_expect(view.flags & TEXTURE_FLAG_NEAREST);
+    cr_expect((view.flags & TEXTURE_FLAG_SCALE) && view.scale == 0.5f, "scale %g", view.scale);
+    cr_expect(view.flags & TEXTURE_FLAG_TRANSFORM);
+    /* T R S with R 90 degrees counter-clockwise: u' = -4 v + 0.25, v' = 2 u + 0.5. */
+    const float expected[6] = {0.0f, -4.0f, 0.25f, 2.0f, 0.0f, 0.5f};
+    for (int i = 0; i < 6; i++)
+        cr_expect(fabsf(view.transform[i] - expected[i]) < 1e-6f, "transform[%d] %g", i,
+                  view.transform[i]);
+    scene_free(&scene);
+    const char *bad[][2] = {
+        {"\"channel\": \"x\"", "textures.t.channel"},
+        {"\"wrap\": \"loop\"", "textures.t.wrap"},
+        {"\"filter\": 3", "textures.t.filter"},
+        {"\"transform\": {\"skew\": 1}", "textures.t.transform"},
+        {"\"scale\": \"big\"", "textures.t.scale"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char json[512];
+        snprintf(json, sizeof json,
+                 "{\"objects\": [{\"obj\": \"t.obj\"}], \"textures\": {\"t\": {\"file\": \"a.png\", %s}}}",
+                 bad[i][0]);
+        Error err = {0};
+        Scene s;
+        cr_expect_not(scene_load(test_write_file(g_dir, "bad.json", json), &s, &err), "%s accepted",
+                      bad[i][0]);
+        cr_expect(strstr(err.message, bad[i][1]), "%s: %s", bad[i][0], err.message);
+    }
+}

@@ -107,7 +107,8 @@ inline Frame surface_detail_frame(const SceneView *scene, uint prim, SurfaceHit 
 /* ---- Alpha cut-out ------------------------------------------------------------------------------ */
 
 /* The opacity of material m at a point: its texture's red channel or the constant, times the base
- * texture's alpha with MATERIAL_FLAG_BASE_ALPHA. */
+ * texture's alpha with MATERIAL_FLAG_BASE_ALPHA; with MATERIAL_FLAG_ALPHA_MASK, 1 where that
+ * reaches the cutoff base.w and 0 below (glTF's alphaMode MASK). */
 inline float material_opacity(const SceneView *scene, Material m, float2 uv, float3 position)
 {
     float opacity = m.tex[MATERIAL_TEX_OPACITY] != NO_TEXTURE
@@ -115,6 +116,8 @@ inline float material_opacity(const SceneView *scene, Material m, float2 uv, flo
                         : m.opacity;
     if ((m.flags & MATERIAL_FLAG_BASE_ALPHA) && m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
         opacity *= texture_eval(scene, m.tex[MATERIAL_TEX_BASE], uv, position).w;
+    if (m.flags & MATERIAL_FLAG_ALPHA_MASK)
+        opacity = opacity >= m.base.w ? 1.0f : 0.0f;
     return opacity;
 }
 

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* texture.cl: texture lookups on the packed texel buffer (host/scene/texture.h). Bilinear filtering,
  * repeat wrapping; 8-bit texels are sRGB-decoded before filtering. OBJ's v = 0 is the image's
- * bottom row, and row 0 of the stored image is its top. */
+ * bottom row, and row 0 of the stored image is its top. A texture with TextureInfo.flags (wrap
+ * modes, nearest, a uv transform, a channel, a scale: glTF's samplers and textureInfos) takes
+ * texture_sample_flagged; flags 0 keeps the plain path's code. */
 
 inline float srgb_to_linear(float c)
 {
@@ -27,10 +29,70 @@ inline int wrap_coord(int i, int n)
     return r < 0 ? r + n : r;
 }
 
+/* A coordinate brought into the wrap mode's period: [0, 1) repeating, [0, 2) mirrored (the second
+ * unit runs backwards), [0, 1] clamped. */
+inline float wrap_unit(float t, uint wrap)
+{
+    if (wrap == TEXTURE_WRAP_CLAMP)
+        return clamp(t, 0.0f, 1.0f);
+    if (wrap == TEXTURE_WRAP_MIRROR)
+        return t - 2.0f * floor(0.5f * t);
+    return t - floor(t);
+}
+
+/* A texel index of the infinite lattice mapped into [0, n): repeated, clamped to the edge, or
+ * mirrored (period 2n: index -1 is texel 0, n is texel n - 1). */
+inline int wrap_index(int i, int n, uint wrap)
+{
+    if (wrap == TEXTURE_WRAP_CLAMP)
+        return clamp(i, 0, n - 1);
+    if (wrap == TEXTURE_WRAP_MIRROR) {
+        int r = wrap_coord(i, 2 * n);
+        return r < n ? r : 2 * n - 1 - r;
+    }
+    return wrap_coord(i, n);
+}
+
+/* texture_sample with the sampling of info.flags (cl/shared/material.h TEXTURE_FLAG_*). The same
+ * texel convention as the plain path: v flipped, texel centres at half-integers. */
+float4 texture_sample_flagged(const global uint *texels, TextureInfo info, float2 uv)
+{
+    uint flags = info.flags;
+    if (flags & TEXTURE_FLAG_TRANSFORM)
+        uv = (float2)(info.transform[0] * uv.x + info.transform[1] * uv.y + info.transform[2],
+                      info.transform[3] * uv.x + info.transform[4] * uv.y + info.transform[5]);
+    uint wrap_s = TEXTURE_FLAG_WRAP_S(flags), wrap_t = TEXTURE_FLAG_WRAP_T(flags);
+    int w = (int)info.width, h = (int)info.height;
+    /* Within +-2 periods whatever uv was (NaN included: fmax picks the number), so that the
+     * float-to-int conversions below stay defined. */
+    float x = fmin(fmax(wrap_unit(uv.x, wrap_s) * (float)w, -2.0f * w), 2.0f * w);
+    float y = fmin(fmax((1.0f - wrap_unit(uv.y, wrap_t)) * (float)h, -2.0f * h), 2.0f * h);
+    float4 c;
+    if (flags & TEXTURE_FLAG_NEAREST) {
+        c = texel_fetch(texels, info, wrap_index((int)floor(x), w, wrap_s),
+                        wrap_index((int)floor(y), h, wrap_t));
+    } else {
+        float fx = floor(x - 0.5f), fy = floor(y - 0.5f);
+        float ax = x - 0.5f - fx, ay = y - 0.5f - fy;
+        int x0 = wrap_index((int)fx, w, wrap_s), x1 = wrap_index((int)fx + 1, w, wrap_s);
+        int y0 = wrap_index((int)fy, h, wrap_t), y1 = wrap_index((int)fy + 1, h, wrap_t);
+        float4 top = mix(texel_fetch(texels, info, x0, y0), texel_fetch(texels, info, x1, y0), ax);
+        float4 bottom = mix(texel_fetch(texels, info, x0, y1), texel_fetch(texels, info, x1, y1), ax);
+        c = mix(top, bottom, ay);
+    }
+    uint channel = TEXTURE_FLAG_CHANNEL(flags);
+    c.x = channel == 1u ? c.y : channel == 2u ? c.z : channel == 3u ? c.w : c.x;
+    if (flags & TEXTURE_FLAG_SCALE)
+        c = (float4)(c.x * info.scale, c.y * info.scale, c.z * info.scale, c.w);
+    return c;
+}
+
 float4 texture_sample(const SceneView *scene, uint index, float2 uv)
 {
     const global uint *texels = scene->texels;
     TextureInfo info = scene->textures[index];
+    if (info.flags != 0u)
+        return texture_sample_flagged(texels, info, uv);
     /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. The
      * fmin/fmax keep a NaN or infinite uv (and rounding of the fraction up to 1) from reaching the
      * float-to-int conversions below, whose out-of-range result is undefined. */

@@ -35,6 +35,8 @@ enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
 #define MATERIAL_FLAG_FRESNEL_ONE 1u  /* conductor without eta/k: Fresnel 1 */
 #define MATERIAL_FLAG_CUTOUT 2u       /* opacity < 1 somewhere: rays may pass through */
 #define MATERIAL_FLAG_BASE_ALPHA 4u   /* the BASE texture's alpha multiplies the opacity */
+#define MATERIAL_FLAG_ALPHA_MASK 8u   /* opacity is 1 where it reaches base.w (the cutoff), else 0:
+                                         glTF's alphaMode MASK */
 
 #define NO_TEXTURE 0xffffffffu
 /* Material features a scene may use. The kernels are built with -DPT_MATERIAL_FEATURES=mask of the
@@ -60,7 +62,7 @@ enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
  * the hit. Unused members of a type are 0 (textures NO_TEXTURE). */
 typedef struct {
     float4 base;           /* rgb: diffuse albedo, conductor reflectance, dielectric tint or
-                              principled base_color; w unused */
+                              principled base_color; w: alpha cutoff (MATERIAL_FLAG_ALPHA_MASK) */
     float4 emission;       /* rgb: emitted radiance times emission_strength (one-sided, front =
                               counter-clockwise side); w: luminance, times the emission texture's
                               mean luminance when textured (the light table's weight) */
@@ -88,11 +90,31 @@ typedef struct {
  * frequency (float bits), octaves, seed (uint); width = height = 1. */
 #define TEXTURE_NOISE 2u
 
+/* How a texture is sampled (TextureInfo.flags; 0: bilinear, repeating, rgba as stored, the
+ * lookup's plain path). Wrap modes per axis as glTF's samplers (GL's REPEAT, CLAMP_TO_EDGE,
+ * MIRRORED_REPEAT); NEAREST takes the texel under uv; TRANSFORM maps uv through an affine first
+ * (KHR_texture_transform, already in pt's uv frame); the CHANNEL field moves r, g, b or a into x,
+ * which a scalar parameter reads (glTF's metallicRoughness: roughness g, metallic b); SCALE
+ * multiplies rgb (after the channel move: a glTF factor times its texture). */
+#define TEXTURE_WRAP_REPEAT 0u
+#define TEXTURE_WRAP_CLAMP 1u
+#define TEXTURE_WRAP_MIRROR 2u
+#define TEXTURE_FLAG_WRAP_S(flags) ((flags) & 3u)
+#define TEXTURE_FLAG_WRAP_T(flags) (((flags) >> 2) & 3u)
+#define TEXTURE_FLAG_NEAREST 16u
+#define TEXTURE_FLAG_TRANSFORM 32u
+#define TEXTURE_FLAG_SCALE 64u
+#define TEXTURE_FLAG_CHANNEL(flags) (((flags) >> 7) & 3u)
+#define TEXTURE_FLAGS_MAKE(wrap_s, wrap_t, channel) ((wrap_s) | (wrap_t) << 2 | (channel) << 7)
+
 typedef struct {
     uint offset; /* first uint of the texture in the texel buffer */
     uint width;
     uint height;
     uint format; /* TEXTURE_* */
+    uint flags;  /* TEXTURE_FLAG_*: how it is sampled */
+    float scale; /* TEXTURE_FLAG_SCALE: multiplies rgb */
+    float transform[6]; /* TEXTURE_FLAG_TRANSFORM: uv' = (t0 u + t1 v + t2, t3 u + t4 v + t5) */
 } TextureInfo;
 
 #endif

@@ -45,7 +45,7 @@ static const char *const *type_keys(uint32_t type)
 static bool check_keys(Reader *r, uint32_t type)
 {
     static const char *const common[] = {"type", "emission", "emission_strength", "normal_map",
-                                         "bump_map", "bump_scale", "opacity"};
+                                         "bump_map", "bump_scale", "opacity", "alpha_cutoff"};
     const char *keys[24];
     int n = 0;
     for (size_t i = 0; i < sizeof common / sizeof *common; i++)
@@ -222,22 +222,28 @@ static bool check_ior(Reader *r)
     return json_fail(r->p, ERR_JSON_VALUE, key, "%g must be > 0", r->m->ior);
 }
 
-/* Keys every type takes: emission (times emission_strength), normal and bump maps, opacity. */
+/* Keys every type takes: emission (times emission_strength), normal and bump maps, opacity and
+ * its alpha_cutoff (opacity 1 where it reaches the cutoff, else 0: glTF's alphaMode MASK). */
 static bool read_common_keys(Reader *r)
 {
     Material *m = r->m;
-    float strength = 1.0f;
+    float strength = 1.0f, cutoff = -1.0f;
     if (!read_value(r, "emission", 3, m->emission.s, MATERIAL_TEX_EMISSION, 0, INFINITY, false) ||
         !read_value(r, "emission_strength", 1, &strength, -1, 0, INFINITY, false) ||
         !read_texture_name(r, "normal_map", MATERIAL_TEX_NORMAL) ||
         !read_texture_name(r, "bump_map", MATERIAL_TEX_BUMP) ||
         !read_value(r, "bump_scale", 1, &m->bump_scale, -1, -INFINITY, INFINITY, false) ||
-        !read_value(r, "opacity", 1, &m->opacity, MATERIAL_TEX_OPACITY, 0, 1, false))
+        !read_value(r, "opacity", 1, &m->opacity, MATERIAL_TEX_OPACITY, 0, 1, false) ||
+        !read_value(r, "alpha_cutoff", 1, &cutoff, -1, 0, 1, false))
         return false;
     for (int i = 0; i < 3; i++)
         m->emission.s[i] *= strength;
     if (m->opacity < 1.0f || m->tex[MATERIAL_TEX_OPACITY] != NO_TEXTURE)
         m->flags |= MATERIAL_FLAG_CUTOUT;
+    if (cutoff >= 0.0f) {
+        m->flags |= MATERIAL_FLAG_ALPHA_MASK | MATERIAL_FLAG_CUTOUT;
+        m->base.s[3] = cutoff;
+    }
     return true;
 }
 

@@ -24,7 +24,7 @@
 
 /* Finds a texture already added under the same file (compared after realpath, so "a/../t.png" and
  * "t.png" share one copy). */
-static uint32_t find_texture(const TextureSet *set, const char *key)
+uint32_t texture_set_find_key(const TextureSet *set, const char *key)
 {
     for (uint32_t i = 0; i < set->count; i++)
         if (strcmp(set->paths[i], key) == 0)
@@ -67,21 +67,10 @@ static bool decode_exr(const char *path, DecodedImage *img, Error *err)
     return true;
 }
 
-static bool decode_image(const char *path, DecodedImage *img, Error *err)
+/* An encoded image (PNG, JPEG, TGA, BMP, HDR) in memory; path names it in messages. */
+static bool decode_bytes(const stbi_uc *bytes, size_t size, const char *path, DecodedImage *img,
+                         Error *err)
 {
-    memset(img, 0, sizeof *img);
-    if (fs_has_suffix(path, ".exr") || fs_has_suffix(path, ".EXR"))
-        return decode_exr(path, img, err);
-    char *file = NULL;
-    size_t size = 0;
-    Error read_err = {0};
-    if (!input_file_read(path, "a texture", INPUT_LIMIT_TEXTURE, &file, &size, &read_err)) {
-        /* Anything but a missing file is a texture that cannot be used. */
-        error_set(err, read_err.code == ERR_FILE_MISSING ? ERR_FILE_MISSING : ERR_TEXTURE, path, 0,
-                  "%s", read_err.message);
-        return false;
-    }
-    const stbi_uc *bytes = (const stbi_uc *)file;
     int length = size > INT_MAX ? INT_MAX : (int)size, channels = 0;
     bool ok = false;
     const char *problem = NULL;
@@ -114,6 +103,24 @@ static bool decode_image(const char *path, DecodedImage *img, Error *err)
             error_set(err, ERR_TEXTURE, path, 0, "%s: cannot decode texture: %s", path,
                       stbi_failure_reason());
     }
+    return ok;
+}
+
+static bool decode_image(const char *path, DecodedImage *img, Error *err)
+{
+    memset(img, 0, sizeof *img);
+    if (fs_has_suffix(path, ".exr") || fs_has_suffix(path, ".EXR"))
+        return decode_exr(path, img, err);
+    char *file = NULL;
+    size_t size = 0;
+    Error read_err = {0};
+    if (!input_file_read(path, "a texture", INPUT_LIMIT_TEXTURE, &file, &size, &read_err)) {
+        /* Anything but a missing file is a texture that cannot be used. */
+        error_set(err, read_err.code == ERR_FILE_MISSING ? ERR_FILE_MISSING : ERR_TEXTURE, path, 0,
+                  "%s", read_err.message);
+        return false;
+    }
+    bool ok = decode_bytes((const stbi_uc *)file, size, path, img, err);
     free(file);
     return ok;
 }
@@ -216,7 +223,7 @@ static bool pack_texels(TextureSet *set, const char *path, const DecodedImage *i
     return true;
 }
 
-static bool append_info(TextureSet *set, const TextureInfo *info, const TextureStats *stats,
+bool texture_set_append(TextureSet *set, const TextureInfo *info, const TextureStats *stats,
                         const char *key)
 {
     TextureInfo *infos = realloc(set->infos, (set->count + 1) * sizeof *infos);
@@ -240,22 +247,12 @@ static bool append_info(TextureSet *set, const TextureInfo *info, const TextureS
     return true;
 }
 
-uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncoding encoding,
-                                 Error *err)
+static const char *const encoding_suffix[] = {"", "\n(srgb)", "\n(linear)"};
+
+/* Adds a decoded image under key (img freed). */
+static uint32_t add_decoded(TextureSet *set, DecodedImage img, TextureEncoding encoding,
+                            const char *path, const char *key, Error *err)
 {
-    char resolved[4096], key[4200];
-    static const char *const suffix[] = {"", "\n(srgb)", "\n(linear)"};
-    snprintf(key, sizeof key, "%s%s", realpath(path, resolved) ? resolved : path, suffix[encoding]);
-    uint32_t found = find_texture(set, key);
-    if (found != NO_TEXTURE)
-        return found;
-    if (set->count >= NO_TEXTURE - 1) {
-        error_set(err, ERR_TOO_LARGE, path, 0, "%s: too many textures", path);
-        return NO_TEXTURE;
-    }
-    DecodedImage img;
-    if (!decode_image(path, &img, err))
-        return NO_TEXTURE;
     TextureInfo info;
     TextureStats stats = {0};
     bool ok = apply_encoding(&img, encoding, path, err);
@@ -267,11 +264,50 @@ uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncod
     free(img.rgba32f);
     if (!ok)
         return NO_TEXTURE;
-    if (!append_info(set, &info, &stats, key)) {
+    if (!texture_set_append(set, &info, &stats, key)) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
         return NO_TEXTURE;
     }
     return set->count - 1;
+}
+
+static bool room_for_one_more(const TextureSet *set, const char *name, Error *err)
+{
+    if (set->count < NO_TEXTURE - 1)
+        return true;
+    error_set(err, ERR_TOO_LARGE, name, 0, "%s: too many textures", name);
+    return false;
+}
+
+uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncoding encoding,
+                                 Error *err)
+{
+    char resolved[4096], key[4200];
+    snprintf(key, sizeof key, "%s%s", realpath(path, resolved) ? resolved : path,
+             encoding_suffix[encoding]);
+    uint32_t found = texture_set_find_key(set, key);
+    if (found != NO_TEXTURE)
+        return found;
+    DecodedImage img;
+    if (!room_for_one_more(set, path, err) || !decode_image(path, &img, err))
+        return NO_TEXTURE;
+    return add_decoded(set, img, encoding, path, key, err);
+}
+
+uint32_t texture_set_add_memory(TextureSet *set, const unsigned char *bytes, size_t size,
+                                const char *name, TextureEncoding encoding, Error *err)
+{
+    char key[4200];
+    /* A key no file can have (a path never starts with a newline). */
+    snprintf(key, sizeof key, "\n(memory)%s%s", name, encoding_suffix[encoding]);
+    uint32_t found = texture_set_find_key(set, key);
+    if (found != NO_TEXTURE)
+        return found;
+    DecodedImage img;
+    memset(&img, 0, sizeof img);
+    if (!room_for_one_more(set, name, err) || !decode_bytes(bytes, size, name, &img, err))
+        return NO_TEXTURE;
+    return add_decoded(set, img, encoding, name, key, err);
 }
 
 uint32_t texture_set_add(TextureSet *set, const char *path, Error *err)
@@ -299,7 +335,7 @@ uint32_t texture_set_add_noise(TextureSet *set, const TextureNoise *noise, const
     /* A key no file can have: noise textures are never shared by path. */
     char key[64];
     snprintf(key, sizeof key, "\n(noise %u)", set->count);
-    if (!append_info(set, &info, &stats, key)) {
+    if (!texture_set_append(set, &info, &stats, key)) {
         error_set(err, ERR_TOO_LARGE, name, 0, "%s: out of memory", name);
         return NO_TEXTURE;
     }

@@ -45,9 +45,38 @@ uint32_t texture_set_add(TextureSet *set, const char *path, Error *err);
 /* The same with an explicit encoding; the same file with two encodings is stored twice. */
 uint32_t texture_set_add_encoded(TextureSet *set, const char *path, TextureEncoding encoding,
                                  Error *err);
+/* Adds an encoded image held in memory (a glTF's embedded PNG or JPEG); `name` is its key (the
+ * same name and encoding are added once) and names it in messages. Corrupt bytes are
+ * ERR_TEXTURE. */
+uint32_t texture_set_add_memory(TextureSet *set, const unsigned char *bytes, size_t size,
+                                const char *name, TextureEncoding encoding, Error *err);
 /* Adds a noise texture (never shared). `name` is for messages. */
 uint32_t texture_set_add_noise(TextureSet *set, const TextureNoise *noise, const char *name,
                                Error *err);
+/* How a texture is sampled (cl/shared/material.h TEXTURE_FLAG_*). All zero is the plain lookup:
+ * bilinear, repeating, rgba as stored, no transform, scale 1. */
+typedef struct {
+    uint32_t wrap_s, wrap_t; /* TEXTURE_WRAP_* */
+    bool nearest;
+    uint32_t channel;        /* 0..3: r, g, b or a becomes x (what a scalar parameter reads) */
+    bool has_scale;
+    float scale;             /* multiplies rgb */
+    bool has_transform;
+    float transform[6];      /* uv' = (t0 u + t1 v + t2, t3 u + t4 v + t5), pt's uv frame */
+} TextureSampling;
+
+/* Whether s is the plain lookup (no TextureInfo flags). */
+bool texture_sampling_is_plain(const TextureSampling *s);
+/* The texture `image` (an index of set) sampled as s: a TextureInfo sharing its texels, added once
+ * per distinct (image, s); image itself when s is plain. Its stats are the image's, the mean
+ * scaled. */
+uint32_t texture_set_add_sampled(TextureSet *set, uint32_t image, const TextureSampling *s,
+                                 Error *err);
+/* The texture added under key (a resolved path and encoding, ...), or NO_TEXTURE; and the
+ * appending of one entry under its key (false: out of memory). For the set's own files. */
+uint32_t texture_set_find_key(const TextureSet *set, const char *key);
+bool texture_set_append(TextureSet *set, const TextureInfo *info, const TextureStats *stats,
+                        const char *key);
 /* Luminance of the texture's mean colour (the emission weight of a textured emitter). */
 float texture_mean_luminance(const TextureSet *set, uint32_t index);
 void texture_set_free(TextureSet *set);

@@ -57,9 +57,99 @@ static bool read_noise(JsonParser *p, const cJSON *e, const char *prefix, Textur
     return true;
 }
 
+/* A name among `names` (NULL-terminated): its index. */
+static bool read_name(JsonParser *p, const cJSON *item, const char *key, const char *const *names,
+                      const char *expected, uint32_t *out)
+{
+    for (uint32_t i = 0; cJSON_IsString(item) && names[i]; i++) {
+        if (strcmp(item->valuestring, names[i]) == 0) {
+            *out = i;
+            return true;
+        }
+    }
+    if (!cJSON_IsString(item))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected %s", expected);
+    return json_fail(p, ERR_JSON_VALUE, key, "\"%s\" is not %s", item->valuestring, expected);
+}
+
+/* Two finite numbers. */
+static bool read_pair(JsonParser *p, const cJSON *item, const char *key, float out[2])
+{
+    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 2)
+        return json_fail(p, ERR_JSON_TYPE, key, "expected [x, y]");
+    for (int i = 0; i < 2; i++)
+        if (!json_read_float(p, cJSON_GetArrayItem(item, i), key, &out[i]))
+            return false;
+    return true;
+}
+
+/* "transform": {"offset": [x, y], "rotation": degrees, "scale": [x, y]}: uv' = T R S uv as
+ * KHR_texture_transform, in pt's uv frame (v up, so the rotation is counter-clockwise). */
+static bool read_transform(JsonParser *p, const cJSON *item, const char *prefix, TextureSampling *s)
+{
+    static const char *const keys[] = {"offset", "rotation", "scale", NULL};
+    char key[300];
+    snprintf(key, sizeof key, "%s.transform", prefix);
+    if (!cJSON_IsObject(item))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected {\"offset\", \"rotation\", \"scale\"}");
+    float offset[2] = {0.0f, 0.0f}, scale[2] = {1.0f, 1.0f}, degrees = 0.0f;
+    const cJSON *v;
+    if (!json_check_object(p, item, key, keys) ||
+        ((v = json_member(item, "offset")) && !read_pair(p, v, key, offset)) ||
+        ((v = json_member(item, "scale")) && !read_pair(p, v, key, scale)) ||
+        ((v = json_member(item, "rotation")) && !json_read_float(p, v, key, &degrees)))
+        return false;
+    double r = degrees * (3.14159265358979323846 / 180.0);
+    float c = (float)cos(r), sn = (float)sin(r);
+    const float t[6] = {c * scale[0], -sn * scale[1], offset[0], sn * scale[0], c * scale[1], offset[1]};
+    memcpy(s->transform, t, sizeof t);
+    s->has_transform = true;
+    return true;
+}
+
+/* The sampling keys of an image texture: channel, scale, wrap, filter, transform. */
+static bool read_sampling(JsonParser *p, const cJSON *e, const char *prefix, TextureSampling *s)
+{
+    static const char *const channels[] = {"r", "g", "b", "a", NULL};
+    static const char *const wraps[] = {"repeat", "clamp", "mirror", NULL};
+    static const char *const filters[] = {"bilinear", "nearest", NULL};
+    const char *const wrap_expected = "\"repeat\", \"clamp\" or \"mirror\"";
+    char key[300];
+    const cJSON *item;
+    if ((item = json_member(e, "channel"))) {
+        snprintf(key, sizeof key, "%s.channel", prefix);
+        if (!read_name(p, item, key, channels, "\"r\", \"g\", \"b\" or \"a\"", &s->channel))
+            return false;
+    }
+    if ((item = json_member(e, "scale"))) {
+        snprintf(key, sizeof key, "%s.scale", prefix);
+        if (!json_read_float(p, item, key, &s->scale))
+            return false;
+        s->has_scale = true;
+    }
+    if ((item = json_member(e, "wrap"))) {
+        snprintf(key, sizeof key, "%s.wrap", prefix);
+        bool pair = cJSON_IsArray(item) && cJSON_GetArraySize(item) == 2;
+        if (!read_name(p, pair ? cJSON_GetArrayItem(item, 0) : item, key, wraps, wrap_expected,
+                       &s->wrap_s) ||
+            !read_name(p, pair ? cJSON_GetArrayItem(item, 1) : item, key, wraps, wrap_expected,
+                       &s->wrap_t))
+            return false;
+    }
+    if ((item = json_member(e, "filter"))) {
+        uint32_t filter = 0;
+        snprintf(key, sizeof key, "%s.filter", prefix);
+        if (!read_name(p, item, key, filters, "\"bilinear\" or \"nearest\"", &filter))
+            return false;
+        s->nearest = filter == 1;
+    }
+    return !(item = json_member(e, "transform")) || read_transform(p, item, prefix, s);
+}
+
 static bool read_file_texture(JsonParser *p, const cJSON *e, const char *prefix, TextureDesc *t)
 {
-    static const char *const keys[] = {"type", "file", "encoding", NULL};
+    static const char *const keys[] = {"type", "file", "encoding", "channel", "scale", "wrap",
+                                       "filter", "transform", NULL};
     if (!json_check_object(p, e, prefix, keys))
         return false;
     char key[300];
@@ -71,7 +161,8 @@ static bool read_file_texture(JsonParser *p, const cJSON *e, const char *prefix,
         return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
     if (!file->valuestring[0])
         return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
-    if (!json_path_resolve(p, key, file->valuestring, t->path))
+    if (!json_path_resolve(p, key, file->valuestring, t->path) ||
+        !read_sampling(p, e, prefix, &t->sampling))
         return false;
     const cJSON *encoding = json_member(e, "encoding");
     if (!encoding)
@@ -141,8 +232,19 @@ bool textures_load(const TextureDesc *descs, int count, TextureSet *set, uint32_
     for (int i = 0; i < count; i++) {
         const TextureDesc *t = &descs[i];
         Error load_err = {0};
-        indices[i] = t->is_noise ? texture_set_add_noise(set, &t->noise, t->name, &load_err)
-                                 : texture_set_add_encoded(set, t->path, t->encoding, &load_err);
+        if (t->is_noise)
+            indices[i] = texture_set_add_noise(set, &t->noise, t->name, &load_err);
+        else if (t->bytes)
+            indices[i] = texture_set_add_memory(set, t->bytes, t->size, t->path, t->encoding,
+                                                &load_err);
+        else
+            indices[i] = texture_set_add_encoded(set, t->path, t->encoding, &load_err);
+        if (indices[i] != NO_TEXTURE && !t->is_noise)
+            indices[i] = texture_set_add_sampled(set, indices[i], &t->sampling, &load_err);
+        if (indices[i] == NO_TEXTURE && t->label[0]) {
+            error_set(err, load_err.code, scene_path, 0, "%s (%s)", load_err.message, t->label);
+            return false;
+        }
         if (indices[i] == NO_TEXTURE) {
             error_set(err, load_err.code, scene_path, 0, "%s: textures.%s.file: %s", scene_path,
                       t->name, load_err.message);

@@ -15,10 +15,20 @@
 
 typedef struct {
     char name[SCENE_NAME_LIMIT];
-    char path[1024];          /* resolved against the scene file; "" for noise */
+    char path[1024];          /* resolved against the scene file; "" for noise and embedded */
     TextureEncoding encoding; /* files */
     bool is_noise;
     TextureNoise noise;
+    /* An embedded image (a glTF's PNG or JPEG bytes) instead of a file: borrowed from the glTF
+     * loader, so it must outlive textures_load; `path` then names it ("model.glb: images[3]"),
+     * which is also its key (added once). */
+    const unsigned char *bytes;
+    size_t size;
+    /* Said after a load error instead of naming "textures.<name>.file" ("used by model.glb:
+     * materials[2].pbrMetallicRoughness.baseColorTexture"); "" for JSON textures. */
+    char label[320];
+    /* Keys channel, scale, wrap, filter, transform (zero: the plain lookup). */
+    TextureSampling sampling;
 } TextureDesc;
 
 /* Reads the "textures" object into a malloc'ed array (*out, *count); paths are resolved against
