@@ -201,7 +201,7 @@ int command_render(const Options *o)
                                .seed = seed,
                                .render_seconds = stats.seconds,
                                .scene = o->scene,
-                               .partial = spp_done < spp};
+                               .partial = stop != RENDER_COMPLETE};
         if (!render_write_exr(out.exr, &images, &session, &record, &err))
             die("%s", err.message);
         printf("wrote %s\n", out.exr);

@@ -66,7 +66,7 @@ bool render_loop_run(Session *session, const RenderSettings *settings, const Ren
                          wavefront_spp_done(w) < settings->spp;
         /* A window may be a slice of one sample's pixels: past the limit, the sample under way is
          * finished first, so that every pixel holds the same whole number of samples. */
-        if (timed_out && done % pixels != 0)
+        if (timed_out && !wavefront_at_whole_sample(w))
             done += wavefront_advance(w, UINT64_MAX, wavefront_spp_done(w) + 1);
         bool finished = wavefront_spp_done(w) == settings->spp || timed_out;
         if (progress != PROGRESS_NONE && (first || finished || now - last_print >= interval)) {

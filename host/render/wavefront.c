@@ -141,6 +141,8 @@ static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
     return n;
 }
 
+bool wavefront_at_whole_sample(const Wavefront *w) { return w->next_pixel == 0; }
+
 uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
 {
     double start = seconds_now();

@@ -82,6 +82,9 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp);
  * pixel still sampled has (stopped pixels have fewer), and settings.spp once every pixel has
  * stopped: the render is complete. */
 int wavefront_spp_done(const Wavefront *w);
+/* Whether the film holds whole samples: every pixel being sampled has the same count (no window
+ * has stopped inside a sample's pixels). */
+bool wavefront_at_whole_sample(const Wavefront *w);
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
 /* The variance of each pixel's mean per channel (the `variance` AOV: sample variance / n, 0 below
  * 2 samples) into rgb; false (rgb untouched) unless the render keeps moments. */
