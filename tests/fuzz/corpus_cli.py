@@ -22,7 +22,7 @@ def cli_cases():
     case("out-dev-full", scene, base + ["-o", "full.png"], "error", setup="ln -s /dev/full full.png")
     case("out-preview-exr", scene, base + ["-o", "o.exr", "--preview"], "ok")
     case("out-default-folder-is-file", scene, base, "error", setup="touch out")
-    case("out-aov-albedo", scene, base + ["-o", "a.png", "--aov", "albedo"], "ok")
+    case("out-aov-albedo", scene, base + ["-o", "a.png", "--aov", "albedo"], "error")  # a PNG holds no layers
     case("out-aov-depth-exr", scene, base + ["-o", "a.exr", "--aov", "depth"], "ok")
 
     opts = {"--spp": ["0", "-1", "abc", "1.5", "", "99999999999", "0x10", "1e3", " 1"],
