@@ -7,7 +7,7 @@
  * signal that pt was started ignoring (nohup) stays ignored.
  *
  * PT_TEST_RAISE=SIGNAL@POINT (tests only) makes pt raise the signal itself at a point it names:
- * "render" (the first window done, or an AOV render about to start) or "write" (a file's
+ * "render" (the first window of samples done) or "write" (a file's
  * temporary copy complete, not yet renamed), so that tests reach those moments without timing. */
 #ifndef PT_STOP_SIGNALS_H
 #define PT_STOP_SIGNALS_H
