@@ -20,7 +20,7 @@ CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
 # DT_RPATH rather than RUNPATH (--disable-new-dtags): it also applies to the libraries' own
 # dependencies (libGL.so.1 -> libGLdispatch.so.0), which a RUNPATH would leave to the system.
 LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib' -Wl,--disable-new-dtags
-LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -lm -lpthread
+LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -ltinygltf -lm -lpthread
 TEST_LDLIBS := -lcriterion
 
 ifeq ($(V),1)
