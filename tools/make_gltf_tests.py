@@ -287,10 +287,12 @@ def bad_cases(out, doc, binary):
          "meshes[0].primitives[0].attributes.POSITION: accessors[0]"),
         ("view_range.gltf", variant(lambda d: d["bufferViews"][0].update(byteLength=100000)),
          "bufferViews[0]"),
-        ("index_range.gltf", variant(lambda d: d["meshes"][0]["primitives"][0].update(indices=7)),
-         "meshes[0].primitives[0].indices"),
-        ("nan_matrix.gltf", variant(lambda d: d["nodes"][1]["matrix"].__setitem__(0, 12345.5))
-         .replace("12345.5", "1e400"), "nodes[1].matrix"),
+        ("index_range.gltf",  # the quad's 4 vertices indexed by the strip's indices (up to 5)
+         variant(lambda d: d["meshes"][1]["primitives"][0].update(indices=d["meshes"][2]["primitives"][0]["indices"])),
+         "meshes[1].primitives[0].indices: index 5"),
+        ("inf_matrix.gltf",  # JSON has no infinity: scales of 1e300 under 1e300 overflow
+         variant(lambda d: (d["nodes"][0].update(scale=[1e300] * 3), d["nodes"][2].update(scale=[1e300] * 3))),
+         "nodes[2]: its world matrix is not finite"),
         ("lines.gltf", variant(lambda d: d["meshes"][1]["primitives"][0].update(mode=1)),
          "meshes[1].primitives[0].mode"),
         ("required_ext.gltf", variant(lambda d: d["extensionsRequired"].append("KHR_draco_mesh_compression")),
