@@ -255,3 +255,20 @@ Test(gltf, renders_like_the_reference, .timeout = 300)
         }
     cr_assert(total > 0.01, "the image is black");
 }
+
+/* scenes/cornell-box/CornellBox-Original.gltf (tools/obj_to_gltf.py, with scene.json's camera)
+ * renders like the OBJ scene: Kd-only MTL materials are principled with specularFactor 0 (pure
+ * Lambert) and metallic 0, the lamp's Ke is its emissive strength. */
+Test(gltf, cornell_box_renders_like_the_obj, .timeout = 300)
+{
+    double a[4][3], sa[4][3], b[4][3], sb[4][3];
+    block_means("scenes/cornell-box/CornellBox-Original.gltf", 4, a, sa);
+    block_means("scenes/cornell-box/scene.json", 4, b, sb);
+    for (int q = 0; q < 4; q++)
+        for (int c = 0; c < 3; c++) {
+            double z = fabs(a[q][c] - b[q][c]) / (sqrt(sa[q][c] * sa[q][c] + sb[q][c] * sb[q][c]) + 1e-6);
+            cr_expect(z < 5.0, "quadrant %d channel %d: %f vs %f (z = %.1f)", q, c, a[q][c], b[q][c], z);
+        }
+    for (int q = 0; q < 4; q++)
+        cr_expect(a[q][0] + a[q][1] + a[q][2] > 0.1, "quadrant %d is dark", q);
+}
