@@ -243,6 +243,10 @@ def glb(doc, binary):
     return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
 
 
+def data_uri(binary):
+    return "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
+
+
 def with_buffer(doc, uri, size):
     d = json.loads(json.dumps(doc))
     d["buffers"] = [{"byteLength": size} if uri is None else {"uri": uri, "byteLength": size}]
@@ -273,8 +277,9 @@ def write_reference(out, doc, shapes):
     write(os.path.join(out, "reference.json"), json.dumps(scene, indent=1))
 
 
-def bad_cases(out, doc, binary):
-    """Broken variants: (file name, bytes or JSON, text the error must contain)."""
+def bad_variants(doc, binary):
+    """Broken variants of the features scene: [(file name, {file: bytes or text}, text the error
+    must contain)], each beside features.bin."""
     def variant(change):
         d = with_buffer(doc, "features.bin", len(binary))
         change(d)
@@ -301,27 +306,29 @@ def bad_cases(out, doc, binary):
         ("bad_material.gltf", variant(lambda d: d["meshes"][0]["primitives"][0].update(material=9)),
          "meshes[0].primitives[0].material"),
         ("sparse_range.gltf", variant(lambda d: next(a for a in d["accessors"] if "sparse" in a)
-                                      ["sparse"]["indices"].update(byteOffset=400)),
-         "sparse"),
+                                      ["sparse"]["indices"].update(byteOffset=400)), "sparse"),
         ("no_position.gltf", variant(lambda d: d["meshes"][5]["primitives"][0]["attributes"].pop("POSITION")),
          "meshes[5].primitives[0].attributes.POSITION"),
         ("not_json.gltf", "{\"asset\": ", "not_json.gltf"),
     ]
-    os.makedirs(os.path.join(out, "bad"), exist_ok=True)
-    write(os.path.join(out, "bad", "features.bin"), binary)
-    with open(os.path.join(out, "bad", "cases.txt"), "w") as f:
-        for name, data, expect in cases:
-            write(os.path.join(out, "bad", name), data)
-            f.write("%s\t%s\n" % (name, expect))
+    out = [(name, {name: data, "features.bin": binary}, expect) for name, data, expect in cases]
     # A NaN vertex: the lamp's first position.
     nan_bin = bytearray(binary)
     lamp_pos = doc["accessors"][doc["meshes"][5]["primitives"][0]["attributes"]["POSITION"]]
     struct.pack_into("<f", nan_bin, doc["bufferViews"][lamp_pos["bufferView"]]["byteOffset"], float("nan"))
-    write(os.path.join(out, "bad", "nan.bin"), bytes(nan_bin))
-    write(os.path.join(out, "bad", "nan_vertex.gltf"), json.dumps(with_buffer(doc, "nan.bin", len(binary))))
-    with open(os.path.join(out, "bad", "cases.txt"), "a") as f:
-        f.write("nan_vertex.gltf\tmeshes[5].primitives[0].attributes.POSITION\n")
-    return cases
+    out.append(("nan_vertex.gltf", {"nan_vertex.gltf": json.dumps(with_buffer(doc, "nan.bin", len(binary))),
+                                    "nan.bin": bytes(nan_bin)},
+                "meshes[5].primitives[0].attributes.POSITION"))
+    return out
+
+
+def write_bad_cases(out, doc, binary):
+    os.makedirs(os.path.join(out, "bad"), exist_ok=True)
+    with open(os.path.join(out, "bad", "cases.txt"), "w") as f:
+        for name, files, expect in bad_variants(doc, binary):
+            for fname, data in files.items():
+                write(os.path.join(out, "bad", fname), data)
+            f.write("%s\t%s\n" % (name, expect))
 
 
 def big(path, triangles):
@@ -365,10 +372,10 @@ def main():
     write(os.path.join(out, "features.bin"), binary)
     write(os.path.join(out, "features.gltf"), json.dumps(with_buffer(doc, "features.bin", len(binary)), indent=1))
     write(os.path.join(out, "features.glb"), glb(with_buffer(doc, None, len(binary)), binary))
-    uri = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
-    write(os.path.join(out, "features_embedded.gltf"), json.dumps(with_buffer(doc, uri, len(binary))))
+    write(os.path.join(out, "features_embedded.gltf"),
+          json.dumps(with_buffer(doc, data_uri(binary), len(binary))))
     write_reference(out, doc, shapes)
-    bad_cases(out, doc, binary)
+    write_bad_cases(out, doc, binary)
 
 
 if __name__ == "__main__":

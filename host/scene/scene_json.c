@@ -101,8 +101,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply"),
                     *gltf = json_member(e, "gltf");
         if (!!obj + !!ply + !!gltf > 1)
-            return json_fail(p, ERR_JSON_VALUE, key, "has more than one of \"obj\", \"ply\" and "
-                             "\"gltf\" (give one)");
+            return json_fail(p, ERR_JSON_VALUE, key, "has both \"%s\" and \"%s\" (give one)",
+                             obj ? "obj" : "ply", gltf ? "gltf" : "ply");
         if (!obj && !ply && !gltf) {
             snprintf(key, sizeof key, "objects[%d].obj", i);
             return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\", \"gltf\": the mesh file)");
@@ -118,8 +118,8 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
          * description's objects then outnumber the JSON's, so slot k may differ from i. */
         int k = d->num_objects;
         char file[1024];
-        ObjectOptions options;
-        ObjectTransform transform;
+        ObjectOptions options = {0};
+        ObjectTransform transform = {0};
         if (!json_path_resolve(p, key, obj->valuestring, file) ||
             !parse_object_options(p, e, i, d, &options) ||
             !object_transform_from_json(p, e, i, has_shutter, &transform))
