@@ -26,6 +26,9 @@ namespace {
 
 bool g_quiet = false;
 
+/* Vertices plus triangles of all decoded primitives together (about 3 GiB of mesh). */
+const size_t DECODED_LIMIT = (size_t)1 << 26;
+
 /* Extensions pt reads (materials: scene/gltf_material_read.cc); KHR_mesh_quantization only
  * widens the accessor types, which the decoder reads all of. */
 const char *const SUPPORTED[] = {"KHR_lights_punctual",         "KHR_materials_emissive_strength",
@@ -260,16 +263,28 @@ extern "C" bool gltf_load(const char *path, GltfFile *out, Error *err)
     try {
         ok = parse(path, model, err) && check_extensions(path, *model, err) &&
              gltf_walk_scene(*model, path, out, err);
-        /* Only the meshes that nodes place are decoded, each once. */
+        /* Only the meshes that nodes place are decoded, each once. Primitives may share one
+         * accessor: the total is bounded so that a small file cannot decode without bound. */
+        size_t total = 0;
         for (int p = 0; ok && p < out->num_primitives; p++) {
             GltfPrimitive *prim = &out->primitives[p];
-            if (prim->placed)
-                ok = gltf_io::decode_primitive(*model, prim->mesh_index, prim->primitive_index,
-                                               path, &prim->mesh, err);
+            if (!prim->placed)
+                continue;
+            ok = gltf_io::decode_primitive(*model, prim->mesh_index, prim->primitive_index, path,
+                                           &prim->mesh, err);
+            total += prim->mesh.num_positions + prim->mesh.num_triangles;
+            if (ok && total > DECODED_LIMIT) {
+                ok = false;
+                error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
+                          "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
+            }
         }
     } catch (const std::bad_alloc &) {
         ok = false;
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        ok = false;
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: %s", path, e.what());
     }
     if (!ok)
         gltf_free(out);

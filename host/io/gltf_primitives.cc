@@ -19,6 +19,7 @@ namespace {
 /* An accessor may not describe more elements than this (pt indexes vertices with 32 bits; an
  * accessor without a buffer view costs memory without costing file bytes). */
 const size_t MAX_ELEMENTS = (size_t)1 << 28;
+const size_t ZEROS_LIMIT = (size_t)1 << 24;
 
 struct Reader {
     const tinygltf::Model &model;
@@ -145,6 +146,9 @@ bool read_floats(Reader &r, int index, int comps, std::vector<float> &out)
     if (a.count > MAX_ELEMENTS)
         return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu is above pt's limit %zu", index,
                       a.count, MAX_ELEMENTS);
+    if (a.bufferView < 0 && a.count > ZEROS_LIMIT) /* zeros cost memory but no file bytes */
+        return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu without a buffer view is above pt's "
+                      "limit %zu", index, a.count, ZEROS_LIMIT);
     out.assign(a.count * comps, 0.0f); /* no buffer view: zeros (then sparse values) */
     size_t size = csize * comps;
     char what[48];
