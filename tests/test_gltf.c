@@ -140,10 +140,23 @@ Test(gltf, camera_lights_and_json_objects, .timeout = 60)
     cr_assert_float_eq(d.camera.eye[2], 5.0f, 1e-6f);
     cr_assert_float_eq(d.camera.target[2], 4.0f, 1e-6f);
     cr_assert_float_eq(d.camera.fov_y, 0.7f * 180.0f / 3.14159265f, 1e-4f);
-    cr_assert_eq(d.num_lights, 1);
-    cr_assert_eq(d.lights[0].type, LIGHT_POINT);
-    cr_assert_float_eq(d.lights[0].color.s[1], 1.0f, 1e-6f);
-    cr_assert_float_eq(d.lights[0].position.s[1], 2.0f, 1e-6f);
+    /* Point, spot and directional lights as the reference's JSON lights (683 lm/W). */
+    SceneDesc ref;
+    cr_assert(scene_desc_load(at(dir, "reference.json"), &ref, &err), "%s", err.message);
+    cr_assert_eq(d.num_lights, 3);
+    cr_assert_eq(ref.num_lights, 3);
+    for (int i = 0; i < 3; i++) {
+        const AnalyticLight *g = &d.lights[i], *r = &ref.lights[i];
+        cr_expect_eq(g->type, r->type, "light %d", i);
+        for (int c = 0; c < 4; c++) {
+            cr_expect(fabsf(g->position.s[c] - r->position.s[c]) < 1e-5f, "light %d position %d", i, c);
+            cr_expect(fabsf(g->color.s[c] - r->color.s[c]) < 1e-5f, "light %d colour %d: %g vs %g", i,
+                      c, g->color.s[c], r->color.s[c]);
+            cr_expect(fabsf(g->axis.s[c] - r->axis.s[c]) < 1e-5f, "light %d axis %d", i, c);
+            cr_expect(fabsf(g->params.s[c] - r->params.s[c]) < 1e-5f, "light %d params %d", i, c);
+        }
+    }
+    scene_desc_free(&ref);
     scene_desc_free(&d);
     const char *json = test_write_file(dir, "placed.json",
         "{\"camera\": {\"eye\": [0, 0, 9], \"target\": [0, 0, 0]},\n"
@@ -154,6 +167,7 @@ Test(gltf, camera_lights_and_json_objects, .timeout = 60)
     cr_assert(scene_desc_load(json, &d, &err), "%s", err.message);
     cr_assert_float_eq(d.camera.eye[2], 9.0f, 1e-6f, "the JSON camera wins");
     cr_assert_eq(d.num_objects, 9 + 1);
+    cr_assert_eq(d.num_lights, 3);
     cr_assert_eq(d.object_formats[9], MESH_OBJ);
     cr_assert_float_eq(d.lights[0].position.s[0], 10.0f, 1e-5f, "the light moves with the object");
     scene_desc_free(&d);

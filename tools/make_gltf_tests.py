@@ -197,6 +197,9 @@ def features():
         {"mesh": 5, "translation": [0, 2.5, 0], "rotation": [1, 0, 0, 0]},
         {"camera": 0, "translation": [0, 1.5, 5]},
         {"translation": [0, 2, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"translation": [1, 2, 0], "rotation": [-s, 0, 0, s], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"rotation": rot_y(60), "children": [13]},
+        {"rotation": [-0.5, 0, 0, math.sqrt(0.75)], "extensions": {"KHR_lights_punctual": {"light": 2}}},
     ]
     doc = {
         "asset": {"version": "2.0", "generator": "pt tools/make_gltf_tests.py"},
@@ -204,8 +207,11 @@ def features():
                            "KHR_lights_punctual"],
         "extensionsRequired": ["KHR_mesh_quantization"],
         "extensions": {"KHR_lights_punctual": {"lights": [
-            {"type": "point", "color": [1, 1, 1], "intensity": 683}]}},
-        "scene": 0, "scenes": [{"nodes": [0, 5, 6, 7, 8, 9, 10]}],
+            {"type": "point", "color": [1, 1, 1], "intensity": 683},
+            {"type": "spot", "color": [1, 0.5, 0.25], "intensity": 1366, "range": 10,
+             "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+            {"type": "directional", "color": [0.5, 0.5, 1], "intensity": 341.5}]}},
+        "scene": 0, "scenes": [{"nodes": [0, 5, 6, 7, 8, 9, 10, 11, 12]}],
         "nodes": nodes, "meshes": meshes, "materials": MATERIALS,
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}}],
         "accessors": b.accessors, "bufferViews": b.views,
@@ -271,8 +277,21 @@ def write_reference(out, doc, shapes):
         materials[name] = {"type": "principled", "base_color": base, "metallic": metallic,
                            "roughness": roughness, "emission": emission}
         objects.append({"obj": "reference_%s.obj" % name, "material": name})
+    def minus_z(*quats):  # a node's -Z after its rotations (outermost first)
+        v = [0, 0, -1]
+        for q in reversed(quats):
+            m = quat_matrix(q)
+            v = [sum(m[i][k] * v[k] for k in range(3)) for i in range(3)]
+        return v
+    s = math.sqrt(0.5)
+    lights = [{"type": "point", "position": [0, 2, 2], "intensity": [1, 1, 1]},
+              {"type": "spot", "position": [1, 2, 0], "intensity": [2, 1, 0.5],
+               "direction": minus_z([-s, 0, 0, s]), "cone_angle": math.degrees(0.5),
+               "falloff_angle": math.degrees(0.2)},
+              {"type": "directional", "irradiance": [0.25, 0.25, 0.5],
+               "direction": minus_z(rot_y(60), [-0.5, 0, 0, math.sqrt(0.75)])}]
     scene = {"camera": {"eye": [0, 1.5, 5], "target": [0, 1.5, 4], "fov_y": math.degrees(0.7)},
-             "lights": [{"type": "point", "position": [0, 2, 2], "intensity": [1, 1, 1]}],
+             "lights": lights,
              "materials": materials, "objects": objects}
     write(os.path.join(out, "reference.json"), json.dumps(scene, indent=1))
 

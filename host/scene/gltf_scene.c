@@ -86,6 +86,7 @@ static bool add_lights(SceneDesc *d, const GltfFile *f, const ObjectTransform *t
         if (g->type == GLTF_LIGHT_DIRECTIONAL) {
             l->type = LIGHT_DIRECTIONAL;
             l->position = unit_dir; /* the direction the light travels */
+            l->params.s[0] = 1.0f;  /* cos(half-angle 0): a delta light, as the JSON reader */
             continue;
         }
         l->position = (float4){{(float)p[0], (float)p[1], (float)p[2], 0.0f}};
