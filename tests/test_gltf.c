@@ -286,3 +286,26 @@ Test(gltf, cornell_box_renders_like_the_obj, .timeout = 300)
     for (int q = 0; q < 4; q++)
         cr_expect(a[q][0] + a[q][1] + a[q][2] > 0.1, "quadrant %d is dark", q);
 }
+
+/* Unknown extensionsUsed are one warning naming them all; the file still loads. */
+Test(gltf, unknown_used_extensions_are_one_warning, .timeout = 60)
+{
+    const char *dir = generate();
+    size_t size;
+    char *text = test_read_file(at(dir, "features.gltf"), &size);
+    const char *used = "\"extensionsUsed\": [";
+    char *p = strstr(text, used);
+    cr_assert(p);
+    size_t head = (size_t)(p - text) + strlen(used);
+    char *changed = malloc(size + 64);
+    snprintf(changed, size + 64, "%.*s\"EXT_one\", \"EXT_two\", %s", (int)head, text, text + head);
+    const char *path = test_write_file(dir, "used.gltf", changed);
+    int before = warning_count();
+    SceneDesc d;
+    Error err = {0};
+    cr_assert(scene_desc_load(path, &d, &err), "%s", err.message);
+    cr_assert_eq(warning_count(), before + 1);
+    scene_desc_free(&d);
+    free(changed);
+    free(text);
+}
