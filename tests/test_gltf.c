@@ -309,3 +309,75 @@ Test(gltf, unknown_used_extensions_are_one_warning, .timeout = 60)
     free(changed);
     free(text);
 }
+
+/* Every field of scene/gltf_material.h as the file states it: factors, textureInfos with their
+ * image, sampler and KHR_texture_transform, the KHR_materials_* extensions; images embedded in
+ * the GLB's buffer and as a data URI (encoded bytes), or a file beside it (url-decoded path). */
+Test(gltf, materials_and_images_are_read_as_written, .timeout = 60)
+{
+    const char *dir = generate();
+    GltfFile f;
+    Error err = {0};
+    cr_assert(gltf_load(at(dir, "textured.glb"), &f, &err), "%s", err.message);
+    GltfMaterial *m;
+    GltfImage *images;
+    int count, num_images;
+    cr_assert(gltf_read_materials(&f, &m, &count, &images, &num_images));
+    cr_assert_eq(count, 2, "the file's material and glTF's default");
+    cr_assert_eq(num_images, 3);
+    size_t png_size;
+    char *png = test_read_file(at(dir, "tex file.png"), &png_size);
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(images[i].size, png_size, "images[%d] holds the encoded PNG", i);
+        cr_assert(!memcmp(images[i].bytes, png, png_size));
+        cr_assert_eq(images[i].path[0], 0);
+    }
+    free(png);
+    cr_assert_str_eq(images[0].mime, "image/png");
+    cr_assert_str_eq(images[2].path, at(dir, "tex file.png"));
+    cr_assert_str_eq(images[2].json_path, "images[2]");
+    const GltfMaterial *g = &m[0];
+    cr_assert_str_eq(g->name, "everything");
+    cr_assert_str_eq(g->json_path, "materials[0]");
+    cr_assert_float_eq(g->base_color[3], 0.6f, 1e-7f);
+    cr_assert_float_eq(g->metallic, 0.4f, 1e-7f);
+    cr_assert_float_eq(g->roughness, 0.3f, 1e-7f);
+    const GltfTextureRef *t = &g->base_color_texture;
+    cr_assert_eq(t->image, 0);
+    cr_assert_eq(t->wrap_s, GLTF_WRAP_CLAMP);
+    cr_assert_eq(t->wrap_t, GLTF_WRAP_MIRROR);
+    cr_assert(t->nearest && t->has_transform);
+    cr_assert(t->offset[0] == 0.5f && t->offset[1] == 0.25f && t->rotation == 0.75f &&
+              t->scale[0] == 2.0f && t->scale[1] == 3.0f);
+    cr_assert_str_eq(t->json_path, "materials[0].pbrMetallicRoughness.baseColorTexture");
+    cr_assert_eq(g->metallic_roughness_texture.image, 1);
+    cr_assert_eq(g->metallic_roughness_texture.wrap_s, GLTF_WRAP_REPEAT);
+    cr_assert(!g->metallic_roughness_texture.has_transform);
+    cr_assert_eq(g->normal_texture.image, 2);
+    cr_assert_float_eq(g->normal_texture.amount, 0.5f, 1e-7f);
+    cr_assert_float_eq(g->occlusion_texture.amount, 0.25f, 1e-7f);
+    cr_assert_eq(g->emissive_texture.image, 1);
+    cr_assert_float_eq(g->emissive[2], 0.3f, 1e-7f);
+    cr_assert_float_eq(g->emissive_strength, 4.0f, 1e-7f);
+    cr_assert_eq(g->alpha_mode, GLTF_ALPHA_MASK);
+    cr_assert_float_eq(g->alpha_cutoff, 0.375f, 1e-7f);
+    cr_assert(g->double_sided);
+    cr_assert_float_eq(g->specular, 0.625f, 1e-7f);
+    cr_assert_float_eq(g->specular_color[1], 0.75f, 1e-7f);
+    cr_assert_eq(g->specular_texture.image, 0);
+    cr_assert_eq(g->specular_color_texture.image, 1);
+    cr_assert_str_eq(g->specular_color_texture.json_path,
+                     "materials[0].extensions.KHR_materials_specular.specularColorTexture");
+    cr_assert_float_eq(g->transmission, 0.875f, 1e-7f);
+    cr_assert_eq(g->transmission_texture.image, 2);
+    cr_assert_float_eq(g->ior, 1.25f, 1e-7f);
+    cr_assert(g->has_volume);
+    cr_assert_float_eq(g->thickness, 0.125f, 1e-7f);
+    cr_assert_float_eq(g->attenuation_distance, 2.5f, 1e-7f);
+    cr_assert_float_eq(g->attenuation_color[2], 0.75f, 1e-7f);
+    cr_assert_eq(m[1].base_color_texture.image, -1, "the default material");
+    cr_assert_float_eq(m[1].roughness, 1.0f, 1e-7f);
+    free(m);
+    free(images);
+    gltf_free(&f);
+}

@@ -350,6 +350,60 @@ def write_bad_cases(out, doc, binary):
             f.write("%s\t%s\n" % (name, expect))
 
 
+def png(width, height, rgba):
+    """A PNG (8-bit RGBA) of the given pixels, with zlib and struct."""
+    import zlib
+    raw = b"".join(b"\0" + bytes(rgba[4 * width * y:4 * width * (y + 1)]) for y in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def textured():
+    """(GLB bytes, external PNG bytes): one quad whose material uses every field of
+    scene/gltf_material.h: images in the GLB's buffer, as a data URI and as a file beside it."""
+    b = Builder()
+    quad = [-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1]
+    image = png(2, 2, [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128])
+    prim = {"attributes": {"POSITION": b.accessor(quad, 3, FLOAT),
+                           "TEXCOORD_0": b.accessor([0, 0, 1, 0, 1, 1, 0, 1], 2, FLOAT)},
+            "indices": b.accessor([0, 2, 1, 0, 3, 2], 1, UBYTE), "material": 0}
+    view = b.view(image)
+    transform = {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 0.75, "scale": [2, 3]}}
+    material = {
+        "name": "everything",
+        "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.7, 0.6], "metallicFactor": 0.4,
+                                 "roughnessFactor": 0.3,
+                                 "baseColorTexture": {"index": 0, "extensions": transform},
+                                 "metallicRoughnessTexture": {"index": 1}},
+        "normalTexture": {"index": 2, "scale": 0.5}, "occlusionTexture": {"index": 1, "strength": 0.25},
+        "emissiveTexture": {"index": 1}, "emissiveFactor": [0.1, 0.2, 0.3],
+        "alphaMode": "MASK", "alphaCutoff": 0.375, "doubleSided": True,
+        "extensions": {
+            "KHR_materials_emissive_strength": {"emissiveStrength": 4},
+            "KHR_materials_specular": {"specularFactor": 0.625, "specularColorFactor": [0.5, 0.75, 1],
+                                       "specularTexture": {"index": 0},
+                                       "specularColorTexture": {"index": 1}},
+            "KHR_materials_transmission": {"transmissionFactor": 0.875, "transmissionTexture": {"index": 2}},
+            "KHR_materials_ior": {"ior": 1.25},
+            "KHR_materials_volume": {"thicknessFactor": 0.125, "attenuationDistance": 2.5,
+                                     "attenuationColor": [0.25, 0.5, 0.75]}}}
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "extensionsUsed": ["KHR_texture_transform", "KHR_materials_emissive_strength",
+                              "KHR_materials_specular", "KHR_materials_transmission",
+                              "KHR_materials_ior", "KHR_materials_volume"],
+           "meshes": [{"primitives": [prim]}], "materials": [material],
+           "images": [{"bufferView": view, "mimeType": "image/png"},
+                      {"uri": "data:image/png;base64," + base64.b64encode(image).decode()},
+                      {"uri": "tex%20file.png"}],
+           "samplers": [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728}],
+           "textures": [{"source": 0, "sampler": 0}, {"source": 1}, {"source": 2}],
+           "accessors": b.accessors, "bufferViews": b.views}
+    return glb(with_buffer(doc, None, len(b.bin)), bytes(b.bin)), image
+
+
 def big(path, triangles):
     """A grid of about `triangles` triangles (FLOAT positions and normals, UINT indices)."""
     n = max(1, int(math.sqrt(triangles / 2)))
@@ -394,6 +448,9 @@ def main():
     write(os.path.join(out, "features_embedded.gltf"),
           json.dumps(with_buffer(doc, data_uri(binary), len(binary))))
     write_reference(out, doc, shapes)
+    data, image = textured()
+    write(os.path.join(out, "textured.glb"), data)
+    write(os.path.join(out, "tex file.png"), image)
     write_bad_cases(out, doc, binary)
 
 
