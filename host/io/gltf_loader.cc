@@ -8,6 +8,7 @@
  * or paths go to the material mapping (scene/gltf_material_read.cc). */
 #include "io/gltf_primitives.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
