@@ -7,7 +7,7 @@ set -eu
 # Build and run: OpenCL loader + headers, the CPU OpenCL driver, the scene/texture/image libraries.
 # Tests: Criterion (runner), Xvfb + Mesa (viewer tests in a real window), xdotool (window resizing).
 PACKAGES="build-essential pkg-config ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
-libtinyobjloader-dev libstb-dev libopenexr-dev libglfw3-dev libcjson-dev libcriterion-dev \
+libtinyobjloader-dev libtinygltf-dev libstb-dev libopenexr-dev libglfw3-dev libcjson-dev libcriterion-dev \
 xvfb xauth libgl1-mesa-dri xdotool"
 
 missing=""

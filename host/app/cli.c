@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "app/cli.h"
 
+#include "io/gltf_loader.h"
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
 #include "scene/scene.h"
@@ -261,6 +262,7 @@ static bool parse_option(int code, const char *a, const char *v, Options *o, Err
     case 'q':
         o->quiet = true;
         obj_loader_set_quiet(true); /* MTL statements pt does not use: no warnings */
+        gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
         return true;
     case 'h': o->command = CMD_HELP; return true;
     case OPT_VERSION: o->command = CMD_VERSION; return true;

@@ -23,8 +23,9 @@ static bool grow_array(void **array, size_t count, size_t element_size)
     return grown != NULL;
 }
 
-/* An object's mesh key: the file (by its canonical path where it exists), the material override
- * and smoothing. Objects with equal keys share one mesh. */
+/* An object's mesh key: the file (by its canonical path where it exists; a glTF primitive's
+ * "<canonical file>#meshes[m].primitives[p]", which realpath leaves as it is), the material
+ * override and smoothing. Objects with equal keys share one mesh. */
 typedef struct {
     const char *path;
     uint32_t material;
@@ -99,6 +100,9 @@ static bool load_object(SceneData *data, const SceneDesc *d, int i, const NamedM
 {
     ObjMesh mesh;
     memset(&mesh, 0, sizeof mesh);
+    if (d->object_meshes && d->object_meshes[i]) /* a glTF primitive, decoded in memory */
+        return scene_data_append_object(data, d->object_meshes[i], d->objects[i],
+                                        &d->object_options[i], named, err);
     bool ply = d->object_formats && d->object_formats[i] == MESH_PLY;
     bool ok = (ply ? ply_load(d->objects[i], &mesh, err) : obj_load(d->objects[i], &mesh, err)) &&
               scene_data_append_object(data, &mesh, d->objects[i], &d->object_options[i], named,

@@ -12,6 +12,7 @@
 #include "base/fs.h"
 #include "io/input_file.h"
 #include "scene/camera.h"
+#include "scene/gltf_scene.h"
 #include "scene/instances.h"
 #include "scene/json.h"
 #include "scene/scene_json.h"
@@ -83,6 +84,15 @@ static bool refuse_foreign_format(const char *path, Error *err)
     return false;
 }
 
+/* A bare glTF: its objects, lights and materials; its own camera when it has one, else framed
+ * on the bounds like a bare OBJ. */
+static bool load_bare_gltf(SceneDesc *d, Error *err)
+{
+    ObjectOptions options = {.material = NO_MATERIAL};
+    ObjectTransform identity = {.transform = affine_identity(), .transform_end = affine_identity()};
+    return gltf_scene_add(d, d->path, &options, &identity, -1, err);
+}
+
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
 {
     set_defaults(out);
@@ -105,6 +115,8 @@ bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
         return false;
     }
     bool ply = fs_has_suffix(out->path, ".ply");
+    if (fs_has_suffix(out->path, ".gltf") || fs_has_suffix(out->path, ".glb"))
+        return load_bare_gltf(out, err) || (scene_desc_free(out), false);
     if (!ply && !fs_has_suffix(out->path, ".obj"))
         return parse_json_file(out, err) || (scene_desc_free(out), false);
     /* A bare OBJ or PLY: one object, default settings, camera framed later on the bounds. */
@@ -135,6 +147,15 @@ void scene_desc_free(SceneDesc *desc)
     desc->object_options = NULL;
     free(desc->object_transforms);
     desc->object_transforms = NULL;
+    free(desc->object_meshes);
+    desc->object_meshes = NULL;
+    for (int i = 0; i < desc->num_gltf_files; i++) {
+        gltf_free(&desc->gltf_files[i].file);
+        free(desc->gltf_files[i].images);
+    }
+    free(desc->gltf_files);
+    desc->gltf_files = NULL;
+    desc->num_gltf_files = 0;
     free(desc->textures);
     desc->textures = NULL;
     desc->num_textures = 0;

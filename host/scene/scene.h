@@ -7,6 +7,7 @@
 #include <stdbool.h>
 
 #include "base/error.h"
+#include "io/gltf_loader.h"
 #include "scene/camera.h"
 #include "scene/material_json.h"
 #include "scene/scene_data.h"
@@ -33,8 +34,17 @@ typedef enum {
                           instances) */
 } InstancingMode;
 
-/* What an object's file is, by the key that named it ("obj" or "ply"), never by its extension. */
-typedef enum { MESH_OBJ, MESH_PLY } MeshFormat;
+/* What an object's file is, by the key that named it ("obj", "ply" or "gltf"), never by its
+ * extension. A MESH_GLTF object is one primitive of a glTF placed by one node: its mesh is in
+ * memory (SceneDesc.object_meshes), its objects[i] the primitive's key "<file>#meshes[m].primitives[p]". */
+typedef enum { MESH_OBJ, MESH_PLY, MESH_GLTF } MeshFormat;
+
+/* A glTF file the description read (scene/gltf_scene.h), kept until scene_desc_free: its decoded
+ * primitives are the objects' meshes, its images the materials' embedded textures. */
+typedef struct {
+    GltfFile file;
+    void *images; /* GltfImage array (scene/gltf_material.h) */
+} SceneGltf;
 
 typedef struct {
     char path[1024];    /* the scene file (.json or .obj) */
@@ -55,13 +65,18 @@ typedef struct {
     MeshFormat *object_formats; /* per object, by the key that named it; NULL: all MESH_OBJ */
     ObjectOptions *object_options; /* per object; material indexes `materials` */
     ObjectTransform *object_transforms; /* per object */
+    const ObjMesh **object_meshes; /* per object: the in-memory mesh of a MESH_GLTF object, else
+                                      NULL (objects[i] is read); NULL: none */
+    SceneGltf *gltf_files; /* the glTF files the objects come from */
+    int num_gltf_files;
     TextureDesc *textures;   /* the "textures" block */
     int num_textures;
     MaterialDesc *materials; /* the "materials" block; scene material i is materials[i] */
     int num_materials;
 } SceneDesc;
 
-/* Reads a scene description. path: a .json scene, a bare .obj or .ply, or a folder holding scene.json.
+/* Reads a scene description. path: a .json scene, a bare .obj, .ply, .gltf or .glb, or a folder
+ * holding scene.json. A bare glTF's own camera, when it has one, is used instead of framing.
  * Errors name the file and line (malformed JSON) or the key (unknown key, wrong type, bad value). */
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err);
 void scene_desc_free(SceneDesc *desc);

@@ -11,6 +11,7 @@
 
 #include "scene/analytic_lights.h"
 #include "scene/camera_json.h"
+#include "scene/gltf_scene.h"
 #include "scene/transform_json.h"
 
 static bool parse_positive_int(JsonParser *p, const cJSON *obj, const char *name, const char *key,
@@ -56,9 +57,8 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
 
 /* objects[i].smooth (default false: a mesh without vn is shaded flat) and objects[i].material (a
  * JSON material's name, given to every triangle of the object). */
-static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc *d)
+static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc *d, ObjectOptions *o)
 {
-    ObjectOptions *o = &d->object_options[i];
     o->material = NO_MATERIAL;
     char key[64];
     const cJSON *item = json_member(e, "smooth");
@@ -84,8 +84,8 @@ static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc
 
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj", "ply", "material", "smooth", "transform", "transform_end",
-                                       NULL};
+    static const char *const keys[] = {"obj",    "ply",       "gltf",          "material",
+                                       "smooth", "transform", "transform_end", NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -107,28 +107,48 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         snprintf(key, sizeof key, "objects[%d]", i);
         if (!json_check_object(p, e, key, keys))
             return false;
-        /* Exactly one of "obj" and "ply" names the mesh; the key, not the extension, says how
-         * to read it. */
-        const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply");
-        if (obj && ply)
-            return json_fail(p, ERR_JSON_VALUE, key, "has both \"obj\" and \"ply\" (give one)");
-        if (!obj && !ply) {
+        /* Exactly one of "obj", "ply" and "gltf" names the mesh; the key, not the extension,
+         * says how to read it. */
+        const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply"),
+                    *gltf = json_member(e, "gltf");
+        if (!!obj + !!ply + !!gltf > 1)
+            return json_fail(p, ERR_JSON_VALUE, key, "has both \"%s\" and \"%s\" (give one)",
+                             obj ? "obj" : "ply", gltf ? "gltf" : "ply");
+        if (!obj && !ply && !gltf) {
             snprintf(key, sizeof key, "objects[%d].obj", i);
-            return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\": the mesh file)");
+            return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\", \"gltf\": the mesh file)");
         }
-        d->object_formats[i] = ply ? MESH_PLY : MESH_OBJ;
-        if (ply)
-            obj = ply;
-        snprintf(key, sizeof key, "objects[%d].%s", i, ply ? "ply" : "obj");
+        const char *format = gltf ? "gltf" : ply ? "ply" : "obj";
+        obj = gltf ? gltf : ply ? ply : obj;
+        snprintf(key, sizeof key, "objects[%d].%s", i, format);
         if (!cJSON_IsString(obj))
             return json_fail(p, ERR_JSON_TYPE, key, "expected a file name (string)");
         if (!obj->valuestring[0])
             return json_fail(p, ERR_JSON_VALUE, key, "empty file name");
-        if (!json_path_resolve(p, key, obj->valuestring, d->objects[i]) ||
-            !parse_object_options(p, e, i, d) ||
-            !object_transform_from_json(p, e, i, has_shutter, &d->object_transforms[i]))
+        /* A glTF expands into one object per placed primitive (scene/gltf_scene.h): the
+         * description's objects then outnumber the JSON's, so slot k may differ from i. */
+        int k = d->num_objects;
+        char file[1024];
+        ObjectOptions options = {0};
+        ObjectTransform transform = {0};
+        if (!json_path_resolve(p, key, obj->valuestring, file) ||
+            !parse_object_options(p, e, i, d, &options) ||
+            !object_transform_from_json(p, e, i, has_shutter, &transform))
             return false;
-        d->num_objects = i + 1;
+        if (gltf) {
+            if (!gltf_scene_add(d, file, &options, &transform, i, p->err))
+                return false;
+            continue;
+        }
+        if (d->object_meshes && !scene_desc_reserve_objects(d, 1))
+            return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
+        memcpy(d->objects[k], file, sizeof file);
+        d->object_formats[k] = ply ? MESH_PLY : MESH_OBJ;
+        d->object_options[k] = options;
+        d->object_transforms[k] = transform;
+        if (d->object_meshes)
+            d->object_meshes[k] = NULL;
+        d->num_objects = k + 1;
     }
     return true;
 }

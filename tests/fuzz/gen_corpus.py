@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 """gen_corpus.py OUT [--seeds DIR]: writes the malformed-input corpus into OUT/cases/ (one folder
 per case); with --seeds, also the seed inputs of the libFuzzer targets (DIR/scene, DIR/obj,
-DIR/texture, DIR/ply: the corpus's scene files, OBJ+MTL pairs, images and PLY files).
+DIR/texture, DIR/ply, DIR/gltf: the corpus's scene files, OBJ+MTL pairs, images, PLY files and
+GLB files).
 
 Each case folder holds its input files and case.json:
   args    the pt command line (after the binary); run with the case folder as working directory.
@@ -19,7 +20,8 @@ Deterministic: the same corpus every run (seeded), so a failure names a case tha
 The cases come from one module per input kind: corpus_scene.py, corpus_obj.py (OBJ and MTL),
 corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statements),
 corpus_transform.py (objects' transforms, the camera's shutter),
-corpus_ply.py (PLY files, and scenes naming them with "ply"),
+corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
+and scenes naming them with "gltf"),
 corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
 list they append to.
 """
@@ -32,6 +34,7 @@ import sys
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 from corpus_cases import cases  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
+from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_ply import ply_cases  # noqa: E402
@@ -45,7 +48,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply"):
+    for target in ("scene", "obj", "texture", "ply", "gltf"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -57,6 +60,8 @@ def write_seeds(folder):
                 seed += b"\n#MTL\n" + as_bytes(files["m.mtl"])
         elif c["name"].startswith("ply-") and "x.ply" in files:
             target, seed = "ply", as_bytes(files["x.ply"])
+        elif c["name"].startswith("gltf-") and "x.glb" in files:
+            target, seed = "gltf", as_bytes(files["x.glb"])
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -78,7 +83,8 @@ def main():
     environment_map_cases()
     material_cases()
     transform_cases()
-    ply_cases()  # last: earlier cases keep their numbers
+    ply_cases()
+    gltf_cases(random.Random(20261202))  # last: earlier cases keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)

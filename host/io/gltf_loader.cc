@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: MIT
+/* The C API of gltf_loader.h over Debian's tinygltf 2.7.0 (a shared library built with its own
+ * JSON, stb_image and file-system callbacks; TINYGLTF_IMPLEMENTATION is never defined here). The
+ * file is read once by input_file_read (regular files only, size-limited); a GLB's header and
+ * chunks are checked here so that a truncated file is named as such; tinygltf parses the JSON and
+ * loads the buffers through pt's file callbacks, which remember a missing file so the message
+ * names it and the JSON path that asked for it. Images are not decoded here: their encoded bytes
+ * or paths go to the material mapping (scene/gltf_material_read.cc). */
+#include "io/gltf_primitives.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <cJSON.h>
+
+extern "C" {
+#include "io/input_file.h"
+}
+
+namespace {
+
+bool g_quiet = false;
+
+/* Vertices plus triangles of all decoded primitives together (about 3 GiB of mesh). */
+const size_t DECODED_LIMIT = (size_t)1 << 26;
+
+/* Extensions pt reads (materials: scene/gltf_material_read.cc); KHR_mesh_quantization only
+ * widens the accessor types, which the decoder reads all of. */
+const char *const SUPPORTED[] = {"KHR_lights_punctual",         "KHR_materials_emissive_strength",
+                                 "KHR_materials_specular",      "KHR_materials_transmission",
+                                 "KHR_materials_ior",           "KHR_materials_volume",
+                                 "KHR_texture_transform",       "KHR_mesh_quantization",
+                                 nullptr};
+
+bool supported(const std::string &name)
+{
+    for (const char *const *s = SUPPORTED; *s; s++)
+        if (name == *s)
+            return true;
+    return false;
+}
+
+/* pt's file callbacks for tinygltf: reads through input_file_read, and remembers the first file
+ * that was missing or unreadable and why. */
+struct FileLog {
+    std::string failed, reason;
+    ErrorCode code = ERR_NONE;
+};
+
+bool file_exists(const std::string &name, void *user)
+{
+    FILE *f = fopen(name.c_str(), "rb");
+    if (f) {
+        fclose(f);
+        return true;
+    }
+    FileLog *log = static_cast<FileLog *>(user);
+    if (log->failed.empty()) {
+        log->failed = name;
+        log->reason = strerror(errno);
+        log->code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
+    }
+    return false;
+}
+
+std::string expand_path(const std::string &name, void *) { return name; }
+
+bool read_file(std::vector<unsigned char> *out, std::string *err, const std::string &name, void *user)
+{
+    char *data;
+    size_t size;
+    Error e;
+    if (!input_file_read(name.c_str(), "a glTF buffer or image", INPUT_LIMIT_OBJ, &data, &size, &e)) {
+        FileLog *log = static_cast<FileLog *>(user);
+        if (log->failed.empty()) {
+            log->failed = name;
+            log->reason = e.message;
+            log->code = e.code;
+        }
+        if (err)
+            *err += e.message;
+        return false;
+    }
+    out->assign(data, data + size);
+    free(data);
+    return true;
+}
+
+bool write_file(std::string *, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    return false;
+}
+
+/* Keeps an embedded image's encoded bytes (data URI or buffer view) undecoded in image->image;
+ * an external image keeps only its uri (the material mapping reads the file). */
+bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                      const unsigned char *bytes, int size, void *)
+{
+    if (image->uri.empty() && size > 0)
+        image->image.assign(bytes, bytes + size);
+    image->width = image->height = 0;
+    return true;
+}
+
+uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The GLB container: 12-byte header (magic, version 2, length) then chunks (length, type, data). */
+bool check_glb(const char *path, const unsigned char *b, size_t size, Error *err)
+{
+    if (size < 20) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: truncated GLB (%zu bytes, the header alone "
+                  "needs 20)", path, size);
+        return false;
+    }
+    uint32_t version = le32(b + 4), length = le32(b + 8);
+    if (version != 2) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: GLB version %u (pt reads glTF 2.0)", path, version);
+        return false;
+    }
+    if (length > size) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: truncated GLB: the header says %u bytes, the "
+                  "file has %zu", path, length, size);
+        return false;
+    }
+    size_t at = 12;
+    for (int chunk = 0; at < length; chunk++) {
+        if (length - at < 8) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: GLB chunk %d at byte %zu: truncated header",
+                      path, chunk, at);
+            return false;
+        }
+        uint32_t chunk_length = le32(b + at);
+        if (chunk_length > length - at - 8) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: truncated GLB: chunk %d at byte %zu says %u "
+                      "bytes, %zu remain", path, chunk, at, chunk_length, length - at - 8);
+            return false;
+        }
+        if (chunk == 0 && le32(b + at + 4) != 0x4E4F534Au) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: GLB's first chunk is not JSON", path);
+            return false;
+        }
+        at += 8 + (size_t)chunk_length;
+    }
+    return true;
+}
+
+/* In the error path only: the JSON path ("buffers[1].uri") whose uri names the file that failed. */
+std::string json_path_of_file(const char *json, size_t size, const std::string &failed)
+{
+    std::string text(json, size), found;
+    cJSON *root = cJSON_Parse(text.c_str());
+    for (const char *section : {"buffers", "images"}) {
+        const cJSON *array = cJSON_GetObjectItemCaseSensitive(root, section);
+        int i = 0;
+        for (const cJSON *e = array ? array->child : nullptr; e && found.empty(); e = e->next, i++) {
+            const cJSON *uri = cJSON_GetObjectItemCaseSensitive(e, "uri");
+            if (!cJSON_IsString(uri))
+                continue;
+            std::string u = uri->valuestring;
+            if (!u.empty() && failed.size() >= u.size() &&
+                failed.compare(failed.size() - u.size(), u.size(), u) == 0)
+                found = std::string(section) + "[" + std::to_string(i) + "].uri";
+        }
+    }
+    cJSON_Delete(root);
+    return found;
+}
+
+std::string folder_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? std::string(path, (size_t)(slash - path)) : std::string(".");
+}
+
+bool parse(const char *path, tinygltf::Model *model, Error *err)
+{
+    char *data;
+    size_t size;
+    if (!input_file_read(path, "a glTF file", INPUT_LIMIT_OBJ, &data, &size, err))
+        return false;
+    const unsigned char *bytes = reinterpret_cast<const unsigned char *>(data);
+    bool glb = size >= 4 && memcmp(bytes, "glTF", 4) == 0;
+    if (size > 0xffffffffu) {
+        free(data);
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: %zu bytes (tinygltf reads at most 4 GiB)", path, size);
+        return false;
+    }
+    if (glb && !check_glb(path, bytes, size, err)) {
+        free(data);
+        return false;
+    }
+    FileLog log;
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({file_exists, expand_path, read_file, write_file, &log});
+    loader.SetImageLoader(keep_image_bytes, nullptr);
+    std::string terr, twarn, base = folder_of(path);
+    bool ok = glb ? loader.LoadBinaryFromMemory(model, &terr, &twarn, bytes, (unsigned)size, base)
+                  : loader.LoadASCIIFromString(model, &terr, &twarn, data, (unsigned)size, base);
+    if (!ok) {
+        if (!log.failed.empty()) {
+            const char *json = glb ? data + 20 : data;
+            size_t json_size = glb ? le32(bytes + 12) : size;
+            std::string where = json_path_of_file(json, json_size, log.failed);
+            error_set(err, log.code, path, 0, "%s: %s \"%s\": %s", path,
+                      where.empty() ? "buffers" : where.c_str(), log.failed.c_str(),
+                      log.reason.c_str());
+        } else {
+            size_t nl = terr.find('\n');
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: %s", path,
+                      terr.empty() ? "not a glTF 2.0 file" : terr.substr(0, nl).c_str());
+        }
+    }
+    free(data);
+    return ok;
+}
+
+bool check_extensions(const char *path, const tinygltf::Model &m, Error *err)
+{
+    for (size_t i = 0; i < m.extensionsRequired.size(); i++)
+        if (!supported(m.extensionsRequired[i])) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: extensionsRequired[%zu]: \"%s\" is not "
+                      "implemented by pt", path, i, m.extensionsRequired[i].c_str());
+            return false;
+        }
+    std::string unknown;
+    for (const std::string &name : m.extensionsUsed)
+        if (!supported(name))
+            unknown += (unknown.empty() ? "" : ", ") + name;
+    if (!unknown.empty() && !g_quiet)
+        warn("%s: extensionsUsed: pt ignores %s", path, unknown.c_str());
+    return true;
+}
+
+} // namespace
+
+/* gltf_scene_graph.cc: nodes, cameras and lights. */
+bool gltf_walk_scene(const tinygltf::Model &m, const char *path, GltfFile *out, Error *err);
+
+extern "C" void gltf_loader_set_quiet(bool quiet)
+{
+    g_quiet = quiet;
+}
+
+extern "C" bool gltf_load(const char *path, GltfFile *out, Error *err)
+{
+    memset(out, 0, sizeof *out);
+    snprintf(out->path, sizeof out->path, "%s", path);
+    tinygltf::Model *model = new (std::nothrow) tinygltf::Model;
+    if (!model) {
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
+        return false;
+    }
+    out->model = model;
+    bool ok;
+    try {
+        ok = parse(path, model, err) && check_extensions(path, *model, err) &&
+             gltf_walk_scene(*model, path, out, err);
+        /* Only the meshes that nodes place are decoded, each once. Primitives may share one
+         * accessor: the total is bounded so that a small file cannot decode without bound. */
+        size_t total = 0;
+        for (int p = 0; ok && p < out->num_primitives; p++) {
+            GltfPrimitive *prim = &out->primitives[p];
+            if (!prim->placed)
+                continue;
+            ok = gltf_io::decode_primitive(*model, prim->mesh_index, prim->primitive_index, path,
+                                           &prim->mesh, err);
+            total += prim->mesh.num_positions + prim->mesh.num_triangles;
+            if (ok && total > DECODED_LIMIT) {
+                ok = false;
+                error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
+                          "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
+            }
+        }
+    } catch (const std::bad_alloc &) {
+        ok = false;
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        ok = false;
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: %s", path, e.what());
+    }
+    if (!ok)
+        gltf_free(out);
+    return ok;
+}
+
+extern "C" void gltf_free(GltfFile *file)
+{
+    for (int p = 0; p < file->num_primitives; p++)
+        obj_free(&file->primitives[p].mesh);
+    free(file->primitives);
+    free(file->mesh_first);
+    free(file->placements);
+    free(file->lights);
+    delete static_cast<tinygltf::Model *>(file->model);
+    memset(file, 0, sizeof *file);
+}
