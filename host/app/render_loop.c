@@ -32,13 +32,14 @@ static double update_interval(ProgressStyle style)
 static void print_progress(ProgressStyle style, int spp_done, int spp, uint64_t done,
                            uint64_t total, double elapsed)
 {
-    double fraction = total ? (double)done / (double)total : 1.0;
+    /* Adaptive sampling finishes with fewer paths than pixels x spp: done is then 100%. */
+    double fraction = total && spp_done < spp ? (double)done / (double)total : 1.0;
     if (style != PROGRESS_TERMINAL) {
         fprintf(stderr, "pt: progress: %d/%d spp (%.1f%%), %.1f s\n", spp_done, spp,
                 100.0 * fraction, elapsed);
     } else {
         double rate = (double)done / (elapsed > 0 ? elapsed : 1e-9);
-        double eta = (double)(total - done) / (rate > 0 ? rate : 1);
+        double eta = fraction < 1.0 ? (double)(total - done) / (rate > 0 ? rate : 1) : 0.0;
         fprintf(stderr, "\rpt: %5.1f%%  %d/%d spp  %.2f Msamples/s  elapsed %.1f s  ETA %.1f s   ",
                 100.0 * fraction, spp_done, spp, rate * 1e-6, elapsed, eta);
     }
