@@ -33,6 +33,7 @@ struct Wavefront {
      * (GEODESIC_STAT_*); NULL without holes, and kernels[STAGE_GEODESIC] too. */
     cl_mem black_holes, geodesic_stats;
     cl_uint num_black_holes;
+    cl_float4 scene_box[2]; /* the scene's world box (lo, hi) with a margin */
     uint32_t num_pixels;
     uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
                                        * film's samples: its index is first_sample + next_sample) */

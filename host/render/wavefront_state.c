@@ -2,6 +2,7 @@
 /* wavefront_state.c: what a render holds on the device: the path pool and window sized to the
  * device, the stage kernels with their arguments bound once, the compactor and material sorter;
  * and their release. The frame loop that drives them is render/wavefront.c. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -47,11 +48,18 @@ static void set_all_args(Wavefront *w);
 
 /* The holes' buffer, the step counts and the integrate_geodesic kernel, for scenes with holes
  * (the program has the kernel exactly then: PT_FEATURE_BLACK_HOLES, render/session.c). */
-static bool black_holes_init(Wavefront *w, const SceneDesc *desc, Error *err)
+static bool black_holes_init(Wavefront *w, const SceneDesc *desc, const SceneData *data, Error *err)
 {
     if (desc->num_black_holes == 0)
         return true;
     w->num_black_holes = (cl_uint)desc->num_black_holes;
+    /* The world box that chords are tested against before the BVH, with a margin for rounding. */
+    for (int a = 0; a < 3; a++) {
+        float lo = data->bounds_min[a], hi = data->bounds_max[a];
+        float margin = 1e-3f * (hi - lo) + 1e-4f * fmaxf(fabsf(lo), fabsf(hi)) + 1e-6f;
+        w->scene_box[0].s[a] = lo - margin;
+        w->scene_box[1].s[a] = hi + margin;
+    }
     w->black_holes = device_buffer(w->dev, "black_holes", CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                    desc->num_black_holes * sizeof(BlackHole), desc->black_holes, err);
     w->geodesic_stats = device_buffer(w->dev, "geodesic_stats", CL_MEM_READ_WRITE,
@@ -151,7 +159,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC)
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force));
-    if (!black_holes_init(w, &scene->desc, err))
+    if (!black_holes_init(w, &scene->desc, &scene->data, err))
         return false;
     set_all_args(w);
     wavefront_reset(w);
@@ -225,7 +233,8 @@ static void set_all_args(Wavefront *w)
         i = set_path_args(w, geodesic, true);
         w->n_active_arg[STAGE_GEODESIC] = i + 1;
         KERNEL_ARGS(geodesic, i, KARG(w->active), KARG(zero), KARG(w->black_holes),
-                    KARG(w->num_black_holes), KARG(w->geodesic_stats));
+                    KARG(w->num_black_holes), KARG(w->scene_box[0]), KARG(w->scene_box[1]),
+                    KARG(w->geodesic_stats));
     }
 
     cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
