@@ -172,19 +172,20 @@ inline float geodesic_chord_hit(const SceneView *scene, SceneBox box, float3 o, 
 
 #if PT_FEATURE_BLACK_HOLES
 
-/* Counts a finished curved ray into the step statistics. */
-inline void geodesic_count(global uint *stats, uint steps, bool captured)
+/* Counts a finished curved ray into the step statistics: totals per work-group (group[3], added
+ * to stats once per group by the kernel), the histogram spread over its bins. */
+inline void geodesic_count(local uint *group, global uint *stats, uint steps, bool captured)
 {
-    atomic_inc(&stats[GEODESIC_STAT_RAYS]);
-    atomic_add(&stats[GEODESIC_STAT_STEPS], steps);
+    atomic_inc(&group[GEODESIC_STAT_RAYS]);
+    atomic_add(&group[GEODESIC_STAT_STEPS], steps);
     if (captured)
-        atomic_inc(&stats[GEODESIC_STAT_CAPTURED]);
+        atomic_inc(&group[GEODESIC_STAT_CAPTURED]);
     atomic_inc(&stats[GEODESIC_STAT_HISTOGRAM + min(steps / GEODESIC_BIN_STEPS, GEODESIC_BINS - 1u)]);
 }
 
 PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
                               PATH_STATE_PARAMS uint slot, const global BlackHole *holes, uint n,
-                              SceneBox box, global uint *stats)
+                              SceneBox box, local uint *group, global uint *stats)
 {
     uint depth = path_depth[slot];
     if (depth == 0u)
@@ -260,7 +261,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
             break;
         }
     }
-    geodesic_count(stats, steps, captured);
+    geodesic_count(group, stats, steps, captured);
     if (ended) {
         path_depth[slot] = 0u;
         hit[slot] = (float4)(INFINITY, 0.0f, 0.0f, as_float(HIT_NONE));
@@ -275,12 +276,20 @@ kernel void integrate_geodesic(constant RenderParams *p, SCENE_PARAMS PATH_STATE
                                const global BlackHole *holes, uint num_holes, float4 box_lo,
                                float4 box_hi, global uint *stats)
 {
+    local uint group[3];
+    for (uint j = get_local_id(0); j < 3u; j += get_local_size(0))
+        group[j] = 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
-    if (i >= n_active)
-        return;
     SceneView scene = SCENE_VIEW;
     SceneBox box = {xyz(box_lo), xyz(box_hi)};
-    integrate_path(p, &scene, PATH_STATE_ARGS active[i], holes, num_holes, box, stats);
+    if (i < n_active)
+        integrate_path(p, &scene, PATH_STATE_ARGS active[i], holes, num_holes, box, group, stats);
+    /* Every work item reaches this barrier: no early return above. */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint j = get_local_id(0); j < 3u; j += get_local_size(0))
+        if (group[j] > 0u)
+            atomic_add(&stats[j], group[j]);
 }
 
 #endif
