@@ -18,7 +18,10 @@ inline float3 blackbody_colour(float t)
 
 /* The disk's noise at q (relative to the hole, in the disk plane) in [0, 1]; 1 without noise. fBm
  * (noise_fbm, texture.cl) in the disk's own coordinates after turning q by swirl x (inner / r)^1.5:
- * Keplerian rotation (angular speed ~ r^-1.5) has sheared the pattern into spiral streaks. */
+ * Keplerian rotation (angular speed ~ r^-1.5) has sheared the pattern into spiral streaks. fBm
+ * stays near 1/2; its spread about 1/2 is stretched by DISK_NOISE_CONTRAST (then clamped), so that
+ * the disk has gaps and bright lanes. */
+#define DISK_NOISE_CONTRAST 2.5f
 inline float disk_noise(const global BlackHole *h, float3 q, float r)
 {
     float4 nz = h->noise;
@@ -30,7 +33,8 @@ inline float disk_noise(const global BlackHole *h, float3 q, float r)
     float c = cos(angle), s = sin(angle);
     float u = dot(q, t1), w = dot(q, t2);
     float3 p = (float3)(c * u - s * w, s * u + c * w, 0.0f) / inner;
-    return noise_fbm(p, nz.x, (uint)nz.y, 0x6a09e667u);
+    float n = noise_fbm(p, nz.x, (uint)nz.y, 0x6a09e667u);
+    return clamp(0.5f + DISK_NOISE_CONTRAST * (n - 0.5f), 0.0f, 1.0f);
 }
 
 /* Radiance the disk emits at q, r = |q| in [inner, outer], noise n: the emission scale, times the

@@ -12,16 +12,7 @@
 static bool read_number(JsonParser *p, const cJSON *e, const char *name, const char *prefix,
                         float def, float lo, bool open_lo, float hi, float *out)
 {
-    char key[256];
-    snprintf(key, sizeof key, "%s.%s", prefix, name);
-    const cJSON *item = json_member(e, name);
-    *out = def;
-    if (item && !json_read_float(p, item, key, out))
-        return false;
-    if (!(open_lo ? *out > lo : *out >= lo) || !(*out <= hi))
-        return json_fail(p, ERR_JSON_VALUE, key, "%g is out of range %c%g, %g]", *out,
-                         open_lo ? '(' : '[', lo, hi);
-    return true;
+    return json_read_member_in_range(p, e, prefix, name, def, lo, open_lo, hi, out);
 }
 
 static double length3(const float v[3])
@@ -59,14 +50,8 @@ static bool parse_disk(JsonParser *p, const cJSON *e, const char *prefix, float 
     const cJSON *item;
     if ((item = json_member(e, "normal"))) {
         snprintf(key, sizeof key, "%s.normal", prefix);
-        if (!json_read_vec3(p, item, key, n))
+        if (!json_read_unit_vector(p, item, key, n))
             return false;
-        double len = length3(n);
-        if (!(len > 0.0) || !isfinite(len))
-            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] is not a usable direction (zero length)",
-                             n[0], n[1], n[2]);
-        for (int i = 0; i < 3; i++)
-            n[i] = (float)(n[i] / len);
     }
     float inner, outer, temperature, opacity;
     if (!read_number(p, e, "inner_radius", prefix, 6.0f * mass, 0.0f, true, FLT_MAX, &inner))
