@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "support.h"
 
@@ -92,6 +93,42 @@ Test(black_holes, massless_hole_changes_nothing, .timeout = 600)
         render_fixture_close(&f);
     }
     free(first);
+}
+
+/* A hole of negligible mass (1e-5: it bends the rays through the box by about 1e-5 rad) whose
+ * influence sphere holds the whole Cornell box and the camera: every segment goes through
+ * integrate_geodesic's chords and write-back, and the lit, shaded picture (NEE, MIS on the
+ * lamp, diffuse bounces) must stay the one without it: the same energy to 0.5%, every pixel
+ * within a small difference on average. A lost pdf, a wrong hit or a dropped path shows. */
+Test(black_holes, weak_hole_leaves_a_lit_scene_unchanged, .timeout = 1800)
+{
+    char cwd[1024], obj[1100], json[2048];
+    cr_assert(getcwd(cwd, sizeof cwd));
+    snprintf(obj, sizeof obj, "%s/scenes/cornell-box/CornellBox-Original.obj", cwd);
+    const char *dir = test_temp_dir();
+    float *rgb[2];
+    for (int v = 0; v < 2; v++) {
+        snprintf(json, sizeof json,
+                 "{\"camera\": {\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0], \"fov_y\": 39.3},"
+                 " \"film\": {\"width\": 48, \"height\": 48}, \"render\": {\"spp\": 16, \"max_depth\": 4},"
+                 " \"objects\": [{\"obj\": \"%s\"}]%s}",
+                 obj, v ? ", \"black_holes\": [{\"position\": [0.1, 1.1, 0.2], \"mass\": 1e-5,"
+                          " \"influence_radius\": 10}]" : "");
+        RenderFixture f;
+        render_fixture_open(&f, test_write_file(dir, v ? "hole.json" : "plain.json", json), 0, 0);
+        cr_assert_eq(f.scene.desc.num_black_holes, v);
+        RenderSettings s = {.spp = 16, .max_depth = 4, .seed = 3};
+        rgb[v] = render_fixture_render(&f, s, NULL);
+        render_fixture_close(&f);
+    }
+    double sum[2] = {0, 0}, diff = 0.0;
+    int n = 48 * 48 * 3;
+    for (int i = 0; i < n; i++)
+        sum[0] += rgb[0][i], sum[1] += rgb[1][i], diff += fabs(rgb[0][i] - rgb[1][i]);
+    cr_log_info("energy %.4f vs %.4f, mean |difference| %.5f of the mean", sum[1], sum[0], diff / sum[0]);
+    cr_expect(fabs(sum[1] / sum[0] - 1.0) < 5e-3, "energy %.5f with the hole, %.5f without", sum[1], sum[0]);
+    cr_expect(diff / sum[0] < 0.02, "pixels differ by %.4f of the mean on average", diff / sum[0]);
+    free(rgb[0]), free(rgb[1]);
 }
 
 /* ---- Bad input -------------------------------------------------------------------------------- */

@@ -15,13 +15,12 @@
  * Several holes: their accelerations add (each with its own h), an approximation of the
  * two-centre metric that holds while the holes are far apart (the scene check keeps them apart).
  * Shadow rays (intersect_shadow) stay straight: next-event estimation does not see lensing.
- * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin,
+ * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin (xyz; w: the
+ * length of the curve from the segment's start to this origin, which intersect_closest adds to
+ * the hit's t: shading's distances, the emitter MIS pdf and absorption, are the whole segment's),
  * ray_direction (xyz; w, the BSDF pdf, kept), radiance, path_depth (0 when captured or absorbed),
- * hit (HIT_NONE for an ended path). Next: intersect_closest. */
-
-#ifndef PT_FEATURE_BLACK_HOLES /* render/session.c passes 0 for scenes without holes */
-#define PT_FEATURE_BLACK_HOLES 1
-#endif
+ * hit (HIT_NONE for an ended path). Next: intersect_closest. The kernel exists only with
+ * PT_FEATURE_BLACK_HOLES (render/session.c: scenes with holes). */
 
 /* Step length: a fraction of the distance r to the nearest hole (the field varies on that scale,
  * so each step's RK4 error is a fixed small fraction of the bending it traces), scaled by
@@ -205,6 +204,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
     /* Integrate relative to the first hole entered (float keeps its precision near it). */
     float3 anchor = xyz(holes[anchor_hole].centre);
     float3 x = world + t_entry * d - anchor, v = d;
+    float travelled = t_entry; /* along the curve, from the segment's start to x */
     float3 beta = xyz(throughput[slot]);
     uint steps = 0u, crossings = 0u;
     bool ended = false, captured = false;
@@ -220,6 +220,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
                 break;
             }
             x += (t + 1e-4f * holes[next].normal.w) * u;
+            travelled += t + 1e-4f * holes[next].normal.w;
             v = u;
             continue;
         }
@@ -254,6 +255,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
             break; /* the chord is the ray intersect_closest traces */
         }
         x = x1, v = v1;
+        travelled += len;
         float horizons;
         geodesic_nearest(holes, n, anchor, x, &horizons);
         if (horizons <= 1.0f + GEODESIC_HORIZON_EPSILON) {
@@ -267,7 +269,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
         hit[slot] = (float4)(INFINITY, 0.0f, 0.0f, as_float(HIT_NONE));
         return;
     }
-    ray_origin[slot] = (float4)(x + anchor, 0.0f);
+    ray_origin[slot] = (float4)(x + anchor, travelled);
     ray_direction[slot] = (float4)(normalize(v), dir4.w);
 }
 
