@@ -121,11 +121,11 @@ void scene_desc_free(SceneDesc *desc)
     desc->materials = NULL;
     desc->num_materials = 0;
     free(desc->lights);
+    desc->lights = NULL;
+    desc->num_lights = 0;
     free(desc->black_holes);
     desc->black_holes = NULL;
     desc->num_black_holes = 0;
-    desc->lights = NULL;
-    desc->num_lights = 0;
     desc->num_objects = 0;
 }
 
