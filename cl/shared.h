@@ -78,7 +78,10 @@ typedef cl_uint uint;
     STRUCT(EnvAlias, 8) FIELD(EnvAlias, prob) FIELD(EnvAlias, alias)                               \
     STRUCT(AnalyticLight, 80) FIELD(AnalyticLight, position) FIELD(AnalyticLight, color)            \
         FIELD(AnalyticLight, axis) FIELD(AnalyticLight, params) FIELD(AnalyticLight, type)          \
-        FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)
+        FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)          \
+    STRUCT(BlackHole, 96) FIELD(BlackHole, centre) FIELD(BlackHole, normal)                        \
+        FIELD(BlackHole, tangent) FIELD(BlackHole, radii) FIELD(BlackHole, emission)               \
+        FIELD(BlackHole, noise)
 
 /* Words written by report_layout: per struct its size, per field its offset and size. */
 #define SHARED_LAYOUT_STRUCT_WORDS(type, size) +1

@@ -43,7 +43,8 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
  *   camera, 0..7: jitter x, y, lens u, v; 4 is for the shutter time (motion blur), 5..7 spare;
  *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light pick, alias coin, light u, v,
  *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
- *   the shadow ray, environment texel pick, its alias coin; 14..15 spare. */
+ *   the shadow ray, environment texel pick, its alias coin, black-hole disk pass-through coins
+ *   (14, DIM_DISK_COIN in integrate_geodesic.cl); 15 spare. */
 #define DIM_CAMERA_JITTER_X 0u
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u

@@ -22,6 +22,9 @@
 #ifndef PT_FEATURE_ANALYTIC
 #define PT_FEATURE_ANALYTIC 1
 #endif
+#ifndef PT_FEATURE_BLACK_HOLES /* cl/stages/integrate_geodesic.cl */
+#define PT_FEATURE_BLACK_HOLES 1
+#endif
 /* The same for materials: a mask of MATERIAL_FEATURE_* (shared.h). */
 #ifndef PT_MATERIAL_FEATURES
 #define PT_MATERIAL_FEATURES MATERIAL_FEATURE_ALL

@@ -155,7 +155,23 @@ inline float perlin_noise(float3 p, uint seed)
     return nxy0 + w * (nxy1 - nxy0);
 }
 
-/* fBm: octave i has frequency frequency * 2^i, amplitude 2^-i and seed seed + i; the sum over the
+/* fBm in [0, 1]: octave i has frequency frequency * 2^i, amplitude 2^-i and seed seed + i; the
+ * sum over the amplitudes' sum, mapped from [-1, 1] to [0, 1] (also the accretion disks' noise). */
+inline float noise_fbm(float3 position, float frequency, uint octaves, uint seed)
+{
+    float sum = 0.0f, norm = 0.0f, amplitude = 1.0f;
+    for (uint i = 0u; i < octaves; i++) {
+        float3 x = position * frequency;
+        if (all(isfinite(x)))
+            sum += amplitude * perlin_noise(clamp(x, -16777216.0f, 16777216.0f), seed + i);
+        norm += amplitude;
+        amplitude *= 0.5f;
+        frequency *= 2.0f;
+    }
+    return clamp(0.5f + 0.5f * (norm > 0.0f ? sum / norm : 0.0f), 0.0f, 1.0f);
+}
+
+/* fBm (noise_fbm): octave i has frequency frequency * 2^i, amplitude 2^-i and seed seed + i; the sum over the
  * amplitudes' sum, mapped from [-1, 1] to the blend factor [0, 1] between color0 and color1.
  * Evaluated at the hit's object-space position (SurfaceHit.object_position): noise stays on an
  * instance as it moves. Objects merged into the world-space mesh (no transform, or --instancing
@@ -166,17 +182,7 @@ inline float4 texture_noise(const global uint *texels, TextureInfo info, float3 
     float3 c0 = (float3)(as_float(q[0]), as_float(q[1]), as_float(q[2]));
     float3 c1 = (float3)(as_float(q[3]), as_float(q[4]), as_float(q[5]));
     float frequency = as_float(q[6]);
-    uint octaves = min(q[7], NOISE_MAX_OCTAVES), seed = q[8];
-    float sum = 0.0f, norm = 0.0f, amplitude = 1.0f;
-    for (uint i = 0u; i < octaves; i++) {
-        float3 x = position * frequency;
-        if (all(isfinite(x)))
-            sum += amplitude * perlin_noise(clamp(x, -16777216.0f, 16777216.0f), seed + i);
-        norm += amplitude;
-        amplitude *= 0.5f;
-        frequency *= 2.0f;
-    }
-    float t = clamp(0.5f + 0.5f * (norm > 0.0f ? sum / norm : 0.0f), 0.0f, 1.0f);
+    float t = noise_fbm(position, frequency, min(q[7], NOISE_MAX_OCTAVES), q[8]);
     return (float4)(c0 + t * (c1 - c0), 1.0f);
 }
 

@@ -95,6 +95,32 @@ typedef struct {
     uint pad0, pad1, pad2;
 } AnalyticLight;
 
+/* ---- Black holes (JSON "black_holes", host/scene/black_holes.c; cl/stages/integrate_geodesic.cl) */
+
+/* One Schwarzschild black hole, geometric units (G = c = 1: horizon radius 2M), and its optional
+ * thin accretion disk through its centre. */
+typedef struct {
+    float4 centre;    /* xyz: position; w: mass M (> 0: holes of mass 0 are dropped at load) */
+    float4 normal;    /* xyz: the disk's unit normal; w: influence radius (rays are straight beyond) */
+    float4 tangent;   /* xyz: a unit vector in the disk plane (noise coordinates); w: 1 with a disk */
+    float4 radii;     /* x: disk inner radius, y: outer, z: opacity, w: temperature at the inner
+                         edge in kelvin (0: no blackbody colour, the emission as given) */
+    float4 emission;  /* rgb: radiance scale; w unused */
+    float4 noise;     /* x: frequency (cycles per inner radius), y: octaves (0: no noise),
+                         z: swirl (radians of shear at the inner edge); w unused */
+} BlackHole;
+
+/* integrate_geodesic's step counts (a uint buffer, read by tools/bench_geodesic.c): curved rays,
+ * their steps (mod 2^32), captured rays, then a histogram of steps per curved ray in bins of
+ * GEODESIC_BIN_STEPS (the last bin holds everything beyond). */
+#define GEODESIC_STAT_RAYS 0
+#define GEODESIC_STAT_STEPS 1
+#define GEODESIC_STAT_CAPTURED 2
+#define GEODESIC_STAT_HISTOGRAM 4
+#define GEODESIC_BINS 256
+#define GEODESIC_BIN_STEPS 8
+#define GEODESIC_STAT_WORDS (GEODESIC_STAT_HISTOGRAM + GEODESIC_BINS)
+
 /* ---- Scene buffers ------------------------------------------------------------------------- */
 
 /* The scene's read-only device buffers: element type (as the kernels see it) and name. The

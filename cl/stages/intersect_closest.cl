@@ -41,6 +41,11 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
                                                 time)
                             : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
 #endif
+#if PT_FEATURE_BLACK_HOLES
+        /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
+         * ray_origin.w is the curve's length so far (0 for every straight ray). */
+        h.t += ray_origin[slot].w;
+#endif
         hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
         if (PT_FEATURE_INSTANCES)
             hit_instance[slot] = h.instance;

@@ -37,20 +37,21 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
  * the options, so each combination is its own entry. They always fit (PT_CL_OPTIONS is bounded):
  * dropping them is not an option, since PT_FEATURE_INSTANCES must match the layout that
  * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
-static void specialise_program(Device *dev, const SceneData *data)
+static void specialise_program(Device *dev, const SceneData *data, bool black_holes)
 {
     /* Cut-out materials (cl/material/surface_detail.cl) add a material read per hit to both
      * intersect stages: only scenes that have one pay for it. */
     bool cutout = false;
     for (uint32_t i = 0; i < data->num_materials && !cutout; i++)
         cutout = (data->materials[i].flags & MATERIAL_FLAG_CUTOUT) != 0;
-    char features[192];
+    char features[256];
     snprintf(features, sizeof features,
              " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d"
-             " -DPT_MATERIAL_FEATURES=%uu -DPT_FEATURE_INSTANCES=%d -DPT_FEATURE_MOTION=%d",
+             " -DPT_MATERIAL_FEATURES=%uu -DPT_FEATURE_INSTANCES=%d -DPT_FEATURE_MOTION=%d"
+             " -DPT_FEATURE_BLACK_HOLES=%d",
              data->environment.width > 0, data->num_analytic > 0, cutout,
              (unsigned)material_features(data->materials, data->num_materials, &data->textures),
-             data->two_level, data->num_moving > 0);
+             data->two_level, data->num_moving > 0, black_holes);
     size_t used = strlen(dev->build_options);
     if (used + strlen(features) >= sizeof dev->build_options)
         die("the kernel build options are too long for the scene's features (%zu + %zu bytes)", used,
@@ -75,7 +76,7 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
     if (opened && o->no_cache)
         s->dev.use_cache = false;
     if (opened)
-        specialise_program(&s->dev, &s->scene.data);
+        specialise_program(&s->dev, &s->scene.data, s->scene.desc.num_black_holes > 0);
     if (!opened || !device_build(&s->dev, NULL, NULL, err)) {
         if (s->dev.context)
             device_close(&s->dev);

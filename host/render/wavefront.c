@@ -50,6 +50,8 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
 {
     if (step < 64)
         w->stats->live_per_step[step] += n_active;
+    if (w->kernels[STAGE_GEODESIC]) /* bends the rays near black holes (integrate_geodesic.cl) */
+        run_over_active(w, STAGE_GEODESIC, n_active);
     run_over_active(w, STAGE_EXTEND, n_active);
     if (w->sorter) {
         double ms = 0.0;

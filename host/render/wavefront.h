@@ -47,7 +47,7 @@ typedef struct {
 
 enum {
     STAGE_GENERATE, STAGE_EXTEND, STAGE_SORT, STAGE_SHADE, STAGE_CONNECT, STAGE_COMPACT,
-    STAGE_ACCUMULATE, STAGE_COUNT
+    STAGE_ACCUMULATE, STAGE_GEODESIC /* scenes with black holes only */, STAGE_COUNT
 };
 
 typedef struct {

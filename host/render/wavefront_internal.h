@@ -31,6 +31,11 @@ struct Wavefront {
     cl_uint n_active_arg[STAGE_COUNT]; /* index of the n_active argument of the traced stages */
     cl_uint generate_counts_arg;       /* index of generate_camera_rays' n_live */
     Compactor *compactor;
+    /* Black holes (scene/black_holes.h): the holes and integrate_geodesic's step counts
+     * (GEODESIC_STAT_*); NULL without holes, and kernels[STAGE_GEODESIC] too. */
+    cl_mem black_holes, geodesic_stats;
+    cl_uint num_black_holes;
+    cl_float4 scene_box[2]; /* the scene's world box (lo, hi) with a margin */
     uint32_t num_pixels;
     uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
                                        * film's samples: its index is first_sample + next_sample) */

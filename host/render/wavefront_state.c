@@ -11,7 +11,7 @@
 
 const char *const stage_names[STAGE_COUNT] = {
     "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
-    "intersect_shadow",     "compact_paths",     "accumulate_film",
+    "intersect_shadow",     "compact_paths",     "accumulate_film",      "integrate_geodesic",
 };
 
 /* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
@@ -45,6 +45,30 @@ static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_
 
 
 static void set_all_args(Wavefront *w);
+
+/* The holes' buffer, the step counts and the integrate_geodesic kernel, for scenes with holes
+ * (the program has the kernel exactly then: PT_FEATURE_BLACK_HOLES, render/session.c). */
+static bool black_holes_init(Wavefront *w, const SceneDesc *desc, const SceneData *data, Error *err)
+{
+    if (desc->num_black_holes == 0)
+        return true;
+    w->num_black_holes = (cl_uint)desc->num_black_holes;
+    /* The world box that chords are tested against before the BVH, with a margin for rounding. */
+    for (int a = 0; a < 3; a++) {
+        float lo = data->bounds_min[a], hi = data->bounds_max[a];
+        float margin = 1e-3f * (hi - lo) + 1e-4f * fmaxf(fabsf(lo), fabsf(hi)) + 1e-6f;
+        w->scene_box[0].s[a] = lo - margin;
+        w->scene_box[1].s[a] = hi + margin;
+    }
+    w->black_holes = device_buffer(w->dev, "black_holes", CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                   desc->num_black_holes * sizeof(BlackHole), desc->black_holes, err);
+    w->geodesic_stats = device_buffer(w->dev, "geodesic_stats", CL_MEM_READ_WRITE,
+                                      GEODESIC_STAT_WORDS * sizeof(uint32_t), NULL, err);
+    if (error_is_set(err))
+        return false;
+    w->kernels[STAGE_GEODESIC] = device_kernel(w->dev, "integrate_geodesic");
+    return true;
+}
 
 static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *err)
 {
@@ -146,8 +170,10 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
             return false;
     }
     for (int k = 0; k < STAGE_COUNT; k++)
-        if (k != STAGE_COMPACT && k != STAGE_SORT)
+        if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC)
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force, s->moments));
+    if (!black_holes_init(w, &scene->desc, &scene->data, err))
+        return false;
     set_all_args(w);
     wavefront_reset(w);
     return true;
@@ -159,6 +185,9 @@ void wavefront_reset(Wavefront *w)
     film_clear(&w->film);
     CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
                                  COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
+    if (w->geodesic_stats)
+        CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->geodesic_stats, &zero, sizeof zero, 0,
+                                     GEODESIC_STAT_WORDS * sizeof(uint32_t), 0, NULL, NULL));
     RenderStats sizes = *w->stats;
     memset(w->stats, 0, sizeof *w->stats);
     w->stats->pool_size = sizes.pool_size;
@@ -213,6 +242,15 @@ static void set_all_args(Wavefront *w)
     w->n_active_arg[STAGE_CONNECT] = i + 1;
     KERNEL_ARGS(connect, i, KARG(w->active), KARG(zero), KARG(w->counters), KARG(w->shadow_queue),
                 KARG(w->shadow_count));
+
+    cl_kernel geodesic = w->kernels[STAGE_GEODESIC];
+    if (geodesic) {
+        i = set_path_args(w, geodesic, true);
+        w->n_active_arg[STAGE_GEODESIC] = i + 1;
+        KERNEL_ARGS(geodesic, i, KARG(w->active), KARG(zero), KARG(w->black_holes),
+                    KARG(w->num_black_holes), KARG(w->scene_box[0]), KARG(w->scene_box[1]),
+                    KARG(w->geodesic_stats));
+    }
 
     cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
     i = set_path_args(w, accumulate, false);
@@ -275,7 +313,7 @@ static void wavefront_release(Wavefront *w)
         material_sorter_destroy(w->sorter);
     film_release(&w->film);
     cl_mem all[] = {w->params_buf, w->counters, w->active, w->free_slots,
-                    w->shadow_queue, w->shadow_count, w->sorted_active,
+                    w->shadow_queue, w->shadow_count, w->sorted_active, w->black_holes, w->geodesic_stats,
 #define PATH_STATE_LIST(type, name) w->name,
                     PATH_STATE_FIELDS(PATH_STATE_LIST) SAMPLE_STATE_FIELDS(PATH_STATE_LIST)
 #undef PATH_STATE_LIST

@@ -29,31 +29,14 @@ static bool read_direction(JsonParser *p, const cJSON *e, const char *prefix, fl
     const cJSON *item = json_member(e, "direction");
     if (!item)
         return json_fail(p, ERR_JSON_VALUE, key, "missing");
-    if (!json_read_vec3(p, item, key, out))
-        return false;
-    double len = sqrt((double)out[0] * out[0] + (double)out[1] * out[1] + (double)out[2] * out[2]);
-    if (!(len > 0.0) || !isfinite(len))
-        return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] is not a usable direction (zero length)",
-                         out[0], out[1], out[2]);
-    for (int i = 0; i < 3; i++)
-        out[i] = (float)(out[i] / len);
-    return true;
+    return json_read_unit_vector(p, item, key, out);
 }
 
 /* An angle in degrees within [lo, hi] (lo excluded when open_lo), or def when absent. */
 static bool read_angle(JsonParser *p, const cJSON *e, const char *name, const char *prefix, float def,
                        float lo, bool open_lo, float hi, float *out)
 {
-    char key[96];
-    snprintf(key, sizeof key, "%s.%s", prefix, name);
-    const cJSON *item = json_member(e, name);
-    *out = def;
-    if (item && !json_read_float(p, item, key, out))
-        return false;
-    if (!(open_lo ? *out > lo : *out >= lo) || !(*out <= hi))
-        return json_fail(p, ERR_JSON_VALUE, key, "%g is out of range %c%g, %g]", *out,
-                         open_lo ? '(' : '[', lo, hi);
-    return true;
+    return json_read_member_in_range(p, e, prefix, name, def, lo, open_lo, hi, out);
 }
 
 static bool parse_light(JsonParser *p, const cJSON *e, const char *prefix, AnalyticLight *l)

@@ -260,3 +260,31 @@ const cJSON *json_member(const cJSON *object, const char *name)
 {
     return cJSON_GetObjectItemCaseSensitive(object, name);
 }
+
+bool json_read_member_in_range(JsonParser *p, const cJSON *e, const char *prefix, const char *name,
+                               float def, float lo, bool open_lo, float hi, float *out)
+{
+    char key[256];
+    snprintf(key, sizeof key, "%s.%s", prefix, name);
+    const cJSON *item = json_member(e, name);
+    *out = def;
+    if (item && !json_read_float(p, item, key, out))
+        return false;
+    if (!(open_lo ? *out > lo : *out >= lo) || !(*out <= hi))
+        return json_fail(p, ERR_JSON_VALUE, key, "%g is out of range %c%g, %g]", *out,
+                         open_lo ? '(' : '[', lo, hi);
+    return true;
+}
+
+bool json_read_unit_vector(JsonParser *p, const cJSON *item, const char *key, float out[3])
+{
+    if (!json_read_vec3(p, item, key, out))
+        return false;
+    double len = sqrt((double)out[0] * out[0] + (double)out[1] * out[1] + (double)out[2] * out[2]);
+    if (!(len > 0.0) || !isfinite(len))
+        return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g] is not a usable direction (zero length)",
+                         out[0], out[1], out[2]);
+    for (int i = 0; i < 3; i++)
+        out[i] = (float)(out[i] / len);
+    return true;
+}

@@ -39,6 +39,13 @@ bool json_path_resolve(JsonParser *p, const char *key, const char *relative, cha
 /* A colour: [r, g, b], or one number for a grey; every channel finite and >= 0. */
 bool json_read_colour(JsonParser *p, const cJSON *item, const char *key, float out[3]);
 
+/* Optional member `name` of object e (key "prefix.name" in messages): def when absent; it must
+ * lie in [lo, hi], or (lo, hi] with open_lo. */
+bool json_read_member_in_range(JsonParser *p, const cJSON *e, const char *prefix, const char *name,
+                               float def, float lo, bool open_lo, float hi, float *out);
+/* A direction: three finite numbers, not all zero, returned normalised. */
+bool json_read_unit_vector(JsonParser *p, const cJSON *item, const char *key, float out[3]);
+
 /* Checks that item is an object whose keys are all in `keys` (NULL-terminated), none twice.
  * path: the object's key path ("" for the top level). */
 bool json_check_object(JsonParser *p, const cJSON *item, const char *path, const char *const *keys);

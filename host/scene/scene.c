@@ -165,6 +165,9 @@ void scene_desc_free(SceneDesc *desc)
     free(desc->lights);
     desc->lights = NULL;
     desc->num_lights = 0;
+    free(desc->black_holes);
+    desc->black_holes = NULL;
+    desc->num_black_holes = 0;
     desc->num_objects = 0;
 }
 

@@ -60,6 +60,8 @@ typedef struct {
     float environment_rotation; /* degrees */
     AnalyticLight *lights; /* the "lights" array (host/scene/analytic_lights.h) */
     int num_lights;
+    BlackHole *black_holes; /* the "black_holes" array, holes of mass 0 left out (scene/black_holes.h) */
+    int num_black_holes;
     int num_objects;
     char (*objects)[1024]; /* mesh paths, resolved against the scene file's folder */
     MeshFormat *object_formats; /* per object, by the key that named it; NULL: all MESH_OBJ */

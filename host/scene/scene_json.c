@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "scene/analytic_lights.h"
+#include "scene/black_holes.h"
 #include "scene/camera_json.h"
 #include "scene/gltf_scene.h"
 #include "scene/transform_json.h"
@@ -192,7 +193,8 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
 {
     static const char *const keys[] = {"camera",      "film",   "render",   "objects",   "background",
-                                       "environment", "lights", "textures", "materials", NULL};
+                                       "environment", "lights", "textures", "materials",
+                                       "black_holes", NULL};
     if (!json_check_object(p, root, "", keys))
         return false;
     const cJSON *item;
@@ -209,6 +211,12 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
         return false;
     if ((item = json_member(root, "lights")) &&
         !analytic_lights_from_json(p, item, &d->lights, &d->num_lights))
+        return false;
+    /* Black holes after the camera, which must not be inside a horizon. */
+    if ((item = json_member(root, "black_holes")) &&
+        (!black_holes_from_json(p, item, &d->black_holes, &d->num_black_holes) ||
+         (d->camera_given &&
+          !black_holes_check_camera(p, d->black_holes, d->num_black_holes, d->camera.eye))))
         return false;
     /* Textures before the materials that name them, materials before the objects that do. */
     if ((item = json_member(root, "textures")) &&

@@ -4,6 +4,7 @@ special files as objects.
 """
 import json
 
+from corpus_black_holes import black_holes_cases
 from corpus_cases import BASE_SCENE, TINY, TRIANGLE, case, cases
 
 
@@ -91,6 +92,7 @@ def json_cases(rng):
     case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
          setup="truncate -s 70M scene.json")
     lights_cases()
+    black_holes_cases(scene_case)
 
 
 def lights_cases():
