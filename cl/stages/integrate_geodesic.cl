@@ -196,7 +196,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
     if (t_entry == INFINITY)
         return; /* a straight ray: intersect_closest as always */
     uint k = sample_id[slot];
-    RngKey key = rng_path_key(window_pixel(p, k), window_sample(p, k), p->seed);
+    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
     uint bounce = depth - 1u;
     float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
     if (t_entry > 0.0f && geodesic_chord_hit(scene, box, world, d, t_entry, time, key, bounce) < INFINITY)
