@@ -69,6 +69,35 @@ Test(exr_layers, writer_sorts_channels_keeps_values_and_sets_attributes)
     exr_inspect_close(&f);
 }
 
+/* More lines than one batch of the writer's parallel encoding (32 chunks of 16 lines), and a last
+ * chunk that is not full: every line of every channel reads back where it was written. */
+Test(exr_layers, tall_images_keep_every_line_across_encoding_batches)
+{
+    enum { W = 7, H = 32 * 16 * 2 + 5, N = W * H };
+    float *rgb = malloc(3 * N * sizeof *rgb), *depth = malloc(N * sizeof *depth);
+    cr_assert(rgb && depth);
+    for (int i = 0; i < 3 * N; i++)
+        rgb[i] = (float)i * 0.5f;
+    for (int i = 0; i < N; i++)
+        depth[i] = (float)(N - i);
+    const ImageLayer layers[] = {{"depth", "Z", depth}};
+    ExrImage image = {rgb, W, H, layers, 1, NULL, 0};
+    const char *path = test_write_file(test_temp_dir(), "tall.exr", "");
+    Error err = {0};
+    cr_assert(image_write_exr_layers(path, &image, &err), "%s", err.message);
+    ExrInspect f;
+    exr_inspect_open(&f, path);
+    cr_assert_eq(f.height, H);
+    float *r = exr_inspect_channel(&f, "R"), *b = exr_inspect_channel(&f, "B");
+    float *z = exr_inspect_channel(&f, "depth.Z");
+    int wrong = 0;
+    for (int i = 0; i < N; i++)
+        wrong += r[i] != rgb[3 * i] || b[i] != rgb[3 * i + 2] || z[i] != depth[i];
+    cr_expect_eq(wrong, 0, "%d of %d pixels differ", wrong, N);
+    free(r), free(b), free(z), free(rgb), free(depth);
+    exr_inspect_close(&f);
+}
+
 Test(exr_layers, layer_without_a_name_is_an_output_error)
 {
     float rgb[3] = {0}, one[1] = {0};

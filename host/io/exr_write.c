@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "base/fs.h"
+#include "base/parallel_for.h"
 #include "io/exr_common.h"
 #include "io/image_write.h"
 
@@ -143,6 +144,108 @@ static int channel_source_index(const ChannelSource *sources, int channel_count,
     return -1;
 }
 
+/* Chunks are encoded a batch at a time on the host's cores (base/parallel_for.h) and written in
+ * order by the calling thread. OpenEXRCore's encode pipeline locks the file only to pack a chunk,
+ * so compression (zlib: most of the time) runs in parallel; its write step is replaced by a copy
+ * into the chunk's slot. The bytes are the serial writer's: each chunk compresses the same way
+ * whichever thread does it. A batch bounds the memory held (32 chunks of 16 lines). */
+#define EXR_CHUNKS_PER_BATCH 32
+
+typedef struct {
+    exr_chunk_info_t info;
+    void *data;           /* the compressed (or packed, if smaller) bytes, malloc'ed */
+    uint64_t size;
+    exr_result_t result;
+    const char *failed;   /* the OpenEXRCore call that failed, NULL if none */
+    const char *missing_channel; /* a channel the encoder lists that was never added */
+} ChunkSlot;
+
+typedef struct {
+    exr_context_t ctxt;
+    int part;
+    const ChannelSource *sources;
+    int channel_count, width;
+    int32_t lines_per_chunk;
+    ChunkSlot *slots; /* the batch's */
+} ChunkBatch;
+
+/* The pipeline's write step: keep the bytes for the ordered write. */
+static exr_result_t keep_chunk(exr_encode_pipeline_t *encoder)
+{
+    ChunkSlot *slot = encoder->encoding_user_data;
+    slot->data = malloc(encoder->compressed_bytes ? encoder->compressed_bytes : 1);
+    if (!slot->data)
+        return EXR_ERR_OUT_OF_MEMORY;
+    memcpy(slot->data, encoder->compressed_buffer, encoder->compressed_bytes);
+    slot->size = encoder->compressed_bytes;
+    return EXR_ERR_SUCCESS;
+}
+
+/* Points the encoder's channels at the chunk's planes; false when it lists an unknown channel. */
+static bool bind_channels(exr_encode_pipeline_t *encoder, const ChunkBatch *b, const float *planes,
+                          size_t plane_size, ChunkSlot *slot)
+{
+    for (int i = 0; i < encoder->channel_count; i++) {
+        exr_coding_channel_info_t *channel = &encoder->channels[i];
+        int c = channel_source_index(b->sources, b->channel_count, channel->channel_name);
+        if (c < 0) {
+            slot->missing_channel = channel->channel_name;
+            return false;
+        }
+        channel->encode_from_ptr = (const uint8_t *)(planes + (size_t)c * plane_size);
+        channel->user_pixel_stride = (int32_t)sizeof(float);
+        channel->user_line_stride = (int32_t)(sizeof(float) * (size_t)b->width);
+        channel->user_bytes_per_element = (int16_t)sizeof(float);
+        channel->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    return true;
+}
+
+/* parallel_for body: encodes slots [begin, end) of the batch with one pipeline. */
+static void encode_chunk_range(void *ctx, size_t begin, size_t end)
+{
+    const ChunkBatch *b = ctx;
+    size_t plane_size = (size_t)b->width * (size_t)b->lines_per_chunk;
+    float *planes = malloc(plane_size * (size_t)b->channel_count * sizeof *planes);
+    exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
+    bool ready = false;
+    for (size_t k = begin; k < end; k++) {
+        ChunkSlot *slot = &b->slots[k];
+        if (!planes) {
+            slot->result = EXR_ERR_OUT_OF_MEMORY, slot->failed = "malloc";
+            continue;
+        }
+        slot->failed = ready ? "exr_encoding_update" : "exr_encoding_initialize";
+        slot->result = ready ? exr_encoding_update(b->ctxt, b->part, &slot->info, &encoder)
+                             : exr_encoding_initialize(b->ctxt, b->part, &slot->info, &encoder);
+        if (slot->result != EXR_ERR_SUCCESS)
+            break;
+        fill_chunk_planes(planes, plane_size, b->sources, b->channel_count, b->width,
+                          slot->info.start_y, slot->info.height);
+        if (!bind_channels(&encoder, b, planes, plane_size, slot))
+            break;
+        /* The pack routine depends only on the channel layout, the same for every chunk. */
+        if (!ready) {
+            slot->failed = "exr_encoding_choose_default_routines";
+            slot->result = exr_encoding_choose_default_routines(b->ctxt, b->part, &encoder);
+            if (slot->result != EXR_ERR_SUCCESS)
+                break;
+            ready = true;
+        }
+        encoder.yield_until_ready_fn = NULL; /* no file access here: the caller writes */
+        encoder.write_fn = keep_chunk;
+        encoder.encoding_user_data = slot;
+        slot->failed = "exr_encoding_run";
+        slot->result = exr_encoding_run(b->ctxt, b->part, &encoder);
+        if (slot->result != EXR_ERR_SUCCESS)
+            break;
+        slot->failed = NULL;
+    }
+    if (ready || encoder.channels)
+        exr_encoding_destroy(b->ctxt, &encoder);
+    free(planes);
+}
+
 /* Encodes and writes every scanline chunk of the part. */
 static bool exr_write_chunks(exr_context_t ctxt, int part, const ChannelSource *sources,
                              int channel_count, int width, int height, const char *path,
@@ -152,59 +255,38 @@ static bool exr_write_chunks(exr_context_t ctxt, int part, const ChannelSource *
     if (!exr_ok(exr_get_scanlines_per_chunk(ctxt, part, &lines_per_chunk),
                 "exr_get_scanlines_per_chunk", path, ERR_OUTPUT, err))
         return false;
-    size_t plane_size = (size_t)width * (size_t)lines_per_chunk;
-    float *planes = malloc(plane_size * (size_t)channel_count * sizeof *planes);
-    if (!planes) {
-        error_set(err, ERR_OUTPUT, path, 0, "%s: out of memory for a %dx%d chunk", path, width,
-                  lines_per_chunk);
-        return false;
-    }
-    exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
-    bool encoder_ready = false;
+    ChunkSlot slots[EXR_CHUNKS_PER_BATCH];
+    ChunkBatch batch = {.ctxt = ctxt, .part = part, .sources = sources,
+                        .channel_count = channel_count, .width = width,
+                        .lines_per_chunk = lines_per_chunk, .slots = slots};
     bool ok = true;
-    for (int y = 0; ok && y < height; y += lines_per_chunk) {
-        exr_chunk_info_t chunk;
-        bool first_chunk = !encoder_ready;
-        ok = exr_ok(exr_write_scanline_chunk_info(ctxt, part, y, &chunk),
-                    "exr_write_scanline_chunk_info", path, ERR_OUTPUT, err);
-        if (ok && first_chunk) {
-            ok = exr_ok(exr_encoding_initialize(ctxt, part, &chunk, &encoder),
-                        "exr_encoding_initialize", path, ERR_OUTPUT, err);
-            encoder_ready = ok;
-        } else if (ok) {
-            ok = exr_ok(exr_encoding_update(ctxt, part, &chunk, &encoder), "exr_encoding_update",
-                        path, ERR_OUTPUT, err);
+    for (int y0 = 0; ok && y0 < height; y0 += EXR_CHUNKS_PER_BATCH * lines_per_chunk) {
+        size_t count = 0;
+        for (int y = y0; ok && y < height && count < EXR_CHUNKS_PER_BATCH; y += lines_per_chunk) {
+            memset(&slots[count], 0, sizeof slots[count]);
+            slots[count].failed = "exr_encoding_run"; /* until its range has run */
+            slots[count].result = EXR_ERR_UNKNOWN;
+            ok = exr_ok(exr_write_scanline_chunk_info(ctxt, part, y, &slots[count].info),
+                        "exr_write_scanline_chunk_info", path, ERR_OUTPUT, err);
+            count++;
         }
-        if (!ok)
-            break;
-        fill_chunk_planes(planes, plane_size, sources, channel_count, width, chunk.start_y,
-                          chunk.height);
-        for (int i = 0; ok && i < encoder.channel_count; i++) {
-            exr_coding_channel_info_t *channel = &encoder.channels[i];
-            int c = channel_source_index(sources, channel_count, channel->channel_name);
-            if (c < 0) {
+        if (ok)
+            parallel_for(count, 1, encode_chunk_range, &batch);
+        for (size_t k = 0; k < count; k++) {
+            ChunkSlot *slot = &slots[k];
+            if (ok && slot->missing_channel) {
                 error_set(err, ERR_OUTPUT, path, 0, "%s: the encoder lists channel '%s', which "
-                          "was never added", path, channel->channel_name);
+                          "was never added", path, slot->missing_channel);
                 ok = false;
-                break;
+            } else if (ok && slot->failed) {
+                ok = exr_ok(slot->result, slot->failed, path, ERR_OUTPUT, err);
             }
-            channel->encode_from_ptr = (const uint8_t *)(planes + (size_t)c * plane_size);
-            channel->user_pixel_stride = (int32_t)sizeof(float);
-            channel->user_line_stride = (int32_t)(sizeof(float) * (size_t)width);
-            channel->user_bytes_per_element = (int16_t)sizeof(float);
-            channel->user_data_type = EXR_PIXEL_FLOAT;
+            ok = ok && exr_ok(exr_write_scanline_chunk(ctxt, part, slot->info.start_y, slot->data,
+                                                       slot->size),
+                              "exr_write_scanline_chunk", path, ERR_OUTPUT, err);
+            free(slot->data);
         }
-        /* The pack routine depends only on the channel layout, the same for every chunk. */
-        if (ok && first_chunk)
-            ok = exr_ok(exr_encoding_choose_default_routines(ctxt, part, &encoder),
-                        "exr_encoding_choose_default_routines", path, ERR_OUTPUT, err);
-        ok = ok && exr_ok(exr_encoding_run(ctxt, part, &encoder), "exr_encoding_run", path,
-                          ERR_OUTPUT, err);
     }
-    if (encoder_ready && !exr_ok(exr_encoding_destroy(ctxt, &encoder), "exr_encoding_destroy",
-                                 path, ERR_OUTPUT, err))
-        ok = false;
-    free(planes);
     return ok;
 }
 
