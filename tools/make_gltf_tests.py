@@ -20,52 +20,9 @@ import os
 import struct
 import sys
 
-FLOAT, BYTE, UBYTE, SHORT, USHORT, UINT = 5126, 5120, 5121, 5122, 5123, 5125
-FMT = {FLOAT: "f", BYTE: "b", UBYTE: "B", SHORT: "h", USHORT: "H", UINT: "I"}
-NORM = {BYTE: 127.0, UBYTE: 255.0, SHORT: 32767.0, USHORT: 65535.0}
-TYPES = {1: "SCALAR", 2: "VEC2", 3: "VEC3", 4: "VEC4"}
-
-
-class Builder:
-    """Accumulates one binary buffer, its views and accessors."""
-
-    def __init__(self):
-        self.bin = bytearray()
-        self.views, self.accessors = [], []
-
-    def view(self, data, stride=None):
-        while len(self.bin) % 4:
-            self.bin.append(0)
-        v = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)}
-        if stride:
-            v["byteStride"] = stride
-        self.bin += data
-        self.views.append(v)
-        return len(self.views) - 1
-
-    def accessor(self, values, comps, ctype, normalized=False, view=None, offset=0, count=None):
-        """values: flat list of decoded numbers; stored quantized when normalized."""
-        if view is None:
-            raw = [round(x * NORM[ctype]) if normalized else x for x in values]
-            view = self.view(struct.pack("<%d%s" % (len(raw), FMT[ctype]), *raw))
-        a = {"bufferView": view, "byteOffset": offset, "componentType": ctype,
-             "count": count if count is not None else len(values) // comps, "type": TYPES[comps]}
-        if normalized:
-            a["normalized"] = True
-        if comps == 3 and ctype == FLOAT and view is not None and values:
-            a["min"] = [min(values[i::3]) for i in range(3)]
-            a["max"] = [max(values[i::3]) for i in range(3)]
-        self.accessors.append(a)
-        return len(self.accessors) - 1
-
-
-def decoded(values, ctype, normalized):
-    """What a reader gets back from values stored as ctype (the specification's decoding)."""
-    if not normalized:
-        return list(values)
-    n = NORM[ctype]
-    return [max(round(x * n) / n, -1.0) for x in values]
-
+from gltf_bad_cases import bad_variants, write_bad_cases  # noqa: F401 (corpus_gltf uses them)
+from gltf_writer import (FLOAT, BYTE, UBYTE, SHORT, USHORT, UINT, Builder, data_uri,  # noqa: F401
+                         decoded, glb, png, with_buffer, write)
 
 # ---- The features scene ----------------------------------------------------------------------
 
@@ -241,29 +198,6 @@ def world_triangles(doc, shapes):
     return out
 
 
-def glb(doc, binary):
-    text = json.dumps(doc).encode()
-    text += b" " * (-len(text) % 4)
-    binary += b"\0" * (-len(binary) % 4)
-    chunks = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary
-    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
-
-
-def data_uri(binary):
-    return "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
-
-
-def with_buffer(doc, uri, size):
-    d = json.loads(json.dumps(doc))
-    d["buffers"] = [{"byteLength": size} if uri is None else {"uri": uri, "byteLength": size}]
-    return d
-
-
-def write(path, data):
-    with open(path, "wb" if isinstance(data, bytes) else "w") as f:
-        f.write(data)
-
-
 def write_reference(out, doc, shapes):
     tris = world_triangles(doc, shapes)
     objects, materials = [], {}
@@ -294,71 +228,6 @@ def write_reference(out, doc, shapes):
              "lights": lights,
              "materials": materials, "objects": objects}
     write(os.path.join(out, "reference.json"), json.dumps(scene, indent=1))
-
-
-def bad_variants(doc, binary):
-    """Broken variants of the features scene: [(file name, {file: bytes or text}, text the error
-    must contain)], each beside features.bin."""
-    def variant(change):
-        d = with_buffer(doc, "features.bin", len(binary))
-        change(d)
-        return json.dumps(d)
-    cases = [
-        ("truncated.glb", glb(with_buffer(doc, None, len(binary)), binary)[:-40], "truncated GLB"),
-        ("missing_bin.gltf", variant(lambda d: d["buffers"][0].update(uri="nowhere.bin")),
-         "buffers[0].uri"),
-        ("accessor_range.gltf", variant(lambda d: d["accessors"][0].update(count=1000)),
-         "meshes[0].primitives[0].attributes.POSITION: accessors[0]"),
-        ("view_range.gltf", variant(lambda d: d["bufferViews"][0].update(byteLength=100000)),
-         "bufferViews[0]"),
-        ("index_range.gltf",  # the quad's 4 vertices indexed by the strip's indices (up to 5)
-         variant(lambda d: d["meshes"][1]["primitives"][0].update(indices=d["meshes"][2]["primitives"][0]["indices"])),
-         "meshes[1].primitives[0].indices: index 5"),
-        ("inf_matrix.gltf",  # JSON has no infinity: scales of 1e300 under 1e300 overflow
-         variant(lambda d: (d["nodes"][0].update(scale=[1e300] * 3), d["nodes"][2].update(scale=[1e300] * 3))),
-         "nodes[2]: its world matrix is not finite"),
-        ("lines.gltf", variant(lambda d: d["meshes"][1]["primitives"][0].update(mode=1)),
-         "meshes[1].primitives[0].mode"),
-        ("required_ext.gltf", variant(lambda d: d["extensionsRequired"].append("KHR_draco_mesh_compression")),
-         "KHR_draco_mesh_compression"),
-        ("cycle.gltf", variant(lambda d: d["nodes"][4].update(children=[2])), "nodes[2]"),
-        ("bad_material.gltf", variant(lambda d: d["meshes"][0]["primitives"][0].update(material=9)),
-         "meshes[0].primitives[0].material"),
-        ("sparse_range.gltf", variant(lambda d: next(a for a in d["accessors"] if "sparse" in a)
-                                      ["sparse"]["indices"].update(byteOffset=400)), "sparse"),
-        ("no_position.gltf", variant(lambda d: d["meshes"][5]["primitives"][0]["attributes"].pop("POSITION")),
-         "meshes[5].primitives[0].attributes.POSITION"),
-        ("not_json.gltf", "{\"asset\": ", "not_json.gltf"),
-    ]
-    out = [(name, {name: data, "features.bin": binary}, expect) for name, data, expect in cases]
-    # A NaN vertex: the lamp's first position.
-    nan_bin = bytearray(binary)
-    lamp_pos = doc["accessors"][doc["meshes"][5]["primitives"][0]["attributes"]["POSITION"]]
-    struct.pack_into("<f", nan_bin, doc["bufferViews"][lamp_pos["bufferView"]]["byteOffset"], float("nan"))
-    out.append(("nan_vertex.gltf", {"nan_vertex.gltf": json.dumps(with_buffer(doc, "nan.bin", len(binary))),
-                                    "nan.bin": bytes(nan_bin)},
-                "meshes[5].primitives[0].attributes.POSITION"))
-    return out
-
-
-def write_bad_cases(out, doc, binary):
-    os.makedirs(os.path.join(out, "bad"), exist_ok=True)
-    with open(os.path.join(out, "bad", "cases.txt"), "w") as f:
-        for name, files, expect in bad_variants(doc, binary):
-            for fname, data in files.items():
-                write(os.path.join(out, "bad", fname), data)
-            f.write("%s\t%s\n" % (name, expect))
-
-
-def png(width, height, rgba):
-    """A PNG (8-bit RGBA) of the given pixels, with zlib and struct."""
-    import zlib
-    raw = b"".join(b"\0" + bytes(rgba[4 * width * y:4 * width * (y + 1)]) for y in range(height))
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
-            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
 def textured():
