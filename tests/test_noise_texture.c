@@ -9,6 +9,7 @@
 
 #include "device/device.h"
 #include "support.h"
+#include "texture_sampling.h"
 #include "xorshift.h"
 
 #ifndef TEXTURE_NOISE
@@ -103,27 +104,8 @@ static void eval_on_device(const Noise *nz, uint32_t index, const cl_float4 *poi
     q[6] = float_bits(nz->frequency), q[7] = nz->octaves, q[8] = nz->seed;
     TextureInfo infos[2] = {{.offset = 0, .width = 2, .height = 1, .format = TEXTURE_RGBA32F},
                             {.offset = 8, .width = 1, .height = 1, .format = TEXTURE_NOISE}};
-    Device *dev = test_device();
-    Error err = {0};
-    cl_mem tex = device_buffer(dev, "texels", CL_MEM_READ_ONLY, sizeof texels, texels, &err);
-    cl_mem inf = device_buffer(dev, "textures", CL_MEM_READ_ONLY, sizeof infos, infos, &err);
-    cl_mem pts = device_buffer(dev, "points", CL_MEM_READ_ONLY, n * sizeof(cl_float4), (void *)points, &err);
-    cl_mem res = device_buffer(dev, "out", CL_MEM_WRITE_ONLY, n * sizeof(cl_float4), NULL, &err);
-    cr_assert_not(error_is_set(&err), "%s", err.message);
-    cl_kernel kernel = device_kernel(dev, "eval_texture_at_points");
-    KERNEL_ARG(kernel, 0, tex);
-    KERNEL_ARG(kernel, 1, inf);
-    KERNEL_ARG(kernel, 2, index);
-    KERNEL_ARG(kernel, 3, pts);
-    KERNEL_ARG(kernel, 4, res);
-    KERNEL_ARG(kernel, 5, n);
-    device_run(dev, kernel, n, 0, NULL);
-    device_read(dev, res, 0, n * sizeof(cl_float4), out);
-    clReleaseKernel(kernel);
-    cl_mem all[] = {tex, inf, pts, res};
-    for (int i = 0; i < 4; i++)
-        clReleaseMemObject(all[i]);
-    test_device_release(dev);
+    run_texture_kernel("eval_texture_at_points", texels, sizeof texels, infos, 2, index, points,
+                       n * sizeof(cl_float4), n, out);
 }
 
 #define N 4096
