@@ -374,6 +374,5 @@ ViewerDesc cli_viewer_desc(const Options *o)
                         .no_nee = o->no_nee, .no_compaction = o->no_compaction,
                         .sort_materials = o->sort_materials, .quiet = o->quiet,
                         .frames = o->frames, .screenshot = o->screenshot,
-                        .print_events = o->print_events,
-                        .camera_json = o->camera_json};
+                        .print_events = o->print_events};
 }

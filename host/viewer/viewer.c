@@ -302,9 +302,8 @@ int command_view(const ViewerDesc *o)
     Error err = {0};
     if (!session_open(&v->session, &o->render, &err))
         die("%s", err.message);
+    /* --camera (o->render.camera_json) is already the scene's camera: session_open applied it. */
     SceneDesc *d = &v->session.scene.desc;
-    if (o->camera_json && !viewer_camera_parse(o->camera_json, &d->camera, &err))
-        die("%s", err.message);
     fs_stem(o->render.scene, v->scene_name, sizeof v->scene_name);
     const float *lo = v->session.scene.data.bounds_min, *hi = v->session.scene.data.bounds_max;
     v->scene_size = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
