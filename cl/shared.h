@@ -66,7 +66,7 @@ typedef cl_uint uint;
         FIELD(RenderParams, num_analytic) FIELD(RenderParams, shutter_open)                         \
         FIELD(RenderParams, shutter_close) FIELD(RenderParams, num_instances)                       \
         FIELD(RenderParams, window_pixels) FIELD(RenderParams, clamp_indirect)                      \
-        FIELD(RenderParams, film_pad0) FIELD(RenderParams, film_pad1)                               \
+        FIELD(RenderParams, pixel_offset) FIELD(RenderParams, film_pad1)                               \
     STRUCT(LightEntry, 32) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf) FIELD(LightEntry, instance)              \
         FIELD(LightEntry, pad0) FIELD(LightEntry, pad1) FIELD(LightEntry, pad2)                     \

@@ -16,12 +16,12 @@ kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global u
                             global uint *counters)
 {
     uint i = get_global_id(0);
-    uint num_pixels = p->width * p->height;
-    if (i >= min(p->batch_size, num_pixels))
+    uint n = p->window_pixels;
+    if (i >= min(p->batch_size, n))
         return;
     ulong3 sum = (ulong3)(0);
     ulong count = 0;
-    for (uint k = i; k < p->batch_size; k += num_pixels) {
+    for (uint k = i; k < p->batch_size; k += n) {
         float3 L = xyz(radiance[k]);
         if (isfinite(L.x) && isfinite(L.y) && isfinite(L.z))
             sum = add_sat(sum, film_fixed_point(L));
@@ -29,7 +29,7 @@ kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global u
             atomic_inc(&counters[COUNTER_NONFINITE]);
         count++;
     }
-    uint pixel = (p->batch_start + i) % num_pixels;
+    uint pixel = p->pixel_offset + (p->batch_start + i) % n;
     film[pixel] = add_sat(film[pixel], (ulong4)(sum, count));
 }
 

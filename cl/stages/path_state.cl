@@ -33,7 +33,7 @@ inline uint window_pixel(constant RenderParams *p, const global uint *active_pix
     uint i = (p->batch_start + k) % p->window_pixels;
     if (p->flags & RENDER_ADAPTIVE)
         i = active_pixels[i];
-    return i;
+    return p->pixel_offset + i;
 }
 
 inline uint window_sample(constant RenderParams *p, uint k)

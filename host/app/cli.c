@@ -37,6 +37,16 @@ void cli_print_help(void)
          "  --seed S           random seed (default 0); the image is a pure function of scene,\n"
          "                     settings, seed and spp\n"
          "  --device gpu|cpu|P:D    OpenCL device (default: first GPU, else first CPU)\n"
+         "  --device all|P:D,P:D,...   render on several devices at once (all: every GPU, or\n"
+         "                     every CPU device where there is none): the same image\n"
+         "  --checkpoint S     every S seconds, save the film beside the output (OUTPUT.ptckpt,\n"
+         "                     written atomically); --resume continues from it\n"
+         "  --resume           continue the render of the checkpoint beside the output (the\n"
+         "                     same scene and settings, or it is refused): the same bits as an\n"
+         "                     uninterrupted render\n"
+         "  --unit-spp N, --unit-rows N   work unit: N samples of a band of N rows (defaults:\n"
+         "                     1 sample, bands of at most 2^20 pixels); the image is the same\n"
+         "                     for every unit size\n"
          "  -o FILE            output .exr (linear) or .png (sRGB); overwrites FILE. Without -o:\n"
          "                     out/<scene>.exr and .png, numbered so nothing is overwritten\n"
          "  --preview          with -o FILE.exr, also write FILE.png\n"
@@ -58,8 +68,9 @@ void cli_print_help(void)
          "  --time-limit S     stop after S seconds of rendering, at a whole sample: the image is\n"
          "                     marked partial, the exit status is 0\n"
          "  --camera JSON      replace the scene's camera (render) or set the start pose (view),\n"
-         "                     e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'\n"
-         "  --no-nee           pure BSDF sampling (validation; same converged image)\n"
+         "                     e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'"
+         "");
+    puts("  --no-nee           pure BSDF sampling (validation; same converged image)\n"
          "  --sort-materials, --no-sort-materials   shade paths grouped by the material they hit,\n"
          "                     or not (same image). Default: sorted when the scene has materials\n"
          "                     beyond Lambert, smooth mirrors and glass (pt bench measures both)\n"
@@ -182,7 +193,7 @@ enum {
     OPT_SCREENSHOT, OPT_CAMERA, OPT_EXPOSURE, OPT_INSTANCING, OPT_AOV, OPT_TONEMAP, OPT_BLOOM,
     OPT_CLAMP, OPT_NOISE_THRESHOLD, OPT_MIN_SPP, OPT_TIME_LIMIT, OPT_VERSION, OPT_PREVIEW,
     OPT_PROGRESS, OPT_NO_NEE, OPT_SORT, OPT_NO_SORT, OPT_NO_COMPACTION, OPT_PROFILE, OPT_NO_CACHE,
-    OPT_NO_DEFAULT_LIGHT, OPT_EVENTS,
+    OPT_NO_DEFAULT_LIGHT, OPT_EVENTS, OPT_CHECKPOINT, OPT_RESUME, OPT_UNIT_SPP, OPT_UNIT_ROWS,
 };
 
 static const struct option long_options[] = {
@@ -219,6 +230,10 @@ static const struct option long_options[] = {
     {"no-cache", no_argument, NULL, OPT_NO_CACHE},
     {"no-default-light", no_argument, NULL, OPT_NO_DEFAULT_LIGHT},
     {"events", no_argument, NULL, OPT_EVENTS},
+    {"checkpoint", required_argument, NULL, OPT_CHECKPOINT},
+    {"resume", no_argument, NULL, OPT_RESUME},
+    {"unit-spp", required_argument, NULL, OPT_UNIT_SPP},
+    {"unit-rows", required_argument, NULL, OPT_UNIT_ROWS},
     {NULL, 0, NULL, 0},
 };
 
@@ -279,6 +294,10 @@ static bool parse_option(int code, const char *a, const char *v, Options *o, Err
     case OPT_NO_CACHE: o->no_cache = true; return true;
     case OPT_NO_DEFAULT_LIGHT: o->no_default_light = true; return true;
     case OPT_EVENTS: o->print_events = true; return true;
+    case OPT_CHECKPOINT: return parse_number(a, v, 1e-3, 1e9, &o->checkpoint_seconds, err);
+    case OPT_RESUME: o->resume = true; return true;
+    case OPT_UNIT_SPP: return parse_int(a, v, 1, INT_MAX, &o->unit_spp, err);
+    case OPT_UNIT_ROWS: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->unit_rows, err);
     }
     return true;
 }

@@ -30,6 +30,9 @@ typedef struct {
     float noise_threshold; /* --noise-threshold T: adaptive sampling; 0 = the scene's setting */
     int min_spp;          /* --min-spp N: samples every pixel gets first; 0 = the scene's */
     double time_limit;    /* --time-limit SECONDS: stop at the next whole sample; 0 = none */
+    double checkpoint_seconds; /* --checkpoint S: save the film every S seconds; 0 = never */
+    bool resume;          /* --resume: continue from the checkpoint beside the output */
+    int unit_spp, unit_rows; /* --unit-spp, --unit-rows: work unit size; 0 = the default */
     bool quiet;
     bool progress;  /* progress as lines on stderr, even when it is not a terminal */
     bool preview;   /* with -o X.exr, also write X.png */

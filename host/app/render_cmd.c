@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "app/render_cmd_units.h"
 #include "app/render_loop.h"
 #include "app/render_output.h"
 #include "app/stop_signals.h"
@@ -140,8 +141,14 @@ int command_render(const Options *o)
     Error err = {0};
     Session session;
     RenderDesc render = cli_render_desc(o);
+    bool units = render_cmd_wants_units(o);
+    DeviceSpecList devices = {0};
     if (!check_aov_output(o, &err) || !stop_signals_configure(&err) ||
-        !session_open(&session, &render, &err))
+        (units && !render_cmd_units_devices(o, &devices, &err)))
+        die("%s", err.message);
+    if (devices.count > 0)
+        render.device = devices.spec[0]; /* the session's own; render_units opens the rest */
+    if (!session_open(&session, &render, &err))
         die("%s", err.message);
     OutputPaths out;
     if (!plan_outputs(o, "", &out, &err))
@@ -175,7 +182,24 @@ int command_render(const Options *o)
     };
     RenderStats stats;
     RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
-    if (!render_loop_run(&session, &settings, &loop, &images, &stats, &stop, &err))
+    bool rendered;
+    if (units) {
+        /* The checkpoint sits beside -o's file, or at out/<scene>.ptckpt (not numbered, so that
+         * --resume finds it). */
+        char base[1100];
+        if (o->output)
+            snprintf(base, sizeof base, "%s", o->output);
+        else {
+            char stem[512];
+            fs_stem(o->scene, stem, sizeof stem);
+            snprintf(base, sizeof base, "out/%s", stem);
+        }
+        rendered = render_cmd_units_run(o, &session, &devices, &settings, base, &images, &stats,
+                                        &stop, &err);
+    } else {
+        rendered = render_loop_run(&session, &settings, &loop, &images, &stats, &stop, &err);
+    }
+    if (!rendered)
         die("%s", err.message);
     report_render(o, &stats);
     spp_done = stats.spp_done;

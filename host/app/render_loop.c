@@ -22,14 +22,14 @@ ProgressStyle render_loop_progress_style(bool quiet, bool progress_lines, bool s
     return stderr_is_terminal ? PROGRESS_TERMINAL : PROGRESS_LOG;
 }
 
-static double update_interval(ProgressStyle style)
+double render_loop_update_interval(ProgressStyle style)
 {
     return style == PROGRESS_TERMINAL ? TERMINAL_UPDATE_SECONDS
            : style == PROGRESS_LOG    ? LOG_UPDATE_SECONDS
                                       : LINE_UPDATE_SECONDS;
 }
 
-static void print_progress(ProgressStyle style, int spp_done, int spp, uint64_t done,
+void render_loop_print_progress(ProgressStyle style, int spp_done, int spp, uint64_t done,
                            uint64_t total, double elapsed)
 {
     /* Adaptive sampling finishes with fewer paths than pixels x spp: done is then 100%. */
@@ -56,7 +56,7 @@ bool render_loop_run(Session *session, const RenderSettings *settings, const Ren
     uint64_t total = pixels * (uint64_t)settings->spp;
     uint64_t done = 0;
     double start = seconds_now(), last_print = -1.0;
-    double interval = update_interval(desc->progress);
+    double interval = render_loop_update_interval(desc->progress);
     ProgressStyle progress = desc->progress;
     *stop = RENDER_COMPLETE;
     while (wavefront_spp_done(w) < settings->spp && !stop_signal_received()) {
@@ -71,7 +71,7 @@ bool render_loop_run(Session *session, const RenderSettings *settings, const Ren
             done += wavefront_advance(w, UINT64_MAX, wavefront_spp_done(w) + 1);
         bool finished = wavefront_spp_done(w) == settings->spp || timed_out;
         if (progress != PROGRESS_NONE && (first || finished || now - last_print >= interval)) {
-            print_progress(progress, wavefront_spp_done(w), settings->spp, done, total,
+            render_loop_print_progress(progress, wavefront_spp_done(w), settings->spp, done, total,
                            seconds_now() - start);
             last_print = now;
         }

@@ -6,6 +6,7 @@
 #define PT_RENDER_LOOP_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "app/render_output.h"
 #include "render/session.h"
@@ -23,6 +24,12 @@ typedef enum {
 /* The progress style for the command line: --quiet none, --progress lines every second, else
  * the terminal line when stderr is one and log lines when it is not. */
 ProgressStyle render_loop_progress_style(bool quiet, bool progress_lines, bool stderr_is_terminal);
+
+/* Seconds between two progress lines of a style, and one line: spp_done of spp, done of total
+ * camera paths, elapsed seconds (render_units.c shows its progress the same way). */
+double render_loop_update_interval(ProgressStyle style);
+void render_loop_print_progress(ProgressStyle style, int spp_done, int spp, uint64_t done,
+                                uint64_t total, double elapsed);
 
 typedef struct {
     ProgressStyle progress;

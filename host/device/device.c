@@ -197,6 +197,88 @@ static void report_missing_device(const char *spec, cl_platform_id *platforms,
                   spec, devices);
 }
 
+bool device_spec_is_list(const char *spec)
+{
+    return spec && (strcmp(spec, "all") == 0 || strchr(spec, ','));
+}
+
+/* Appends device (p, d) to the list as "P:D"; a device already there is an error naming it. */
+static bool list_add(DeviceSpecList *list, const char *given, int p, int d, Error *err)
+{
+    char spec[sizeof list->spec[0]];
+    snprintf(spec, sizeof spec, "%d:%d", p, d);
+    for (int i = 0; i < list->count; i++)
+        if (strcmp(list->spec[i], spec) == 0) {
+            error_set(err, ERR_USAGE, NULL, 0, "--device %s: device %s is listed twice", given, spec);
+            return false;
+        }
+    if (list->count == DEVICE_LIST_MAX) {
+        error_set(err, ERR_USAGE, NULL, 0, "--device %s: more than %d devices", given, DEVICE_LIST_MAX);
+        return false;
+    }
+    memcpy(list->spec[list->count++], spec, sizeof spec);
+    return true;
+}
+
+bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err)
+{
+    memset(list, 0, sizeof *list);
+    cl_platform_id platforms[MAX_PLATFORMS];
+    cl_uint num_platforms = get_platforms(platforms);
+    if (num_platforms == 0) {
+        error_set(err, ERR_NO_PLATFORM, NULL, 0, "%s", no_platform_help);
+        return false;
+    }
+    if (spec && strcmp(spec, "all") == 0) {
+        /* Every GPU; every CPU only where there is no GPU (mixing is asked for by a list). */
+        for (int pass = 0; pass < 2 && list->count == 0; pass++)
+            for (cl_uint p = 0; p < num_platforms; p++) {
+                cl_device_id devices[MAX_DEVICES];
+                cl_uint num_devices = get_devices(platforms[p], devices);
+                for (cl_uint d = 0; d < num_devices; d++) {
+                    cl_device_type type;
+                    CL_CHECK(clGetDeviceInfo(devices[d], CL_DEVICE_TYPE, sizeof type, &type, NULL));
+                    if ((type & (pass == 0 ? CL_DEVICE_TYPE_GPU : CL_DEVICE_TYPE_CPU)) &&
+                        !list_add(list, spec, (int)p, (int)d, err))
+                        return false;
+                }
+            }
+        if (list->count == 0) {
+            char devices[512];
+            describe_devices(platforms, num_platforms, devices, sizeof devices);
+            error_set(err, ERR_DEVICE_UNKNOWN, NULL, 0,
+                      "--device all: no GPU or CPU OpenCL device (the devices: %s)", devices);
+            return false;
+        }
+        return true;
+    }
+    const char *item = spec ? spec : "";
+    for (;;) {
+        const char *comma = strchr(item, ',');
+        size_t len = comma ? (size_t)(comma - item) : strlen(item);
+        char one[64];
+        if (len == 0 || len >= sizeof one) {
+            error_set(err, ERR_USAGE, NULL, 0,
+                      "--device %s: an empty or overlong entry in the list (use P:D,P:D, gpu, cpu "
+                      "or all)", spec ? spec : "");
+            return false;
+        }
+        memcpy(one, item, len);
+        one[len] = '\0';
+        int p, d;
+        cl_device_id device;
+        if (!find_device(one, platforms, num_platforms, &p, &d, &device)) {
+            report_missing_device(one, platforms, num_platforms, err);
+            return false;
+        }
+        if (!list_add(list, spec ? spec : "", p, d, err))
+            return false;
+        if (!comma)
+            return true;
+        item = comma + 1;
+    }
+}
+
 bool device_open(Device *dev, const char *spec, Error *err)
 {
     memset(dev, 0, sizeof *dev);

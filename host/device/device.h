@@ -47,6 +47,17 @@ bool device_list(FILE *out, Error *err);
  * and device index as `pt devices` prints them). ERR_DEVICE_UNKNOWN names the spec. */
 bool device_open(Device *dev, const char *spec, Error *err);
 
+/* Several devices in one render: `all` (every GPU of every platform, or every CPU device where
+ * there is no GPU: mixing GPUs and CPUs is asked for by naming them) or a list "P:D,P:D" (each
+ * entry anything device_open takes). Each is resolved to "P:D"; a device named twice is an error. */
+#define DEVICE_LIST_MAX 16
+typedef struct {
+    int count;
+    char spec[DEVICE_LIST_MAX][16];
+} DeviceSpecList;
+bool device_spec_is_list(const char *spec); /* "all" or a list with a comma */
+bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err);
+
 /* Builds the program from the embedded cl/ sources followed by extra_source (may be NULL; tests add
  * their kernels this way). On failure prints the full build log and returns
  * ERR_KERNEL_BUILD. */

@@ -59,6 +59,51 @@ static void specialise_program(Device *dev, const SceneData *data, bool black_ho
     memcpy(dev->build_options + used, features, strlen(features) + 1);
 }
 
+/* Opens the device named by spec with the program built for the scene, lays the BVH out for it
+ * (2-wide on GPUs, 8-wide on CPUs) and uploads the scene's buffers; on failure everything opened is
+ * closed again. */
+static bool open_on_device(Device *dev, SceneBvh *bvh, SceneBuffers *buffers, const Scene *scene,
+                           const char *spec, bool no_cache, double *bvh_seconds, Error *err)
+{
+    bool opened = device_open(dev, spec, err);
+    if (opened && no_cache)
+        dev->use_cache = false;
+    if (opened)
+        specialise_program(dev, &scene->data, scene->desc.num_black_holes > 0);
+    if (!opened || !device_build(dev, NULL, NULL, err)) {
+        if (dev->context)
+            device_close(dev);
+        return false;
+    }
+    double t1 = seconds_now();
+    scene_accel_build(bvh, &scene->data, dev, scene->data.two_level);
+    *bvh_seconds = seconds_now() - t1;
+    if (!scene_buffers_upload(dev, &scene->data, bvh, buffers, err)) {
+        scene_buffers_release(buffers);
+        scene_bvh_free(bvh);
+        device_close(dev);
+        return false;
+    }
+    return true;
+}
+
+bool session_device_open(SessionDevice *d, const Scene *scene, const char *spec, bool no_cache,
+                         Error *err)
+{
+    memset(d, 0, sizeof *d);
+    double bvh_seconds;
+    return open_on_device(&d->dev, &d->bvh, &d->buffers, scene, spec, no_cache, &bvh_seconds, err);
+}
+
+void session_device_close(SessionDevice *d)
+{
+    scene_buffers_release(&d->buffers);
+    scene_bvh_free(&d->bvh);
+    if (d->dev.context)
+        device_close(&d->dev);
+    memset(d, 0, sizeof *d);
+}
+
 bool session_open(Session *s, const RenderDesc *o, Error *err)
 {
     memset(s, 0, sizeof *s);
@@ -72,22 +117,9 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
     if (!o->no_default_light)
         scene_add_default_light(&s->scene);
     s->load_seconds = seconds_now() - t0;
-    bool opened = device_open(&s->dev, o->device, err);
-    if (opened && o->no_cache)
-        s->dev.use_cache = false;
-    if (opened)
-        specialise_program(&s->dev, &s->scene.data, s->scene.desc.num_black_holes > 0);
-    if (!opened || !device_build(&s->dev, NULL, NULL, err)) {
-        if (s->dev.context)
-            device_close(&s->dev);
+    if (!open_on_device(&s->dev, &s->bvh, &s->buffers, &s->scene, o->device, o->no_cache,
+                        &s->bvh_seconds, err)) {
         scene_free(&s->scene);
-        return false;
-    }
-    double t1 = seconds_now();
-    scene_accel_build(&s->bvh, &s->scene.data, &s->dev, s->scene.data.two_level);
-    s->bvh_seconds = seconds_now() - t1;
-    if (!scene_buffers_upload(&s->dev, &s->scene.data, &s->bvh, &s->buffers, err)) {
-        session_close(s);
         return false;
     }
     return true;

@@ -32,6 +32,16 @@ typedef struct {
 /* Loads desc->scene, applies the overrides (film, spp, depth), opens desc->device. */
 bool session_open(Session *s, const RenderDesc *desc, Error *err);
 void session_print_summary(const Session *s);
+/* One more device for a render on several (app/render_units.c): like the session's own, its
+ * program built for the scene's features, the BVH in its layout and the scene's buffers on it. */
+typedef struct {
+    Device dev;
+    SceneBvh bvh;
+    SceneBuffers buffers;
+} SessionDevice;
+bool session_device_open(SessionDevice *d, const Scene *scene, const char *spec, bool no_cache,
+                         Error *err);
+void session_device_close(SessionDevice *d);
 /* Material sorting (RenderSettings.sort_materials) for a request: SORT_MATERIALS_ON / _OFF as
  * asked, SORT_MATERIALS_AUTO when the scene uses any material feature beyond Lambert, smooth
  * mirrors and glass (scene/materials.h material_features): on the H200 sorting made such scenes

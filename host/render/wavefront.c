@@ -79,7 +79,7 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
 {
     w->params.batch_start = window_start;
     w->params.batch_size = window_size;
-    w->params.sample_index = w->settings.first_sample + sample_index;
+    w->params.sample_index = w->settings.first_sample + w->block_first_sample + sample_index;
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 
     uint32_t pool = w->stats->pool_size;
@@ -156,6 +156,24 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
     return done;
 }
 
+void wavefront_render_block(Wavefront *w, const PixelBlock *b)
+{
+    if (w->adaptive.on)
+        die("wavefront_render_block: adaptive sampling decides per pixel over the whole film");
+    double start = seconds_now();
+    w->params.pixel_offset = b->first_pixel;
+    w->params.window_pixels = b->num_pixels;
+    w->block_first_sample = b->first_sample;
+    w->next_sample = w->next_pixel = 0;
+    while (w->next_sample < b->num_samples)
+        render_next_window(w, b->num_samples);
+    CL_CHECK(clFinish(w->dev->queue));
+    w->params.pixel_offset = 0;
+    w->params.window_pixels = w->num_pixels;
+    w->block_first_sample = 0;
+    w->next_sample = w->next_pixel = 0;
+    w->stats->seconds += seconds_now() - start;
+}
 
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                       const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err)

@@ -12,6 +12,7 @@
 #include "scene/scene.h"
 #include "render/film.h"
 #include "render/scene_upload.h"
+#include "render/work_units.h"
 
 typedef struct {
     int spp, max_depth;  /* required */
@@ -85,6 +86,11 @@ int wavefront_spp_done(const Wavefront *w);
 /* Whether the film holds whole samples: every pixel being sampled has the same count (no window
  * has stopped inside a sample's pixels). */
 bool wavefront_at_whole_sample(const Wavefront *w);
+/* Adds samples b->first_sample .. + num_samples - 1 (counted from settings.first_sample) of pixels
+ * b->first_pixel .. + num_pixels - 1 to the film, whole, and waits for them: a run of work units
+ * (render/work_units.h). The film's sample count (wavefront_spp_done) does not follow blocks;
+ * not with adaptive sampling. */
+void wavefront_render_block(Wavefront *w, const PixelBlock *b);
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */
 /* The variance of each pixel's mean per channel (the `variance` AOV: sample variance / n, 0 below
  * 2 samples) into rgb; false (rgb untouched) unless the render keeps moments. */
@@ -95,6 +101,8 @@ Film *wavefront_film(Wavefront *w);                 /* its sums: to merge or res
 void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
 void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
 RenderStats *wavefront_stats(Wavefront *w);
+/* Reads the device's counters into the stats (nonfinite: wavefront_read_film does it too). */
+void wavefront_read_counters(Wavefront *w);
 void wavefront_destroy(Wavefront *w);
 
 /* Renders scene into rgb (width * height * 3 floats, row 0 at the top): the mean of spp samples

@@ -39,6 +39,8 @@ struct Wavefront {
     uint32_t num_pixels;
     uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
                                        * film's samples: its index is first_sample + next_sample) */
+    uint32_t block_first_sample;      /* wavefront_render_block: the block's first sample, added
+                                       * to next_sample's; 0 otherwise */
     RenderStats own_stats;
     Adaptive adaptive; /* adaptive sampling (render/adaptive.h); adaptive.on false: off */
 };

@@ -266,12 +266,17 @@ int wavefront_spp_done(const Wavefront *w)
 Film *wavefront_film(Wavefront *w) { return &w->film; }
 RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
 
-void wavefront_read_film(Wavefront *w, float *rgb)
+void wavefront_read_counters(Wavefront *w)
 {
-    film_read(&w->film, rgb);
     uint32_t counters[COUNTER_COUNT];
     device_read(w->dev, w->counters, 0, sizeof counters, counters);
     w->stats->nonfinite = counters[COUNTER_NONFINITE];
+}
+
+void wavefront_read_film(Wavefront *w, float *rgb)
+{
+    film_read(&w->film, rgb);
+    wavefront_read_counters(w);
 }
 
 bool wavefront_read_variance(Wavefront *w, float *rgb)

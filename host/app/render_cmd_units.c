@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: MIT
+#include "app/render_cmd_units.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "base/fs.h"
+#include "render/checkpoint.h"
+#include "render/film.h"
+
+bool render_cmd_wants_units(const Options *o)
+{
+    return device_spec_is_list(o->device) || o->checkpoint_seconds > 0 || o->resume ||
+           o->unit_spp || o->unit_rows;
+}
+
+bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err)
+{
+    if (device_spec_is_list(o->device))
+        return device_spec_list(o->device, list, err);
+    memset(list, 0, sizeof *list);
+    return true; /* the session's device alone */
+}
+
+/* What the unit render cannot do (yet): decisions per pixel over the whole film. */
+static bool check_supported(const Options *o, const RenderSettings *s, Error *err)
+{
+    const char *what = device_spec_is_list(o->device) ? "--device with several devices"
+                       : o->checkpoint_seconds > 0    ? "--checkpoint"
+                       : o->resume                    ? "--resume"
+                                                      : "--unit-spp/--unit-rows";
+    if (s->noise_threshold > 0.0f) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "%s: adaptive sampling (--noise-threshold or the scene's render.noise_threshold) "
+                  "decides over the whole film and runs on one device without work units", what);
+        return false;
+    }
+    if (s->moments) {
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "%s: the variance layer (--aov variance) needs the film's second moments, which "
+                  "only a one-device render without work units keeps", what);
+        return false;
+    }
+    return true;
+}
+
+bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecList *list,
+                          const RenderSettings *settings, const char *checkpoint_base,
+                          RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err)
+{
+    if (!check_supported(o, settings, err))
+        return false;
+    const SceneDesc *desc = &session->scene.desc;
+    UnitRenderDesc ud = {.settings = *settings,
+                         .progress = render_loop_progress_style(o->quiet, o->progress,
+                                                                isatty(STDERR_FILENO)),
+                         .time_limit = o->time_limit,
+                         .checkpoint_seconds = o->checkpoint_seconds,
+                         .resume = o->resume,
+                         .report_devices = !o->quiet};
+    if (!unit_grid_init(&ud.grid, (uint32_t)desc->width, (uint32_t)desc->height,
+                        (uint32_t)settings->spp, (uint32_t)o->unit_spp, (uint32_t)o->unit_rows, err))
+        return false;
+    char checkpoint[1200];
+    if (o->checkpoint_seconds > 0 || o->resume) {
+        checkpoint_path(checkpoint_base, checkpoint, sizeof checkpoint);
+        ud.checkpoint_path = checkpoint;
+        ud.identity = render_identity(&session->scene, settings, &ud.grid);
+        /* Never overwrite a checkpoint the user did not ask to continue. */
+        if (!o->resume && fs_exists(checkpoint)) {
+            error_set(err, ERR_OUTPUT, checkpoint, 0,
+                      "%s exists: continue it with --resume, or remove it to start over", checkpoint);
+            return false;
+        }
+    }
+    UnitFilm film;
+    if (!unit_film_init(&film, &ud.grid, err))
+        return false;
+    if (o->resume && !checkpoint_read(checkpoint, ud.identity, &film, err)) {
+        unit_film_free(&film);
+        return false;
+    }
+    if (o->resume && !o->quiet)
+        fprintf(stderr, "pt: resuming %s: %u of %u work units done\n", checkpoint, film.units_done,
+                ud.grid.count);
+
+    SessionDevice *extra = list->count > 1 ? calloc((size_t)list->count - 1, sizeof *extra) : NULL;
+    int num_extra = 0;
+    bool ok = list->count <= 1 || extra;
+    for (int i = 1; i < list->count && ok; i++) {
+        ok = session_device_open(&extra[i - 1], &session->scene, list->spec[i], o->no_cache, err);
+        if (ok) {
+            num_extra++;
+            if (!o->quiet)
+                fprintf(stderr, "pt: device %s %s (%s, driver %s)\n", list->spec[i],
+                        extra[i - 1].dev.name, extra[i - 1].dev.platform_name,
+                        extra[i - 1].dev.driver_version);
+        }
+    }
+    UnitRenderReport report;
+    UnitDevices devices = {.session = session, .extra = extra, .num_extra = num_extra};
+    if (ok)
+        ok = render_units_run(&devices, &ud, &film, stats, stop, &report, err);
+    if (ok) {
+        film_sums_to_rgb(film.sums, film.num_pixels, images->rgb);
+        if (images->layer[AOV_LAYER_SPP])
+            for (size_t i = 0; i < film.num_pixels; i++)
+                images->layer[AOV_LAYER_SPP][i] = (float)film.sums[FILM_WORDS * i + 3];
+        if (!o->quiet) {
+            fprintf(stderr, "pt: %u work units (%u tiles x %u sample blocks of %u spp)%s\n",
+                    ud.grid.count, ud.grid.tiles, ud.grid.blocks, ud.grid.unit_spp,
+                    report.units_resumed ? ", some from the checkpoint" : "");
+            for (int i = 0; i < report.num_devices; i++) {
+                const UnitDeviceReport *r = &report.device[i];
+                fprintf(stderr, "pt: device %s %s: %u units in %u runs, %.2f Mpaths/s busy\n",
+                        r->spec, r->name, r->units, r->runs,
+                        r->busy_seconds > 0 ? r->paths / r->busy_seconds * 1e-6 : 0.0);
+            }
+            if (report.checkpoints)
+                fprintf(stderr, "pt: %u checkpoints written to %s\n", report.checkpoints, checkpoint);
+        }
+    }
+    /* A finished render needs its checkpoint no more (the image is written next). */
+    if (ok && *stop == RENDER_COMPLETE && ud.checkpoint_path && fs_exists(checkpoint))
+        unlink(checkpoint);
+    for (int i = 0; i < num_extra; i++)
+        session_device_close(&extra[i]);
+    free(extra);
+    unit_film_free(&film);
+    return ok;
+}
