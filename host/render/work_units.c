@@ -100,10 +100,10 @@ bool unit_scheduler_take(UnitScheduler *s, uint32_t max_units, UnitRun *run)
         s->cursor++;
     bool found = s->cursor < s->grid.count;
     if (found) {
-        /* Guided self-scheduling: a share of what is left, so that early runs are long (few
-         * requests, full devices) and the last ones short (the devices finish together). */
-        uint32_t share = s->todo / (2 * s->takers);
-        uint32_t n = share < 1 ? 1 : share;
+        /* Guided self-scheduling: an even share of what is left, so that early runs are long
+         * (few requests, full devices) and the last ones short (the devices finish together); a
+         * lone taker takes whole windows to the end. */
+        uint32_t n = (s->todo + s->takers - 1) / s->takers;
         if (max_units && n > max_units)
             n = max_units;
         uint32_t first = s->cursor, tile_end = (first / s->grid.blocks + 1) * s->grid.blocks;

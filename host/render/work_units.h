@@ -68,8 +68,8 @@ enum { UNIT_TODO = 0, UNIT_TAKEN = 1, UNIT_DONE = 2 };
 bool unit_scheduler_init(UnitScheduler *s, const UnitGrid *g, uint32_t takers, const uint8_t *done,
                          Error *err);
 void unit_scheduler_free(UnitScheduler *s);
-/* The next run of at most max_units units (guided: about the units left over twice the takers, so
- * that the last runs are short and the devices finish together); false when none is left. */
+/* The next run of at most max_units units (guided: the units left over the takers, so that the
+ * last runs are short and the devices finish together); false when none is left. */
 bool unit_scheduler_take(UnitScheduler *s, uint32_t max_units, UnitRun *run);
 /* Marks a run finished (its samples are in some film). */
 void unit_scheduler_finish(UnitScheduler *s, UnitRun run);
