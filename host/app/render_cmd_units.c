@@ -118,6 +118,8 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
                         r->spec, r->name, r->units, r->runs,
                         r->busy_seconds > 0 ? r->paths / r->busy_seconds * 1e-6 : 0.0);
             }
+            fprintf(stderr, "pt: device films merged into the host's in %.1f ms\n",
+                    report.merge_seconds * 1e3);
             if (report.checkpoints)
                 fprintf(stderr, "pt: %u checkpoints written to %s\n", report.checkpoints, checkpoint);
         }

@@ -24,8 +24,10 @@ typedef struct {
     Wavefront *w;
     uint32_t appetite;   /* the most units a run may hold: about one window of the device */
     uint8_t *pending;    /* units in the device's film, not yet in the host's */
-    uint64_t *sums;      /* the device film, read back */
+    uint64_t *sums;      /* the device film, read back (pinned: device_pinned_alloc) */
+    cl_mem sums_buffer;
     uint64_t flushed;    /* the last flush request served */
+    double last_run_end; /* seconds_now() when its last run was rendered */
     bool finished;
     bool failed;
     Error err;
@@ -98,7 +100,8 @@ static void *worker_main(void *arg)
         k->report->units += run.count;
         k->report->runs++;
         k->report->paths += unit_run_paths(g, run);
-        k->report->busy_seconds += seconds_now() - start;
+        k->last_run_end = seconds_now();
+        k->report->busy_seconds += k->last_run_end - start;
         pthread_cond_broadcast(&sh->changed);
         pthread_mutex_unlock(&sh->lock);
         stop_signals_test_point("unit");
@@ -231,7 +234,9 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
         snprintf(k->report->name, sizeof k->report->name, "%s", dev->name);
         k->w = wavefront_create(dev, scene, buffers, &desc->settings, err);
         k->pending = calloc(unit_bitmap_bytes(g->count), 1);
-        k->sums = malloc(film->num_pixels * FILM_BYTES_PER_PIXEL);
+        if (k->w)
+            k->sums = device_pinned_alloc(dev, "film_readback", film->num_pixels * FILM_BYTES_PER_PIXEL,
+                                          &k->sums_buffer, err);
         ok = k->w && k->pending && k->sums;
         if (ok)
             k->appetite = unit_grid_units_per_window(g, wavefront_stats(k->w)->window_size);
@@ -259,9 +264,13 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
         ok = false;
     for (int i = 0; i < started; i++)
         pthread_join(workers[i].thread, NULL);
-    stats->seconds = seconds_now() - start;
+    /* Rendering time, as render_loop's: to the last run rendered; moving the films into the
+     * host's is report->merge_seconds (the one-device render reads its film after its loop too). */
+    double end = start;
     for (int i = 0; i < n && workers; i++) {
         Worker *k = &workers[i];
+        if (k->last_run_end > end)
+            end = k->last_run_end;
         if (k->failed && ok) {
             *err = k->err;
             ok = false;
@@ -284,9 +293,10 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
             wavefront_destroy(k->w);
         }
         free(k->pending);
-        free(k->sums);
+        device_pinned_free(k->dev, k->sums_buffer, k->sums);
     }
     free(workers);
+    stats->seconds = end - start;
     report->merge_seconds = sh.merge_seconds;
     stats->spp_done = (int)unit_film_spp_done(film);
     if (ok && *stop == RENDER_COMPLETE && !unit_film_complete(film))

@@ -40,6 +40,27 @@ cl_mem device_buffer(Device *dev, const char *name, cl_mem_flags flags, size_t s
     return buffer;
 }
 
+void *device_pinned_alloc(Device *dev, const char *name, size_t size, cl_mem *buffer, Error *err)
+{
+    *buffer = device_buffer(dev, name, CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, size, NULL, err);
+    if (!*buffer)
+        return NULL;
+    cl_int status;
+    void *p = clEnqueueMapBuffer(dev->queue, *buffer, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, size,
+                                 0, NULL, NULL, &status);
+    CL_CHECK_ERR(status, "clEnqueueMapBuffer");
+    return p;
+}
+
+void device_pinned_free(Device *dev, cl_mem buffer, void *p)
+{
+    if (!buffer)
+        return;
+    CL_CHECK(clEnqueueUnmapMemObject(dev->queue, buffer, p, 0, NULL, NULL));
+    CL_CHECK(clFinish(dev->queue));
+    CL_CHECK(clReleaseMemObject(buffer));
+}
+
 void device_read(Device *dev, cl_mem buf, size_t offset, size_t size, void *dst)
 {
     if (size)
