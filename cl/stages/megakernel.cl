@@ -9,8 +9,8 @@
  * the cache between stages and no compaction, refill or count read-back runs between bounces.
  * Work item j uses slot j: the host launches at most a pool of samples, first_sample .. + n - 1.
  * counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] count the rays (one atomic per group).
- * Not for the ablations (brute force, material sorting) nor scenes with black holes (their bent
- * rays are a stage of their own). */
+ * Not for the ablations (no compaction, brute force) nor scenes with black holes (their bent rays
+ * are a stage of their own). */
 
 kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint first_sample,
                         uint n, global uint *counters)

@@ -18,8 +18,10 @@ static bool wants_megakernel(const Wavefront *w, Error *err, bool *out)
     } else {
         *out = s->path_kernel == PATH_KERNEL_MEGAKERNEL;
     }
-    /* The ablations measure the wavefront's parts; bent rays are a stage of their own. */
-    if (s->no_compaction || s->brute_force || s->sort_materials || w->kernels[STAGE_GEODESIC])
+    /* The ablations measure the wavefront's parts; bent rays are a stage of their own. Material
+     * sorting orders the wavefront's shading launches and has nothing to order here (and loses on
+     * PoCL, bench/README.md): it does not keep a render off the megakernel. */
+    if (s->no_compaction || s->brute_force || w->kernels[STAGE_GEODESIC])
         *out = false;
     return true;
 }

@@ -45,8 +45,8 @@ typedef struct {
 /* How the paths of a window are traced: the wavefront (a kernel per stage, compaction, refills)
  * or the path-per-work-item kernel (cl/stages/megakernel.cl, the same stage functions; the film
  * gets the same bits). AUTO: PT_MEGAKERNEL=0|1 if set, else the megakernel on CPU devices. Either
- * way the ablations (no_compaction, brute_force, sort_materials) and scenes with black holes use
- * the wavefront. */
+ * way the ablations (no_compaction, brute_force) and scenes with black holes use the wavefront;
+ * sort_materials applies to the wavefront only. */
 enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL };
 
 /* Default window: long enough that the pool stays full for most of it (the tail, where the last
