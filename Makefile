@@ -42,7 +42,7 @@ CL_SOURCES := cl/shared.h cl/shared/geometry.h cl/shared/material.h cl/shared/re
               cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \
               cl/stages/intersect_closest.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
-              cl/stages/integrate_geodesic.cl \
+              cl/stages/integrate_geodesic.cl cl/stages/megakernel.cl \
               cl/stages/accumulate_film.cl cl/stages/film_variance.cl cl/stages/adaptive_select.cl
 
 HOST_C   := $(wildcard host/*/*.c)

@@ -160,14 +160,16 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     RenderFixture f;
     render_fixture_open(&f, "scenes/cornell-box/scene.json", 32, 32);
     RenderStats with, without, refilled;
-    float *a = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3}, &with);
+    /* The wavefront's own mechanics (compaction, refills, the shadow queue) are under test here:
+     * pinned to it, since CPUs otherwise get the megakernel (test_megakernel.c). */
+    float *a = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .path_kernel = PATH_KERNEL_WAVEFRONT}, &with);
     float *b = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .no_compaction = true}, &without);
     cr_expect(memcmp(a, b, 32 * 32 * 3 * sizeof(float)) == 0, "images differ");
     /* Compaction really removed paths: fewer extension rays than without. */
     cr_expect(with.live_per_step[4] < with.live_per_step[0]);
     /* 256 slots tracing the same one window of 8192 samples: slots are refilled as paths end (so
      * there are more steps than bounces), and the image keeps every bit. */
-    float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192}, &refilled);
+    float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .path_kernel = PATH_KERNEL_WAVEFRONT}, &refilled);
     cr_expect_eq(refilled.batches, 1);
     cr_expect_eq(refilled.pool_size, 256);
     cr_expect(refilled.live_per_step[40] == 256, "the pool is not kept full: %llu paths at step 40",
@@ -176,7 +178,7 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     cr_expect(memcmp(a, c, 32 * 32 * 3 * sizeof(float)) == 0, "refilling slots changed the image");
     /* Shadow rays by a flag per active path instead of the queue: the same rays, the same bits. */
     RenderStats queued;
-    float *q = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .shadow_flags = true}, &queued);
+    float *q = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .shadow_flags = true, .path_kernel = PATH_KERNEL_WAVEFRONT}, &queued);
     cr_expect_eq(queued.shadow_rays, with.shadow_rays);
     cr_expect(memcmp(a, q, 32 * 32 * 3 * sizeof(float)) == 0, "shadow flags changed the image");
     /* Shading the paths grouped by material: the same bits. */

@@ -8,15 +8,9 @@
  * ray), path_time (PT_FEATURE_MOTION: the path's shutter fraction, camera_time), active[n_live + j].
  * Next: intersect_closest. */
 
-kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
-                                 const global uint *free_slots, uint n_live, uint first_sample,
-                                 uint n_new, uint fresh)
+/* Starts window sample k's camera path in slot (shared with megakernel.cl). */
+PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot, uint k)
 {
-    uint j = get_global_id(0);
-    if (j >= n_new)
-        return;
-    uint slot = fresh ? j : free_slots[j];
-    uint k = first_sample + j;
     uint pixel = window_pixel(p, active_pixels, k), sample = window_sample(p, k);
     float3 origin, dir;
     camera_sample(p, pixel, sample, &origin, &dir);
@@ -30,5 +24,16 @@ kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS glo
     if (PT_FEATURE_MOTION)
         path_time[slot] = camera_time(p, pixel, sample);
     radiance[k] = (float4)(0.0f);
+}
+
+kernel void generate_camera_rays(constant RenderParams *p, PATH_STATE_PARAMS global uint *active,
+                                 const global uint *free_slots, uint n_live, uint first_sample,
+                                 uint n_new, uint fresh)
+{
+    uint j = get_global_id(0);
+    if (j >= n_new)
+        return;
+    uint slot = fresh ? j : free_slots[j];
+    start_path(p, PATH_STATE_ARGS slot, first_sample + j);
     active[n_live + j] = slot;
 }

@@ -12,6 +12,39 @@
     constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \
         uint n_active, global uint *counters
 
+/* Traces the closest hit of the live path in slot into hit (and hit_instance); false, touching
+ * nothing, for a free slot (path_depth 0). brute_force is a constant at every call. The stage
+ * kernels below and the CPU's path-per-work-item kernel (megakernel.cl) share it. */
+PT_INLINE bool extend_path(constant RenderParams *p, const SceneView *scene,
+                           PATH_STATE_PARAMS uint slot, bool brute_force)
+{
+    if (!path_depth[slot])
+        return false;
+    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
+    float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
+    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
+#if PT_FEATURE_CUTOUT
+    /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
+     * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
+    uint k = sample_id[slot];
+    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+    Hit h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time, brute_force,
+                                  rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
+#else
+    Hit h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false, time)
+                        : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
+#endif
+#if PT_FEATURE_BLACK_HOLES
+    /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
+     * ray_origin.w is the curve's length so far (0 for every straight ray). */
+    h.t += ray_origin[slot].w;
+#endif
+    hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
+    if (PT_FEATURE_INSTANCES)
+        hit_instance[slot] = h.instance;
+    return true;
+}
+
 /* The work-group's share of either kernel; brute_force is a constant in each. */
 PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView *scene,
                                        PATH_STATE_PARAMS const global uint *active, uint n_active,
@@ -21,35 +54,10 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     if (get_local_id(0) == 0)
         *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
-    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    if (i < n_active && path_depth[slot]) {
+    if (i < n_active && extend_path(p, scene, PATH_STATE_ARGS slot, brute_force))
         atomic_inc(group_rays);
-        float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
-        float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
-#if PT_FEATURE_CUTOUT
-        /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
-         * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
-        uint k = sample_id[slot];
-        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
-        Hit h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time,
-                                      brute_force,
-                                      rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
-#else
-        Hit h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false,
-                                                time)
-                            : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
-#endif
-#if PT_FEATURE_BLACK_HOLES
-        /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
-         * ray_origin.w is the curve's length so far (0 for every straight ray). */
-        h.t += ray_origin[slot].w;
-#endif
-        hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
-        if (PT_FEATURE_INSTANCES)
-            hit_instance[slot] = h.instance;
-    }
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);
     if (get_local_id(0) == 0 && *group_rays > 0)

@@ -14,6 +14,40 @@
         uint n_active, global uint *counters, const global uint *shadow_queue,                     \
         const global uint *shadow_count
 
+/* Traces the shadow ray that slot's path waits for (shadow_contribution.w != 0) and adds its
+ * contribution to radiance[sample_id] when unoccluded; false, touching nothing, when none waits.
+ * brute_force is a constant at every call. Shared by the kernels below and megakernel.cl. */
+PT_INLINE bool connect_path(constant RenderParams *p, const SceneView *scene,
+                            PATH_STATE_PARAMS uint slot, bool brute_force)
+{
+    float4 contribution = shadow_contribution[slot];
+    if (contribution.w == 0.0f)
+        return false;
+    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
+    float4 origin = shadow_origin[slot];
+    float3 d = xyz(shadow_direction[slot]);
+    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
+#if PT_FEATURE_CUTOUT
+    /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY stream
+     * decides the cut-out pass-throughs. */
+    uint k = sample_id[slot];
+    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+    uint bounce = as_uint(shadow_direction[slot].w);
+    bool occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w, time,
+                                           brute_force,
+                                           rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
+#else
+    bool occluded = brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f,
+                                                    origin.w, true, time).prim != HIT_NONE
+                                : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f,
+                                                 origin.w, time);
+#endif
+    if (!occluded)
+        radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
+    shadow_contribution[slot] = (float4)(0.0f);
+    return true;
+}
+
 /* The work-group's share of either kernel; brute_force is a constant in each. */
 PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView *scene,
                                       PATH_STATE_PARAMS const global uint *active, uint n_active,
@@ -24,37 +58,12 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
     if (get_local_id(0) == 0)
         *group_rays = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
-    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     uint i = get_global_id(0);
     bool queue = (p->flags & RENDER_SHADOW_QUEUE) != 0u;
     if (i < (queue ? shadow_count[0] : n_active)) {
         uint slot = queue ? shadow_queue[i] : active[i];
-        float4 contribution = shadow_contribution[slot];
-        if (contribution.w != 0.0f) {
+        if (connect_path(p, scene, PATH_STATE_ARGS slot, brute_force))
             atomic_inc(group_rays);
-            float4 origin = shadow_origin[slot];
-            float3 d = xyz(shadow_direction[slot]);
-            float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
-#if PT_FEATURE_CUTOUT
-            /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY
-             * stream decides the cut-out pass-throughs. */
-            uint k = sample_id[slot];
-            RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
-            uint bounce = as_uint(shadow_direction[slot].w);
-            bool occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w,
-                                                   time, brute_force,
-                                                   rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
-#else
-            bool occluded =
-                brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f,
-                                                origin.w, true, time).prim != HIT_NONE
-                            : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f,
-                                             origin.w, time);
-#endif
-            if (!occluded)
-                radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
-            shadow_contribution[slot] = (float4)(0.0f);
-        }
     }
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);

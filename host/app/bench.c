@@ -89,7 +89,9 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
  * WINDOW_PER_POOL pools, shadow rays queued, material sorting when session_sorts_materials says
  * so); "refill" the same never sorted; then with a shadow flag per active path, with material sorting,
  * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
- * neither (every bounce over the whole pool). */
+ * neither (every bounce over the whole pool). "default" takes the path kernel pt render takes (on
+ * CPUs the megakernel, render/megakernel.h); the wavefront's ablations are pinned to the
+ * wavefront, and "megakernel" is the path-per-work-item kernel on any device. */
 typedef struct {
     const char *name;
     bool no_compaction;
@@ -97,16 +99,18 @@ typedef struct {
     bool shadow_flags;
     int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
+    int path_kernel;  /* PATH_KERNEL_* */
 } BenchMode;
 
 static const BenchMode modes[] = {
-    {"default", false, 0, false, SORT_MATERIALS_AUTO, false},
-    {"refill", false, 0, false, SORT_MATERIALS_OFF, false},
-    {"shadow-flags", false, 0, true, SORT_MATERIALS_OFF, false},
-    {"no-refill", false, 1, false, SORT_MATERIALS_OFF, false},
-    {"no-compaction", true, 0, false, SORT_MATERIALS_OFF, false},
-    {"sort-materials", false, 0, false, SORT_MATERIALS_ON, false},
-    {"brute-force", false, 0, false, SORT_MATERIALS_OFF, true},
+    {"default", false, 0, false, SORT_MATERIALS_AUTO, false, PATH_KERNEL_AUTO},
+    {"refill", false, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
+    {"megakernel", false, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_MEGAKERNEL},
+    {"shadow-flags", false, 0, true, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
+    {"no-refill", false, 1, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
+    {"no-compaction", true, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
+    {"sort-materials", false, 0, false, SORT_MATERIALS_ON, false, PATH_KERNEL_WAVEFRONT},
+    {"brute-force", false, 0, false, SORT_MATERIALS_OFF, true, PATH_KERNEL_WAVEFRONT},
 };
 #define BRUTE_FORCE_MAX_TRIANGLES 4096
 #define NUM_MODES (sizeof modes / sizeof modes[0])
@@ -137,6 +141,7 @@ int command_bench(const Options *o)
         settings[m].window_size = modes[m].window_size;
         settings[m].shadow_flags = modes[m].shadow_flags;
         settings[m].brute_force = modes[m].brute_force;
+        settings[m].path_kernel = modes[m].path_kernel;
         settings[m].sort_materials = session_sorts_materials(&s.scene.data, modes[m].sort_materials);
         /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
          * more, once per machine); keep that out of the figures. */

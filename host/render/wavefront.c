@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "base/clock.h"
+#include "render/megakernel.h"
 #include "render/wavefront_internal.h"
 
 static void run(Wavefront *w, int stage, size_t n)
@@ -83,7 +84,9 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 
     uint32_t pool = w->stats->pool_size;
-    if (w->settings.no_compaction) {
+    if (w->kernels[STAGE_MEGAKERNEL]) {
+        megakernel_trace_window(w, window_size); /* render/megakernel.c */
+    } else if (w->settings.no_compaction) {
         generate(w, 0, 0, window_size, true);
         for (uint32_t depth = 1; depth <= (uint32_t)w->settings.max_depth; depth++)
             trace_step(w, window_size, depth - 1);

@@ -40,7 +40,15 @@ typedef struct {
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
+    int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
 } RenderSettings;
+
+/* How the paths of a window are traced: the wavefront (a kernel per stage, compaction, refills)
+ * or the path-per-work-item kernel (cl/stages/megakernel.cl, the same stage functions; the film
+ * gets the same bits). AUTO: PT_MEGAKERNEL=0|1 if set, else the megakernel on CPU devices. Either
+ * way the ablations (no_compaction, brute_force) and scenes with black holes use the wavefront;
+ * sort_materials applies to the wavefront only. */
+enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL };
 
 /* Default window: long enough that the pool stays full for most of it (the tail, where the last
  * paths of the window run with no refills, is about a pool's worth of work). */
@@ -48,7 +56,8 @@ typedef struct {
 
 enum {
     STAGE_GENERATE, STAGE_EXTEND, STAGE_SORT, STAGE_SHADE, STAGE_CONNECT, STAGE_COMPACT,
-    STAGE_ACCUMULATE, STAGE_GEODESIC /* scenes with black holes only */, STAGE_COUNT
+    STAGE_ACCUMULATE, STAGE_GEODESIC /* scenes with black holes only */,
+    STAGE_MEGAKERNEL /* PATH_KERNEL_MEGAKERNEL: every stage of a path in one kernel */, STAGE_COUNT
 };
 
 typedef struct {
@@ -61,6 +70,7 @@ typedef struct {
     uint32_t pool_size;
     uint32_t window_size;
     uint32_t batches;          /* windows rendered */
+    bool megakernel;           /* traced by the path-per-work-item kernel (PATH_KERNEL_*) */
     uint32_t active_pixels;    /* adaptive sampling: pixels still sampled (all before the first
                                 * decision, 0 once every pixel has stopped) */
     uint64_t device_bytes;     /* path state, window and film on the device */

@@ -43,6 +43,11 @@ struct Wavefront {
                                        * to next_sample's; 0 otherwise */
     RenderStats own_stats;
     Adaptive adaptive; /* adaptive sampling (render/adaptive.h); adaptive.on false: off */
+    cl_uint megakernel_counts_arg; /* index of trace_paths' first_sample (render/megakernel.c) */
 };
+
+/* Binds params, [the scene's buffers] and the path state to k's first arguments, in the order of
+ * cl/stages/path_state.cl; returns the index of the kernel's own first argument. */
+cl_uint wavefront_set_path_args(Wavefront *w, cl_kernel k, bool with_scene);
 
 #endif

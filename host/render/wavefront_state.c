@@ -6,12 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "render/megakernel.h"
 #include "render/wavefront_internal.h"
 #include "scene/camera.h"
 
 const char *const stage_names[STAGE_COUNT] = {
     "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
     "intersect_shadow",     "compact_paths",     "accumulate_film",      "integrate_geodesic",
+    "trace_paths",
 };
 
 /* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
@@ -170,9 +172,9 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
             return false;
     }
     for (int k = 0; k < STAGE_COUNT; k++)
-        if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC)
+        if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC && k != STAGE_MEGAKERNEL)
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force, s->moments));
-    if (!black_holes_init(w, &scene->desc, &scene->data, err))
+    if (!black_holes_init(w, &scene->desc, &scene->data, err) || !megakernel_init(w, err))
         return false;
     set_all_args(w);
     wavefront_reset(w);
@@ -193,6 +195,7 @@ void wavefront_reset(Wavefront *w)
     w->stats->pool_size = sizes.pool_size;
     w->stats->window_size = sizes.window_size;
     w->stats->device_bytes = sizes.device_bytes;
+    w->stats->megakernel = sizes.megakernel;
     w->next_sample = w->next_pixel = 0;
     adaptive_reset(w);
 }
@@ -205,7 +208,7 @@ void wavefront_set_camera(Wavefront *w, const Camera *camera)
 
 /* Arguments in the order of cl/stages/path_state.cl: params, [scene buffers], path state, then
  * the stage's own. Returns the index of the first of the stage's own arguments. */
-static cl_uint set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
+cl_uint wavefront_set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
 {
     cl_uint i = KERNEL_ARGS(k, 0, KARG(w->params_buf));
     if (with_scene)
@@ -223,29 +226,29 @@ static void set_all_args(Wavefront *w)
 {
     cl_uint zero = 0, i;
     cl_kernel generate = w->kernels[STAGE_GENERATE];
-    i = set_path_args(w, generate, false);
+    i = wavefront_set_path_args(w, generate, false);
     w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
 
     cl_kernel extend = w->kernels[STAGE_EXTEND];
-    i = set_path_args(w, extend, true);
+    i = wavefront_set_path_args(w, extend, true);
     w->n_active_arg[STAGE_EXTEND] = i + 1;
     KERNEL_ARGS(extend, i, KARG(w->active), KARG(zero), KARG(w->counters));
 
     cl_kernel shade = w->kernels[STAGE_SHADE];
     cl_mem shade_list = w->sorted_active ? w->sorted_active : w->active;
-    i = set_path_args(w, shade, true);
+    i = wavefront_set_path_args(w, shade, true);
     w->n_active_arg[STAGE_SHADE] = i + 1;
     KERNEL_ARGS(shade, i, KARG(shade_list), KARG(zero), KARG(w->shadow_queue), KARG(w->shadow_count));
 
     cl_kernel connect = w->kernels[STAGE_CONNECT];
-    i = set_path_args(w, connect, true);
+    i = wavefront_set_path_args(w, connect, true);
     w->n_active_arg[STAGE_CONNECT] = i + 1;
     KERNEL_ARGS(connect, i, KARG(w->active), KARG(zero), KARG(w->counters), KARG(w->shadow_queue),
                 KARG(w->shadow_count));
 
     cl_kernel geodesic = w->kernels[STAGE_GEODESIC];
     if (geodesic) {
-        i = set_path_args(w, geodesic, true);
+        i = wavefront_set_path_args(w, geodesic, true);
         w->n_active_arg[STAGE_GEODESIC] = i + 1;
         KERNEL_ARGS(geodesic, i, KARG(w->active), KARG(zero), KARG(w->black_holes),
                     KARG(w->num_black_holes), KARG(w->scene_box[0]), KARG(w->scene_box[1]),
@@ -253,7 +256,7 @@ static void set_all_args(Wavefront *w)
     }
 
     cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
-    i = set_path_args(w, accumulate, false);
+    i = wavefront_set_path_args(w, accumulate, false);
     i = KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
     if (w->settings.moments)
         KERNEL_ARG(accumulate, i, w->film.moments);
