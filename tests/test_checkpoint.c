@@ -25,6 +25,7 @@
 
 #include "cli_run.h"
 #include "io/image_io.h"
+#include "render/checkpoint.h"
 #include "support.h"
 
 #define SCENE "render scenes/cornell-box"
@@ -166,6 +167,55 @@ Test(checkpoint, sigkill_at_a_checkpoint_or_a_write_then_resume_is_bit_identical
         }
         resume_to_the_end(&p, "", "", e);
     }
+}
+
+/* Killed while the image of a complete resumed render is written (no periodic checkpoints: the
+ * first file written is the image): the checkpoint must still be there for the next --resume. */
+Test(checkpoint, sigkill_while_the_image_is_written_keeps_the_checkpoint, .timeout = 600)
+{
+    Paths p;
+    paths_init(&p);
+    render_reference(&p);
+    stop_after_one_run(&p, "", "");
+    Run r = pt("PT_TEST_RAISE=SIGKILL@write:1", SCENE " " FILM " --resume -o %s", p.exr);
+    cr_assert(killed(r), "not killed: exit %d: %s", r.exit_code, r.err);
+    cr_assert_eq(access(p.ckpt, F_OK), 0, "the checkpoint went before the image was written");
+    resume_to_the_end(&p, "", "", "killed during the image's write");
+}
+
+/* A checkpoint holding every unit (a crash after the last periodic checkpoint, before the image):
+ * --resume renders nothing and writes the image of its film. Made here with zero sums (a black
+ * image) for FILM's render of SCENE. */
+Test(checkpoint, a_complete_checkpoint_resumes_to_its_image, .timeout = 600)
+{
+    Paths p;
+    paths_init(&p);
+    Scene scene;
+    Error err = {0};
+    warnings_set_quiet(true);
+    cr_assert(scene_load("scenes/cornell-box", &scene, &err), "%s", err.message);
+    scene.desc.width = 64, scene.desc.height = 48;
+    RenderSettings settings = {.spp = 8, .max_depth = 4};
+    UnitGrid grid;
+    cr_assert(unit_grid_init(&grid, 64, 48, 8, 0, 8, &err), "%s", err.message);
+    RenderIdentity id = render_identity(&scene, &settings, &grid);
+    scene_free(&scene);
+    UnitFilm film;
+    cr_assert(unit_film_init(&film, &grid, &err));
+    for (uint32_t u = 0; u < grid.count; u++)
+        unit_bitmap_set(film.done, u);
+    film.units_done = grid.count;
+    cr_assert(checkpoint_write(p.ckpt, id, &film, &err), "%s", err.message);
+    unit_film_free(&film);
+    Run r = pt(NULL, SCENE " " FILM " --resume -o %s", p.exr);
+    cr_assert_eq(r.exit_code, 0, "exit %d: %s", r.exit_code, r.err);
+    cr_expect_neq(access(p.ckpt, F_OK), 0, "the checkpoint is left after a complete render");
+    float *rgb = NULL;
+    int w, h;
+    cr_assert(image_read_exr(p.exr, &rgb, &w, &h, &err), "%s", err.message);
+    for (int i = 0; i < w * h * 3; i++)
+        cr_expect_eq(rgb[i], 0.0f, "value %d: %g, not the checkpoint's black", i, rgb[i]);
+    free(rgb);
 }
 
 Test(checkpoint, another_scene_or_other_settings_are_refused, .timeout = 600)
