@@ -66,7 +66,8 @@ static float bits_float(uint32_t bits)
 }
 
 /* The bitmap's bytes in the file: a whole number of words, so the sums stay 8-byte aligned. */
-static uint64_t bitmap_file_bytes(uint32_t count) { return (unit_bitmap_bytes(count) + 7u) / 8u * 8u; }
+static uint64_t bitmap_bytes64(uint32_t count) { return ((uint64_t)count + 7u) / 8u; }
+static uint64_t bitmap_file_bytes(uint32_t count) { return (bitmap_bytes64(count) + 7u) / 8u * 8u; }
 
 static void encode_header(uint8_t h[CHECKPOINT_HEADER_BYTES], const RenderIdentity *id,
                           uint32_t units_done)
@@ -152,7 +153,7 @@ static bool write_body(Writer *w, const RenderIdentity *id, UnitFilm *f)
     uint64_t bitmap = bitmap_file_bytes(f->grid.count);
     writer_put(w, f->done, unit_bitmap_bytes(f->grid.count));
     static const uint8_t zeros[8];
-    writer_put(w, zeros, bitmap - unit_bitmap_bytes(f->grid.count));
+    writer_put(w, zeros, (size_t)(bitmap - unit_bitmap_bytes(f->grid.count)));
     size_t words = f->num_pixels * FILM_WORDS;
     for (size_t i = 0; i < words; i++) {
         uint8_t le[8];
@@ -337,7 +338,7 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
         return false;
     }
     /* A valid checksum with inconsistent content: a writer's bug, refused all the same. */
-    uint64_t units = 0, used = unit_bitmap_bytes(g->count);
+    uint64_t units = 0, used = bitmap_bytes64(g->count);
     for (uint64_t i = 0; i < bitmap_bytes; i++)
         units += (uint64_t)popcount8((*bitmap)[i]);
     bool stray = g->count % 8 && (*bitmap)[used - 1] >> (g->count % 8);
