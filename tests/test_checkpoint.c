@@ -159,6 +159,7 @@ Test(checkpoint, sigkill_at_a_checkpoint_or_a_write_then_resume_is_bit_identical
         char e[128];
         snprintf(e, sizeof e, "PT_TEST_RAISE=SIGKILL@%s", points[i]);
         Run r = pt(e, SCENE " " FILM " --checkpoint 0.001 --resume -o %s", p.exr);
+        fprintf(stderr, "test_checkpoint: %s: %s\n", e, killed(r) ? "killed" : "not reached");
         if (!killed(r)) { /* no periodic checkpoint came before the end: a whole render */
             cr_assert_eq(r.exit_code, 0, "%s: exit %d: %s", e, r.exit_code, r.err);
             cr_expect_neq(access(p.ckpt, F_OK), 0, "%s: the checkpoint is left", e);
