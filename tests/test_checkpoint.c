@@ -95,11 +95,13 @@ static void stop_after_one_run(const Paths *p, const char *env, const char *devi
 }
 
 /* Stage 3: resumed to the end; the checkpoint goes, the pixels are the reference's. */
-static void resume_to_the_end(const Paths *p, const char *env, const char *devices, const char *what)
+static void resume_to_the_end(const Paths *p, const char *env, const char *devices,
+                              const char *what)
 {
     Run r = pt(env, SCENE " " FILM " %s --resume -o %s", devices, p->exr);
     cr_assert_eq(r.exit_code, 0, "%s: the resumed render: exit %d: %s", what, r.exit_code, r.err);
-    cr_expect_neq(access(p->ckpt, F_OK), 0, "%s: the checkpoint is left after a complete render", what);
+    cr_expect_neq(access(p->ckpt, F_OK), 0, "%s: the checkpoint is left after a complete render",
+                  what);
     expect_same_pixels(p->ref, p->exr, what);
 }
 
@@ -113,8 +115,8 @@ static unsigned kill_seed(void)
     return seed;
 }
 
-static void kill_and_resume(const char *env, const char *killed_devices, const char *resumed_devices,
-                            int rounds)
+static void kill_and_resume(const char *env, const char *killed_devices,
+                            const char *resumed_devices, int rounds)
 {
     Paths p;
     paths_init(&p);
@@ -127,7 +129,8 @@ static void kill_and_resume(const char *env, const char *killed_devices, const c
         fprintf(stderr, "test_checkpoint: %s (%s)\n", what, killed_devices);
         stop_after_one_run(&p, env, killed_devices);
         snprintf(e, sizeof e, "%s PT_TEST_RAISE=SIGKILL@unit:%u", env, n);
-        Run r = pt(e, SCENE " " FILM " %s --checkpoint 0.001 --resume -o %s", killed_devices, p.exr);
+        Run r = pt(e, SCENE " " FILM " %s --checkpoint 0.001 --resume -o %s", killed_devices,
+                   p.exr);
         cr_assert(killed(r), "%s: not killed: exit %d: %s", what, r.exit_code, r.err);
         cr_assert_eq(access(p.ckpt, F_OK), 0, "%s: the checkpoint is gone", what);
         resume_to_the_end(&p, env, resumed_devices, what);

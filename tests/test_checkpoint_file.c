@@ -124,7 +124,8 @@ Test(checkpoint_file, every_flipped_bit_is_refused)
         write_bytes(path, bad, size);
         UnitFilm b;
         Error err;
-        cr_expect_not(read_back(path, id, &b, &err), "bit %d of byte %zu flipped: accepted", bit, byte);
+        cr_expect_not(read_back(path, id, &b, &err), "bit %d of byte %zu flipped: accepted", bit,
+                      byte);
         if (byte >= CHECKPOINT_HEADER_BYTES)
             cr_expect(strstr(err.message, "checksum mismatch"), "byte %zu: %s", byte, err.message);
         unit_film_free(&b);
@@ -223,7 +224,8 @@ Test(checkpoint_file, another_render_is_refused_saying_what_differs)
     cr_assert(unit_grid_init(&other[6].id.grid, 5, 6, 8, 1, 2, &e));
     other[6].needle = "spp 4 in it, 8 here";
     cr_assert(unit_grid_init(&other[7].id.grid, 5, 6, 4, 2, 2, &e));
-    other[7].needle = "unit size differs: its units are 1 spp x 2 rows, this render's 2 spp x 2 rows";
+    other[7].needle =
+        "unit size differs: its units are 1 spp x 2 rows, this render's 2 spp x 2 rows";
     for (int i = 0; i < 8; i++) {
         UnitFilm b;
         Error err;
@@ -272,7 +274,10 @@ static uint64_t hash_of(const char *scene_path, void (*change)(Scene *))
 
 static void move_a_vertex(Scene *s) { s->data.positions[1].x += 1e-6f; }
 static void change_a_material(Scene *s) { s->data.materials[0].roughness += 0.01f; }
-static void change_a_texel(Scene *s) { s->data.textures.texels[s->data.textures.num_texels / 2] ^= 1u; }
+static void change_a_texel(Scene *s)
+{
+    s->data.textures.texels[s->data.textures.num_texels / 2] ^= 1u;
+}
 static void move_the_camera(Scene *s) { s->desc.camera.eye[2] += 1e-3f; }
 static void change_the_background(Scene *s) { s->desc.background[1] += 0.5f; }
 static void change_the_film(Scene *s) { s->desc.width++; }

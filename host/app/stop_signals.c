@@ -126,6 +126,7 @@ int stop_exit_status(void) { return g_signal_received ? 128 + g_signal_received 
 void stop_signals_test_point(const char *point)
 {
     /* Exactly one caller sees the countdown go from 1 to 0, however many threads reach it. */
-    if (g_test_signal && !strcmp(point, g_test_point) && atomic_fetch_sub(&g_test_countdown, 1) == 1)
+    if (g_test_signal && !strcmp(point, g_test_point) &&
+        atomic_fetch_sub(&g_test_countdown, 1) == 1)
         raise(g_test_signal);
 }

@@ -183,7 +183,8 @@ bool checkpoint_write(const char *path, RenderIdentity identity, UnitFilm *f, Er
     hash64_init(&w->hash);
     w->file = fopen(temp, "wb");
     if (!w->file) {
-        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot create %s (%s)", path, temp, strerror(errno));
+        error_set(err, ERR_OUTPUT, path, 0, "%s: cannot create %s (%s)", path, temp,
+                  strerror(errno));
         free(w);
         return false;
     }
@@ -235,29 +236,31 @@ static void describe_difference(const RenderIdentity *a, const RenderIdentity *b
                                 size_t size)
 {
     const UnitGrid *ga = &a->grid, *gb = &b->grid;
+    const char *other = "made with other settings:";
     out[0] = 0;
     if (ga->width != gb->width || ga->height != gb->height)
         snprintf(out, size, "made for a %ux%u film, this render is %ux%u", ga->width, ga->height,
                  gb->width, gb->height);
     else if (ga->spp != gb->spp)
-        snprintf(out, size, "made with other settings: spp %u in it, %u here", ga->spp, gb->spp);
+        snprintf(out, size, "%s spp %u in it, %u here", other, ga->spp, gb->spp);
     else if (a->max_depth != b->max_depth)
-        snprintf(out, size, "made with other settings: max depth %u in it, %u here", a->max_depth, b->max_depth);
+        snprintf(out, size, "%s max depth %u in it, %u here", other, a->max_depth, b->max_depth);
     else if (a->seed != b->seed)
-        snprintf(out, size, "made with other settings: seed %u in it, %u here", a->seed, b->seed);
+        snprintf(out, size, "%s seed %u in it, %u here", other, a->seed, b->seed);
     else if (a->first_sample != b->first_sample)
-        snprintf(out, size, "made with other settings: first sample %u in it, %u here", a->first_sample,
+        snprintf(out, size, "%s first sample %u in it, %u here", other, a->first_sample,
                  b->first_sample);
     else if (a->no_nee != b->no_nee)
-        snprintf(out, size, "made with other settings: --no-nee %s in it, %s here", a->no_nee ? "on" : "off",
+        snprintf(out, size, "%s --no-nee %s in it, %s here", other, a->no_nee ? "on" : "off",
                  b->no_nee ? "on" : "off");
     else if (float_bits(a->clamp_indirect) != float_bits(b->clamp_indirect))
-        snprintf(out, size, "made with other settings: --clamp %g in it, %g here", (double)a->clamp_indirect,
+        snprintf(out, size, "%s --clamp %g in it, %g here", other, (double)a->clamp_indirect,
                  (double)b->clamp_indirect);
-    else if (ga->unit_spp != gb->unit_spp || ga->unit_rows != gb->unit_rows || ga->count != gb->count)
-        snprintf(out, size, "unit size differs: its units are %u spp x %u rows, this render's %u spp x "
-                 "%u rows (--unit-spp, --unit-rows)", ga->unit_spp, ga->unit_rows, gb->unit_spp,
-                 gb->unit_rows);
+    else if (ga->unit_spp != gb->unit_spp || ga->unit_rows != gb->unit_rows ||
+             ga->count != gb->count)
+        snprintf(out, size, "unit size differs: its units are %u spp x %u rows, this render's %u "
+                 "spp x %u rows (--unit-spp, --unit-rows)", ga->unit_spp, ga->unit_rows,
+                 gb->unit_spp, gb->unit_rows);
     else if (a->scene != b->scene)
         snprintf(out, size, "made for another scene (scene hash %016llx in it, %016llx here)",
                  (unsigned long long)a->scene, (unsigned long long)b->scene);
@@ -287,9 +290,10 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
                   size < 8 ? "shorter than its magic" : "wrong magic");
         return false;
     }
-    if (size < CHECKPOINT_HEADER_BYTES + 8 || !reader_get(r, raw + 8, CHECKPOINT_HEADER_BYTES - 8)) {
-        error_set(err, ERR_FILE_READ, path, 0, "%s: truncated checkpoint (%llu bytes, shorter than "
-                  "its header): remove it to start over", path, (unsigned long long)size);
+    if (size < CHECKPOINT_HEADER_BYTES + 8 ||
+        !reader_get(r, raw + 8, CHECKPOINT_HEADER_BYTES - 8)) {
+        error_set(err, ERR_FILE_READ, path, 0, "%s: truncated checkpoint (%llu bytes, shorter "
+                  "than its header): remove it to start over", path, (unsigned long long)size);
         return false;
     }
     Header h;
@@ -302,17 +306,18 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
     }
     const UnitGrid *g = &h.id.grid;
     if (h.header_bytes != CHECKPOINT_HEADER_BYTES || h.film_words != FILM_WORDS || h.reserved ||
-        (h.flags & ~(uint32_t)FLAG_NO_NEE) || g->width > FILM_SIZE_LIMIT || g->height > FILM_SIZE_LIMIT) {
-        error_set(err, ERR_FILE_READ, path, 0, "%s: damaged checkpoint (header fields out of range): "
-                  "remove it to start over", path);
+        (h.flags & ~(uint32_t)FLAG_NO_NEE) || g->width > FILM_SIZE_LIMIT ||
+        g->height > FILM_SIZE_LIMIT) {
+        error_set(err, ERR_FILE_READ, path, 0, "%s: damaged checkpoint (header fields out of "
+                  "range): remove it to start over", path);
         return false;
     }
     uint64_t words = (uint64_t)g->width * g->height * FILM_WORDS;
     uint64_t bitmap_bytes = bitmap_file_bytes(g->count);
     uint64_t expected = CHECKPOINT_HEADER_BYTES + bitmap_bytes + 8 * words + 8;
     if (size != expected) {
-        error_set(err, ERR_FILE_READ, path, 0, "%s: %s checkpoint (%llu bytes, its header says %llu): "
-                  "remove it to start over", path, size < expected ? "truncated" : "damaged",
+        error_set(err, ERR_FILE_READ, path, 0, "%s: %s checkpoint (%llu bytes, its header says "
+                  "%llu): remove it to start over", path, size < expected ? "truncated" : "damaged",
                   (unsigned long long)size, (unsigned long long)expected);
         return false;
     }
@@ -371,7 +376,8 @@ bool checkpoint_read(const char *path, RenderIdentity identity, UnitFilm *f, Err
     uint8_t *bitmap = NULL;
     bool ok = r != NULL;
     if (!ok)
-        error_set(err, ERR_FILE_READ, path, 0, "%s: out of memory for reading the checkpoint", path);
+        error_set(err, ERR_FILE_READ, path, 0, "%s: out of memory for reading the checkpoint",
+                  path);
     if (ok) {
         r->file = file;
         hash64_init(&r->hash);

@@ -81,8 +81,8 @@ def checkpoint_cases():
     checkpoint_case("other-scene", good, "error", "made for another scene")
     checkpoint_case("other-spp", checkpoint(done=[0], **dict(tiny, spp=2, count=2)), "error",
                     "spp 2 in it, 1 here")
-    checkpoint_case("other-units", checkpoint(done=[0], **dict(tiny, unit_rows=4, count=2)), "error",
-                    "unit size differs")
+    checkpoint_case("other-units", checkpoint(done=[0], **dict(tiny, unit_rows=4, count=2)),
+                    "error", "unit size differs")
     checkpoint_case("missing", None, "error", "start without --resume")
     checkpoint_case("empty", b"", "error", "not a pt checkpoint")
     checkpoint_case("magic", b"GIF89a\0\0" + good[8:], "error", "wrong magic")
@@ -100,12 +100,14 @@ def checkpoint_cases():
                     "checksum mismatch")
     checkpoint_case("header-size", checkpoint(done=[0], header_bytes=81, **tiny), "error",
                     "header fields out of range")
-    checkpoint_case("film-huge", checkpoint(done=[0], sums=b"", **dict(tiny, width=65536, height=65536)),
-                    "error", "truncated checkpoint")
+    huge = dict(tiny, width=65536, height=65536)
+    checkpoint_case("film-huge", checkpoint(done=[0], sums=b"", **huge), "error",
+                    "truncated checkpoint")
     checkpoint_case("film-too-wide", checkpoint(done=[0], sums=b"", **dict(tiny, width=0xffffffff)),
                     "error", "header fields out of range")
-    checkpoint_case("count-huge", checkpoint(done=[0], bitmap_bytes=8, **dict(tiny, count=0xffffffff)),
-                    "error", "truncated checkpoint")
+    many = dict(tiny, count=0xffffffff)
+    checkpoint_case("count-huge", checkpoint(done=[0], bitmap_bytes=8, **many), "error",
+                    "truncated checkpoint")
     # A valid checksum over an inconsistent bitmap (a unit beyond the grid): refused all the same.
     body = bytearray(good[:-8])
     body[80] |= 2
