@@ -79,6 +79,24 @@ static void write_tiny(const char *path, RenderIdentity id, UnitFilm *f)
     cr_assert(checkpoint_write(path, id, f, &err), "%s", err.message);
 }
 
+/* The tests of damaged files start from a tiny checkpoint written, and its bytes. */
+typedef struct {
+    RenderIdentity id;
+    const char *path;
+    UnitFilm film; /* what was written */
+    size_t size;
+} Tiny;
+
+static uint8_t *tiny_setup(Tiny *t)
+{
+    t->id = tiny_identity();
+    t->path = checkpoint_file();
+    write_tiny(t->path, t->id, &t->film);
+    uint8_t *data = (uint8_t *)test_read_file(t->path, &t->size);
+    cr_assert(data, "cannot read %s back", t->path);
+    return data;
+}
+
 static void write_bytes(const char *path, const uint8_t *data, size_t size)
 {
     FILE *file = fopen(path, "wb");
@@ -108,20 +126,18 @@ Test(checkpoint_file, round_trip_keeps_every_bit_and_leaves_no_temporary_file)
  * before it), never accepted as another film. */
 Test(checkpoint_file, every_flipped_bit_is_refused)
 {
-    RenderIdentity id = tiny_identity();
-    const char *path = checkpoint_file();
-    UnitFilm a;
-    write_tiny(path, id, &a);
-    size_t size;
-    uint8_t *good = (uint8_t *)test_read_file(path, &size);
-    cr_assert(good);
-    cr_assert_eq(size, CHECKPOINT_HEADER_BYTES + 8 + a.num_pixels * FILM_BYTES_PER_PIXEL + 8);
-    uint8_t *bad = malloc(size);
-    for (size_t byte = 0; byte < size; byte++) {
+    Tiny t;
+    uint8_t *good = tiny_setup(&t);
+    RenderIdentity id = t.id;
+    const char *path = t.path;
+    cr_assert_eq(t.size,
+                 CHECKPOINT_HEADER_BYTES + 8 + t.film.num_pixels * FILM_BYTES_PER_PIXEL + 8);
+    uint8_t *bad = malloc(t.size);
+    for (size_t byte = 0; byte < t.size; byte++) {
         int bit = (int)(byte * 5 % 8);
-        memcpy(bad, good, size);
+        memcpy(bad, good, t.size);
         bad[byte] ^= (uint8_t)(1u << bit);
-        write_bytes(path, bad, size);
+        write_bytes(path, bad, t.size);
         UnitFilm b;
         Error err;
         cr_expect_not(read_back(path, id, &b, &err), "bit %d of byte %zu flipped: accepted", bit,
@@ -130,61 +146,57 @@ Test(checkpoint_file, every_flipped_bit_is_refused)
             cr_expect(strstr(err.message, "checksum mismatch"), "byte %zu: %s", byte, err.message);
         unit_film_free(&b);
     }
-    free(bad), free(good), unit_film_free(&a);
+    free(bad), free(good), unit_film_free(&t.film);
 }
 
 Test(checkpoint_file, every_truncation_and_a_trailing_byte_are_refused)
 {
-    RenderIdentity id = tiny_identity();
-    const char *path = checkpoint_file();
-    UnitFilm a;
-    write_tiny(path, id, &a);
-    size_t size;
-    uint8_t *good = (uint8_t *)test_read_file(path, &size);
-    for (size_t length = 0; length < size; length++) {
+    Tiny t;
+    uint8_t *good = tiny_setup(&t);
+    RenderIdentity id = t.id;
+    const char *path = t.path;
+    for (size_t length = 0; length < t.size; length++) {
         write_bytes(path, good, length);
         UnitFilm b;
         Error err;
-        cr_expect_not(read_back(path, id, &b, &err), "%zu of %zu bytes: accepted", length, size);
+        cr_expect_not(read_back(path, id, &b, &err), "%zu of %zu bytes: accepted", length, t.size);
         const char *why = length < 8 ? "not a pt checkpoint" : "truncated checkpoint";
         cr_expect(strstr(err.message, why), "%zu bytes: %s", length, err.message);
         unit_film_free(&b);
     }
-    uint8_t *longer = calloc(size + 1, 1);
-    memcpy(longer, good, size);
-    write_bytes(path, longer, size + 1);
+    uint8_t *longer = calloc(t.size + 1, 1);
+    memcpy(longer, good, t.size);
+    write_bytes(path, longer, t.size + 1);
     UnitFilm b;
     Error err;
     cr_expect_not(read_back(path, id, &b, &err));
     cr_expect(strstr(err.message, "damaged checkpoint"), "%s", err.message);
-    unit_film_free(&b), free(longer), free(good), unit_film_free(&a);
+    unit_film_free(&b), free(longer), free(good), unit_film_free(&t.film);
 }
 
 /* Another version is named as such even when its checksum is right (a future format). */
 Test(checkpoint_file, another_version_is_named)
 {
-    RenderIdentity id = tiny_identity();
-    const char *path = checkpoint_file();
-    UnitFilm a;
-    write_tiny(path, id, &a);
-    size_t size;
-    uint8_t *data = (uint8_t *)test_read_file(path, &size);
+    Tiny t;
+    uint8_t *data = tiny_setup(&t);
+    RenderIdentity id = t.id;
+    const char *path = t.path;
     data[8] = CHECKPOINT_VERSION + 1;
-    uint64_t checksum = hash64(data, size - 8);
+    uint64_t checksum = hash64(data, t.size - 8);
     for (int i = 0; i < 8; i++)
-        data[size - 8 + i] = (uint8_t)(checksum >> 8 * i);
-    write_bytes(path, data, size);
+        data[t.size - 8 + i] = (uint8_t)(checksum >> 8 * i);
+    write_bytes(path, data, t.size);
     UnitFilm b;
     Error err;
     cr_expect_not(read_back(path, id, &b, &err));
     cr_expect(strstr(err.message, "checkpoint format version 2, this pt reads version 1"), "%s",
               err.message);
     data[0] = 'X';
-    write_bytes(path, data, size);
+    write_bytes(path, data, t.size);
     unit_film_free(&b);
     cr_expect_not(read_back(path, id, &b, &err));
     cr_expect(strstr(err.message, "not a pt checkpoint (wrong magic)"), "%s", err.message);
-    unit_film_free(&b), free(data), unit_film_free(&a);
+    unit_film_free(&b), free(data), unit_film_free(&t.film);
 }
 
 Test(checkpoint_file, no_checkpoint_says_start_without_resume)

@@ -51,19 +51,11 @@ static uint32_t get32(const uint8_t *p)
 
 static uint64_t get64(const uint8_t *p) { return get32(p) | (uint64_t)get32(p + 4) << 32; }
 
-static uint32_t float_bits(float v)
-{
+/* A float as its bits, both ways (reading a union's other member is defined in C11). */
+typedef union {
+    float value;
     uint32_t bits;
-    memcpy(&bits, &v, sizeof bits);
-    return bits;
-}
-
-static float bits_float(uint32_t bits)
-{
-    float v;
-    memcpy(&v, &bits, sizeof v);
-    return v;
-}
+} FloatBits;
 
 /* The bitmap's bytes in the file: a whole number of words, so the sums stay 8-byte aligned. */
 static uint64_t bitmap_bytes64(uint32_t count) { return ((uint64_t)count + 7u) / 8u; }
@@ -81,7 +73,7 @@ static void encode_header(uint8_t h[CHECKPOINT_HEADER_BYTES], const RenderIdenti
     put32(h + 28, id->seed);
     put32(h + 32, id->first_sample);
     put32(h + 36, id->no_nee ? FLAG_NO_NEE : 0u);
-    put32(h + 40, float_bits(id->clamp_indirect));
+    put32(h + 40, (FloatBits){.value = id->clamp_indirect}.bits);
     const UnitGrid *g = &id->grid;
     uint32_t grid[6] = {g->width, g->height, g->spp, g->unit_spp, g->unit_rows, g->count};
     for (int i = 0; i < 6; i++)
@@ -107,7 +99,7 @@ static void decode_header(const uint8_t h[CHECKPOINT_HEADER_BYTES], Header *out)
     out->id.first_sample = get32(h + 32);
     out->flags = get32(h + 36);
     out->id.no_nee = out->flags & FLAG_NO_NEE;
-    out->id.clamp_indirect = bits_float(get32(h + 40));
+    out->id.clamp_indirect = (FloatBits){.bits = get32(h + 40)}.value;
     UnitGrid *g = &out->id.grid;
     g->width = get32(h + 44), g->height = get32(h + 48), g->spp = get32(h + 52);
     g->unit_spp = get32(h + 56), g->unit_rows = get32(h + 60), g->count = get32(h + 64);
@@ -253,7 +245,8 @@ static void describe_difference(const RenderIdentity *a, const RenderIdentity *b
     else if (a->no_nee != b->no_nee)
         snprintf(out, size, "%s --no-nee %s in it, %s here", other, a->no_nee ? "on" : "off",
                  b->no_nee ? "on" : "off");
-    else if (float_bits(a->clamp_indirect) != float_bits(b->clamp_indirect))
+    else if ((FloatBits){.value = a->clamp_indirect}.bits !=
+             (FloatBits){.value = b->clamp_indirect}.bits)
         snprintf(out, size, "%s --clamp %g in it, %g here", other, (double)a->clamp_indirect,
                  (double)b->clamp_indirect);
     else if (ga->unit_spp != gb->unit_spp || ga->unit_rows != gb->unit_rows ||
