@@ -86,12 +86,12 @@ fuzz-replay: asan
 	$(Q)python3 tests/fuzz/gen_corpus.py build-asan/fuzz >/dev/null
 	$(Q)python3 tests/fuzz/replay.py build-asan/pt build-asan/fuzz -j 2 --timeout $(FUZZ_TIMEOUT)
 
-# libFuzzer targets (tests/fuzz/fuzz_*.c) for the scene parser, the OBJ/MTL loader, the PLY reader, the glTF import
-# and the texture loader, built with clang (apt-get install clang) into build-fuzz/; each runs
+# libFuzzer targets (tests/fuzz/fuzz_*.c) for the scene parser, the OBJ/MTL loader, the PLY reader, the glTF import,
+# the texture loader and the checkpoint reader, built with clang (apt-get install clang) into build-fuzz/; each runs
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \
@@ -173,7 +173,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 # The BVH tests share tests/bvh_fixtures*.c (bvh_fixtures.h).
 $(filter $(BUILD)/tests/test_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/bvh_fixtures*.c))
 # The 'pt' end-to-end tests share tests/cli_run.c.
-$(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options: $(BUILD)/tests/cli_run.o
+$(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o

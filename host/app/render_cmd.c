@@ -183,10 +183,10 @@ int command_render(const Options *o)
     RenderStats stats;
     RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
     bool rendered;
+    char base[1100] = ""; /* the output a checkpoint sits beside */
     if (units) {
         /* The checkpoint sits beside -o's file, or at out/<scene>.ptckpt (not numbered, so that
          * --resume finds it). */
-        char base[1100];
         if (o->output)
             snprintf(base, sizeof base, "%s", o->output);
         else {
@@ -203,7 +203,7 @@ int command_render(const Options *o)
         die("%s", err.message);
     report_render(o, &stats);
     spp_done = stats.spp_done;
-    if (stats.paths == 0) {
+    if (stats.paths == 0 && stats.spp_done == 0) { /* a resumed film may be whole already */
         fprintf(stderr, "pt: stopped by %s before the first samples: nothing written\n",
                 stop_signal_name(stop_signal_received()));
         render_images_free(&images);
@@ -241,6 +241,8 @@ int command_render(const Options *o)
             die("%s", err.message);
         printf("wrote %s\n", out.png);
     }
+    if (units && stop == RENDER_COMPLETE)
+        render_cmd_units_remove_checkpoint(o, base);
     render_images_free(&images);
     session_close(&session);
     if (stop_signal_received())

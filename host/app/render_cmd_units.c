@@ -124,12 +124,18 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
                 fprintf(stderr, "pt: %u checkpoints written to %s\n", report.checkpoints, checkpoint);
         }
     }
-    /* A finished render needs its checkpoint no more (the image is written next). */
-    if (ok && *stop == RENDER_COMPLETE && ud.checkpoint_path && fs_exists(checkpoint))
-        unlink(checkpoint);
     for (int i = 0; i < num_extra; i++)
         session_device_close(&extra[i]);
     free(extra);
     unit_film_free(&film);
     return ok;
+}
+
+void render_cmd_units_remove_checkpoint(const Options *o, const char *checkpoint_base)
+{
+    if (o->checkpoint_seconds <= 0 && !o->resume)
+        return;
+    char checkpoint[1200];
+    checkpoint_path(checkpoint_base, checkpoint, sizeof checkpoint);
+    unlink(checkpoint);
 }

@@ -23,5 +23,8 @@ bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err
 bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecList *list,
                           const RenderSettings *settings, const char *checkpoint_base,
                           RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err);
+/* Once the image of a complete render is written (not before: a crash in between would lose both):
+ * removes its checkpoint, if it has one. */
+void render_cmd_units_remove_checkpoint(const Options *o, const char *checkpoint_base);
 
 #endif

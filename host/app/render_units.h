@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "app/render_loop.h"
+#include "render/checkpoint.h"
 #include "render/session.h"
 #include "render/unit_film.h"
 #include "render/wavefront.h"
@@ -30,7 +31,7 @@ typedef struct {
     double time_limit;         /* as in RenderLoopDesc; stops at the next whole run */
     double checkpoint_seconds; /* 0: no checkpoints */
     const char *checkpoint_path;
-    uint64_t identity;         /* render_identity: goes into every checkpoint */
+    RenderIdentity identity;   /* render_identity: goes into every checkpoint */
     bool resume;               /* film starts from the checkpoint at checkpoint_path */
     bool report_devices;       /* print the units and Mpaths/s of each device at the end */
 } UnitRenderDesc;

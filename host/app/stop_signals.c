@@ -2,6 +2,7 @@
 #include "app/stop_signals.h"
 
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,9 +12,11 @@ static volatile sig_atomic_t g_signal_received;
  * some while it starts). */
 static bool g_ignored_at_start[3];
 
-/* PT_TEST_RAISE, parsed. */
+/* PT_TEST_RAISE, parsed: the signal, its point and how many more times the point is reached
+ * before it is raised (the point is reached from several worker threads at once: "unit"). */
 static int g_test_signal;
 static const char *g_test_point;
+static atomic_long g_test_countdown;
 
 static const struct {
     int number;
@@ -22,7 +25,43 @@ static const struct {
 enum { STOP_SIGNAL_COUNT = sizeof stop_signals / sizeof stop_signals[0] };
 _Static_assert(STOP_SIGNAL_COUNT == 3, "g_ignored_at_start has one entry per signal");
 
-static const char *const test_points[] = {"render", "write"};
+static const char *const test_points[] = {"render", "write", "unit", "checkpoint"};
+
+/* Signals PT_TEST_RAISE may raise: the stop signals, and SIGKILL (a crash that nothing can
+ * catch: the checkpoint tests). */
+static int test_signal_number(const char *name, size_t length)
+{
+    for (int s = 0; s < STOP_SIGNAL_COUNT; s++) {
+        const char *short_name = stop_signals[s].name + 3;
+        if (strlen(short_name) == length && !strncmp(name, short_name, length))
+            return stop_signals[s].number;
+    }
+    return length == 4 && !strncmp(name, "KILL", 4) ? SIGKILL : 0;
+}
+
+/* POINT or POINT:COUNT (COUNT from 1: the COUNT-th time the point is reached). */
+static bool parse_test_point(const char *text)
+{
+    const char *colon = strchr(text, ':');
+    size_t length = colon ? (size_t)(colon - text) : strlen(text);
+    long count = 1;
+    if (colon) {
+        char *end;
+        if (colon[1] < '0' || colon[1] > '9')
+            return false;
+        count = strtol(colon + 1, &end, 10);
+        if (*end || count < 1 || count > 1000000000L)
+            return false;
+    }
+    for (size_t p = 0; p < sizeof test_points / sizeof test_points[0]; p++) {
+        if (strlen(test_points[p]) == length && !strncmp(text, test_points[p], length)) {
+            g_test_point = test_points[p];
+            atomic_store(&g_test_countdown, count);
+            return true;
+        }
+    }
+    return false;
+}
 
 static void on_stop_signal(int signal_number)
 {
@@ -44,21 +83,15 @@ bool stop_signals_configure(Error *err)
     size_t name_length = at ? (size_t)(at - value) : 0;
     if (name_length > 3 && !strncmp(name, "SIG", 3)) /* SIGTERM or TERM */
         name += 3, name_length -= 3;
-    for (int s = 0; at && s < STOP_SIGNAL_COUNT; s++) {
-        const char *short_name = stop_signals[s].name + 3;
-        if (strlen(short_name) != name_length || strncmp(name, short_name, name_length))
-            continue;
-        for (size_t p = 0; p < sizeof test_points / sizeof test_points[0]; p++) {
-            if (!strcmp(at + 1, test_points[p])) {
-                g_test_signal = stop_signals[s].number;
-                g_test_point = test_points[p];
-                return true;
-            }
-        }
+    int number = at ? test_signal_number(name, name_length) : 0;
+    if (number && parse_test_point(at + 1)) {
+        g_test_signal = number;
+        return true;
     }
     error_set(err, ERR_USAGE, NULL, 0,
-              "environment variable PT_TEST_RAISE=%s: expected SIGNAL@POINT with SIGNAL one of "
-              "INT, TERM, HUP and POINT one of render, write", value);
+              "environment variable PT_TEST_RAISE=%s: expected SIGNAL@POINT or SIGNAL@POINT:COUNT "
+              "with SIGNAL one of INT, TERM, HUP, KILL, POINT one of render, write, unit, "
+              "checkpoint and COUNT a number from 1", value);
     return false;
 }
 
@@ -92,9 +125,8 @@ int stop_exit_status(void) { return g_signal_received ? 128 + g_signal_received 
 
 void stop_signals_test_point(const char *point)
 {
-    if (g_test_signal && !strcmp(point, g_test_point)) {
-        int signal_number = g_test_signal;
-        g_test_signal = 0;
-        raise(signal_number);
-    }
+    /* Exactly one caller sees the countdown go from 1 to 0, however many threads reach it. */
+    if (g_test_signal && !strcmp(point, g_test_point) &&
+        atomic_fetch_sub(&g_test_countdown, 1) == 1)
+        raise(g_test_signal);
 }

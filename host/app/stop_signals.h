@@ -6,9 +6,12 @@
  * signals change nothing (sigaction without SA_RESETHAND: a second Ctrl-C does not kill). A
  * signal that pt was started ignoring (nohup) stays ignored.
  *
- * PT_TEST_RAISE=SIGNAL@POINT (tests only) makes pt raise the signal itself at a point it names:
- * "render" (the first window of samples done) or "write" (a file's
- * temporary copy complete, not yet renamed), so that tests reach those moments without timing. */
+ * PT_TEST_RAISE=SIGNAL@POINT[:COUNT] (tests only) makes pt raise the signal itself the COUNT-th
+ * time (default 1) it reaches a point it names: "render" (a window of samples done), "write" (a
+ * file's temporary copy complete, not yet renamed), "unit" (a run of work units rendered, from
+ * any device's thread) or "checkpoint" (a periodic checkpoint written), so that tests reach those
+ * moments without timing. SIGNAL is INT, TERM, HUP (with or without SIG) or KILL: a crash, for
+ * the checkpoint tests (PT_TEST_RAISE=SIGKILL@unit:5). */
 #ifndef PT_STOP_SIGNALS_H
 #define PT_STOP_SIGNALS_H
 
@@ -27,7 +30,8 @@ int stop_signal_received(void);
 const char *stop_signal_name(int signal_number);
 /* 128 + the signal received, 0 when none. */
 int stop_exit_status(void);
-/* Raises PT_TEST_RAISE's signal if its point is `point` (once). */
+/* Raises PT_TEST_RAISE's signal when `point` is its point, reached for the COUNT-th time (once;
+ * thread-safe). */
 void stop_signals_test_point(const char *point);
 
 #endif

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 """gen_corpus.py OUT [--seeds DIR]: writes the malformed-input corpus into OUT/cases/ (one folder
 per case); with --seeds, also the seed inputs of the libFuzzer targets (DIR/scene, DIR/obj,
-DIR/texture, DIR/ply, DIR/gltf: the corpus's scene files, OBJ+MTL pairs, images, PLY files and
-GLB files).
+DIR/texture, DIR/ply, DIR/gltf, DIR/checkpoint: the corpus's scene files, OBJ+MTL pairs, images,
+PLY files, GLB files and checkpoints).
 
 Each case folder holds its input files and case.json:
   args    the pt command line (after the binary); run with the case folder as working directory.
@@ -21,7 +21,7 @@ The cases come from one module per input kind: corpus_scene.py, corpus_obj.py (O
 corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statements),
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
-and scenes naming them with "gltf"),
+and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
 list they append to.
 """
@@ -33,6 +33,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 from corpus_cases import cases  # noqa: E402
+from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
@@ -48,7 +49,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -69,6 +70,9 @@ def write_seeds(folder):
         if seed is not None and len(seed) < 1 << 20:
             with open(os.path.join(folder, target, "seed-%03d" % i), "wb") as f:
                 f.write(seed)
+    for i, seed in enumerate(checkpoint_seeds()):
+        with open(os.path.join(folder, "checkpoint", "seed-%03d" % i), "wb") as f:
+            f.write(seed)
 
 
 def main():
@@ -84,7 +88,8 @@ def main():
     material_cases()
     transform_cases()
     ply_cases()
-    gltf_cases(random.Random(20261202))  # last: earlier cases keep their numbers
+    gltf_cases(random.Random(20261202))
+    checkpoint_cases()  # last: earlier cases keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
