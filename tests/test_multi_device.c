@@ -213,3 +213,49 @@ Test(multi_device, sigint_on_the_unit_path_writes_a_partial_image, .timeout = 60
     cr_expect_geq(held, 1, "the image holds no sample; stderr:\n%s", log);
     remove_temp_dir(dir);
 }
+
+/* pt bench's unit modes: "units" (one device through the scheduler) next to the default mode, and
+ * "units-all" over both devices, in the table and the CSV files; the devices' units add up to the
+ * grid's. */
+Test(multi_device, bench_reports_the_unit_modes_per_device, .timeout = 600)
+{
+    const char *dir = test_temp_dir();
+    char args[1024], csv[512];
+    snprintf(csv, sizeof csv, "%s/bench.csv", dir);
+    snprintf(args, sizeof args,
+             "bench scenes/cornell-box --width 32 --height 16 --spp 6 --unit-spp 2 --device all "
+             "--csv %s",
+             csv);
+    Run r = run_pt_env(NULL, TWO_DEVICES, args);
+    cr_assert_eq(r.exit_code, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "\nunits "), "no units row: %s", r.out);
+    cr_expect(strstr(r.out, "\nunits-all "), "no units-all row: %s", r.out);
+    cr_expect(strstr(r.out, "of the default mode's Mpaths/s"), "%s", r.out);
+    char *text = test_read_file(csv, NULL);
+    cr_assert(text);
+    cr_expect(strstr(text, ",units,") && strstr(text, ",units-all,"), "%s", text);
+    free(text);
+    char path[600];
+    snprintf(path, sizeof path, "%s/bench_units.csv", dir);
+    text = test_read_file(path, NULL);
+    cr_assert(text, "no %s", path);
+    /* 3 sample blocks of one tile: "units" on 0:0, then "units-all" split over 0:0 and 0:1. */
+    unsigned units = 0, all_units = 0, rows = 0;
+    for (const char *line = strchr(text, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
+        char mode[32], spec[16];
+        unsigned n = 0;
+        cr_assert_eq(sscanf(line + 1, "%31[^,],%15[^,],\"%*[^\"]\",\"%*[^\"]\",%*d,%*d,%*d,%u", mode,
+                            spec, &n),
+                     3, "%s", line + 1);
+        if (!strcmp(mode, "units"))
+            units += n;
+        else
+            all_units += n;
+        rows++;
+    }
+    cr_expect_eq(rows, 3, "%s", text);
+    cr_expect_eq(units, 3, "%s", text);
+    cr_expect_eq(all_units, 3, "%s", text);
+    free(text);
+    remove_temp_dir(dir);
+}
