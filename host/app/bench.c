@@ -15,7 +15,7 @@
 #include "render/session.h"
 #include "render/wavefront.h"
 
-static RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
+RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
 {
     RenderStats stats;
     Error err = {0};
@@ -182,7 +182,7 @@ int command_bench(const Options *o)
     for (int b = 0; b < 64 && prof.live_per_step[b]; b++)
         printf(" %llu", (unsigned long long)prof.live_per_step[b]);
     printf("\n");
-    bench_units(&s, o, &list, settings[0], &stats[0]);
+    bench_units(&s, o, &list, settings[0], rgb);
     free(rgb);
     session_close(&s);
     return 0;
