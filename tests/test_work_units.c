@@ -174,6 +174,16 @@ static void count_runs(const UnitGrid *g, const UnitRun *runs, uint32_t n, uint3
     }
 }
 
+/* Every unit taken exactly once and finished; frees taken and the scheduler. */
+static void expect_each_unit_once(UnitScheduler *s, uint32_t *taken, const char *what)
+{
+    for (uint32_t u = 0; u < s->grid.count; u++)
+        cr_assert_eq(taken[u], 1, "%s: unit %u taken %u times", what, u, taken[u]);
+    cr_expect_eq(unit_scheduler_unfinished(s), 0);
+    free(taken);
+    unit_scheduler_free(s);
+}
+
 Test(unit_scheduler, concurrent_takers_get_every_unit_once)
 {
     enum { TAKERS = 4 };
@@ -201,11 +211,9 @@ Test(unit_scheduler, concurrent_takers_get_every_unit_once)
             for (uint32_t r = 0; r < takers[i].num_runs && takers[i].max_units; r++)
                 cr_expect_leq(takers[i].runs[r].count, takers[i].max_units);
         }
-        for (uint32_t u = 0; u < g.count; u++)
-            cr_assert_eq(taken[u], 1, "round %d: unit %u taken %u times", round, u, taken[u]);
-        cr_expect_eq(unit_scheduler_unfinished(&s), 0);
-        free(taken);
-        unit_scheduler_free(&s);
+        char what[32];
+        snprintf(what, sizeof what, "round %d", round);
+        expect_each_unit_once(&s, taken, what);
     }
 }
 
@@ -268,11 +276,7 @@ Test(unit_scheduler, requeued_runs_are_handed_out_again)
         count_runs(&g, &run, 1, taken);
         unit_scheduler_finish(&s, run);
     } while (unit_scheduler_take(&s, 0, &run));
-    for (uint32_t u = 0; u < g.count; u++)
-        cr_assert_eq(taken[u], 1, "unit %u taken %u times", u, taken[u]);
-    cr_expect_eq(unit_scheduler_unfinished(&s), 0);
-    free(taken);
-    unit_scheduler_free(&s);
+    expect_each_unit_once(&s, taken, "after a requeue");
 }
 
 Test(unit_scheduler, guided_runs_shrink_towards_the_end)

@@ -32,14 +32,21 @@ void bench_print_row(const char *label, const RenderStats *st)
            (double)(st->extension_rays + st->shadow_rays) / (double)st->paths);
 }
 
-void bench_append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+FILE *bench_open_csv(const char *path, const char *header)
 {
     FILE *f = fopen(path, "a");
     if (!f)
         die("cannot append to %s", path);
     if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,max_depth,mode,seconds,mpaths_per_s,mrays_per_s,"
-                   "mext_per_s,mshadow_per_s,pool,window,state_mib\n");
+        fputs(header, f);
+    return f;
+}
+
+void bench_append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+{
+    FILE *f = bench_open_csv(path, "device,scene,width,height,spp,max_depth,mode,seconds,"
+                                   "mpaths_per_s,mrays_per_s,mext_per_s,mshadow_per_s,pool,window,"
+                                   "state_mib\n");
     fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%u,%.1f\n", s->dev.name,
             s->scene.desc.path, s->scene.desc.width, s->scene.desc.height, st->spp_done,
             s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
@@ -64,21 +71,14 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
 {
     char path[4096];
     bench_sibling_path(path, sizeof path, csv, "stages");
-    FILE *f = fopen(path, "a");
-    if (!f)
-        die("cannot append to %s", path);
-    if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,stage,launches,ms\n");
+    FILE *f = bench_open_csv(path, "device,scene,width,height,spp,stage,launches,ms\n");
     for (int k = 0; k < STAGE_COUNT; k++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%s,%u,%.4f\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, stage_names[k],
                 st->stage_launches[k], st->stage_ms[k]);
     fclose(f);
     bench_sibling_path(path, sizeof path, csv, "live");
-    if (!(f = fopen(path, "a")))
-        die("cannot append to %s", path);
-    if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,step,live_paths\n");
+    f = bench_open_csv(path, "device,scene,width,height,spp,step,live_paths\n");
     for (int b = 0; b < 64 && st->live_per_step[b]; b++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, b,

@@ -5,6 +5,7 @@
 #define PT_BENCH_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "app/cli.h"
 #include "render/session.h"
@@ -20,8 +21,10 @@ int command_bench(const Options *o);
 void bench_units(Session *s, const Options *o, const DeviceSpecList *list, RenderSettings settings,
                  float *rgb);
 
-/* Shared by both: a plain render (wavefront_render), a row of the table, a row of the --csv file, FILE.csv -> FILE_<suffix>.csv. */
+/* Shared by both: a plain render (wavefront_render), a CSV file opened to append (its header
+ * written when it is new), a row of the table, a row of the --csv file, FILE.csv -> FILE_<suffix>.csv. */
 RenderStats bench_render(Session *s, RenderSettings settings, float *rgb);
+FILE *bench_open_csv(const char *path, const char *header);
 void bench_print_row(const char *label, const RenderStats *st);
 void bench_append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st);
 void bench_sibling_path(char *out, size_t size, const char *csv, const char *suffix);

@@ -37,12 +37,8 @@ static void append_devices_csv(const char *csv, const Session *s, const char *mo
 {
     char path[4096];
     bench_sibling_path(path, sizeof path, csv, "units");
-    FILE *f = fopen(path, "a");
-    if (!f)
-        die("cannot append to %s", path);
-    if (ftell(f) == 0)
-        fprintf(f, "mode,device_spec,device,scene,width,height,spp,units,runs,paths,busy_seconds,"
-                   "mpaths_per_s_busy\n");
+    FILE *f = bench_open_csv(path, "mode,device_spec,device,scene,width,height,spp,units,runs,"
+                                   "paths,busy_seconds,mpaths_per_s_busy\n");
     for (int i = 0; i < report->num_devices; i++) {
         const UnitDeviceReport *r = &report->device[i];
         fprintf(f, "%s,%s,\"%s\",\"%s\",%d,%d,%d,%u,%u,%llu,%.6f,%.3f\n", mode, r->spec, r->name,
