@@ -2,7 +2,8 @@
 /* pt bench: a warm-up render (kernel compilation and first-launch costs stay out of the figures),
  * then timed renders of each mode (with and without compaction and refills), then one profiled
  * render for per-stage times (profiling waits after every launch, so its wall time is not used for
- * throughput). */
+ * throughput), then the unit modes (bench_units.c). --device all or a list: the modes above run on
+ * the first device, the unit modes on one and on all. */
 #include "app/bench.h"
 
 #include <stdbool.h>
@@ -14,7 +15,7 @@
 #include "render/session.h"
 #include "render/wavefront.h"
 
-static RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
+RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
 {
     RenderStats stats;
     Error err = {0};
@@ -23,7 +24,7 @@ static RenderStats bench_render(Session *s, RenderSettings settings, float *rgb)
     return stats;
 }
 
-static void print_row(const char *label, const RenderStats *st)
+void bench_print_row(const char *label, const RenderStats *st)
 {
     printf("%-16s %8.1f %12.2f %12.2f %12.2f %12.2f %9.3f\n", label, st->seconds * 1e3,
            st->paths / st->seconds * 1e-6, (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
@@ -31,14 +32,21 @@ static void print_row(const char *label, const RenderStats *st)
            (double)(st->extension_rays + st->shadow_rays) / (double)st->paths);
 }
 
-static void append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+FILE *bench_open_csv(const char *path, const char *header)
 {
     FILE *f = fopen(path, "a");
     if (!f)
         die("cannot append to %s", path);
     if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,max_depth,mode,seconds,mpaths_per_s,mrays_per_s,"
-                   "mext_per_s,mshadow_per_s,pool,window,state_mib\n");
+        fputs(header, f);
+    return f;
+}
+
+void bench_append_csv(const char *path, const Session *s, const char *mode, const RenderStats *st)
+{
+    FILE *f = bench_open_csv(path, "device,scene,width,height,spp,max_depth,mode,seconds,"
+                                   "mpaths_per_s,mrays_per_s,mext_per_s,mshadow_per_s,pool,window,"
+                                   "state_mib\n");
     fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%s,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%u,%.1f\n", s->dev.name,
             s->scene.desc.path, s->scene.desc.width, s->scene.desc.height, st->spp_done,
             s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
@@ -49,7 +57,7 @@ static void append_csv(const char *path, const Session *s, const char *mode, con
 }
 
 /* FILE.csv -> FILE_<suffix>.csv */
-static void sibling_path(char *out, size_t size, const char *csv, const char *suffix)
+void bench_sibling_path(char *out, size_t size, const char *csv, const char *suffix)
 {
     size_t n = strlen(csv);
     if (n >= 4 && !strcmp(csv + n - 4, ".csv"))
@@ -62,22 +70,15 @@ static void sibling_path(char *out, size_t size, const char *csv, const char *su
 static void append_profile_csv(const char *csv, const Session *s, const RenderStats *st)
 {
     char path[4096];
-    sibling_path(path, sizeof path, csv, "stages");
-    FILE *f = fopen(path, "a");
-    if (!f)
-        die("cannot append to %s", path);
-    if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,stage,launches,ms\n");
+    bench_sibling_path(path, sizeof path, csv, "stages");
+    FILE *f = bench_open_csv(path, "device,scene,width,height,spp,stage,launches,ms\n");
     for (int k = 0; k < STAGE_COUNT; k++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%s,%u,%.4f\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, stage_names[k],
                 st->stage_launches[k], st->stage_ms[k]);
     fclose(f);
-    sibling_path(path, sizeof path, csv, "live");
-    if (!(f = fopen(path, "a")))
-        die("cannot append to %s", path);
-    if (ftell(f) == 0)
-        fprintf(f, "device,scene,width,height,spp,step,live_paths\n");
+    bench_sibling_path(path, sizeof path, csv, "live");
+    f = bench_open_csv(path, "device,scene,width,height,spp,step,live_paths\n");
     for (int b = 0; b < 64 && st->live_per_step[b]; b++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, b,
@@ -120,6 +121,12 @@ int command_bench(const Options *o)
     Error err = {0};
     Session s;
     RenderDesc desc = cli_render_desc(o);
+    DeviceSpecList list = {0};
+    if (device_spec_is_list(o->device)) {
+        if (!device_spec_list(o->device, &list, &err))
+            die("%s", err.message);
+        desc.device = list.spec[0];
+    }
     if (!session_open(&s, &desc, &err))
         die("%s", err.message);
     session_print_summary(&s);
@@ -159,9 +166,9 @@ int command_bench(const Options *o)
     printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
            "Mshadow/s", "rays/path");
     for (size_t m = 0; m < num_modes; m++) {
-        print_row(modes[m].name, &stats[m]);
+        bench_print_row(modes[m].name, &stats[m]);
         if (o->csv)
-            append_csv(o->csv, &s, modes[m].name, &stats[m]);
+            bench_append_csv(o->csv, &s, modes[m].name, &stats[m]);
     }
 
     RenderSettings profiled = settings[0]; /* the default mode */
@@ -180,6 +187,7 @@ int command_bench(const Options *o)
     for (int b = 0; b < 64 && prof.live_per_step[b]; b++)
         printf(" %llu", (unsigned long long)prof.live_per_step[b]);
     printf("\n");
+    bench_units(&s, o, &list, settings[0], rgb);
     free(rgb);
     session_close(&s);
     return 0;

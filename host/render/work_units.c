@@ -17,6 +17,10 @@ bool unit_grid_init(UnitGrid *g, uint32_t width, uint32_t height, uint32_t spp, 
         uint64_t pixels = (uint64_t)width * height;
         uint64_t tiles = (pixels + UNIT_TILE_MAX_PIXELS - 1) / UNIT_TILE_MAX_PIXELS;
         unit_rows = (uint32_t)((height + tiles - 1) / tiles);
+        /* Rounding the rows up can overfill a tile (6174x5940: 35 tiles of 170 rows hold
+         * 1049580 pixels): add tiles until each fits (a row wider than the limit stays one). */
+        while ((uint64_t)unit_rows * width > UNIT_TILE_MAX_PIXELS && unit_rows > 1)
+            tiles++, unit_rows = (uint32_t)((height + tiles - 1) / tiles);
     }
     if (unit_spp == 0)
         unit_spp = UNIT_DEFAULT_SPP;
