@@ -65,14 +65,23 @@ static void make_dir(void)
     cr_assert(mkdtemp(g_dir));
 }
 
-/* Renders args into name: with mpirun -n ranks (0: alone); the render must succeed. */
-static const char *render(int ranks, const char *extra, const char *name)
+/* Renders SCENE with the options extra into name in the test's folder, with mpirun -n ranks
+ * (0: alone) and the environment env; returns the output's path. */
+static const char *run_scene(MpiRun *r, const char *env, int ranks, const char *extra,
+                             const char *name)
 {
     const char *out = path_in_dir(name);
     char args[1024];
     snprintf(args, sizeof args, "%s %s -o %s", SCENE, extra, out);
+    run(r, env, ranks, args);
+    return out;
+}
+
+/* The same, where the render must succeed. */
+static const char *render(int ranks, const char *extra, const char *name)
+{
     MpiRun r;
-    run(&r, NULL, ranks, args);
+    const char *out = run_scene(&r, NULL, ranks, extra, name);
     cr_assert_eq(r.exit_code, 0, "%d ranks, %s: exit %d; stderr:\n%s", ranks, extra, r.exit_code,
                  r.err);
     return out;
@@ -124,15 +133,13 @@ Test(mpi, three_ranks_render_the_bits_of_one_process)
     make_dir();
     const char *alone = render(0, "--device cpu", "alone.exr");
     MpiRun r;
-    char args[512];
-    snprintf(args, sizeof args, "%s -o %s", SCENE, path_in_dir("three.exr"));
-    run(&r, NULL, 3, args);
+    const char *three = run_scene(&r, NULL, 3, "", "three.exr");
     cr_assert_eq(r.exit_code, 0, "stderr:\n%s", r.err);
     /* Rank 0 reports the other ranks' devices and the films it merged. */
     cr_expect(strstr(r.err, "pt: rank 1 device ") && strstr(r.err, "pt: rank 2 device "), "%s",
               r.err);
     cr_expect(strstr(r.err, "films of 2 other ranks at rank 0: 2 messages"), "%s", r.err);
-    expect_same_pixels(alone, path_in_dir("three.exr"));
+    expect_same_pixels(alone, three);
 }
 
 Test(mpi, one_rank_is_one_process)
@@ -153,10 +160,8 @@ Test(mpi, unit_sizes_1_7_64_give_the_same_bits)
 Test(mpi, a_rank_killed_mid_run_fails_the_job_without_output)
 {
     make_dir();
-    char args[512];
-    snprintf(args, sizeof args, "%s -o %s", SCENE, path_in_dir("out.exr"));
     MpiRun r;
-    run(&r, "PT_TEST_KILL_RANK=1@1", 3, args);
+    run_scene(&r, "PT_TEST_KILL_RANK=1@1", 3, "", "out.exr");
     cr_expect_neq(r.exit_code, 0, "stderr:\n%s", r.err);
     cr_expect(strstr(r.err, "pt: rank 1: PT_TEST_KILL_RANK: SIGKILL"), "%s", r.err);
     /* mpirun's own message names the rank (pt's rank 0 adds one when it gets mpirun's SIGTERM
@@ -183,10 +188,8 @@ Test(mpi, ranks_that_render_different_images_refuse)
 Test(mpi, a_malformed_kill_test_setting_is_refused)
 {
     make_dir();
-    char args[512];
-    snprintf(args, sizeof args, "%s -q -o %s", SCENE, path_in_dir("out.exr"));
     MpiRun r;
-    run(&r, "PT_TEST_KILL_RANK=one", 2, args);
+    run_scene(&r, "PT_TEST_KILL_RANK=one", 2, "-q", "out.exr");
     cr_expect_neq(r.exit_code, 0);
     cr_expect(strstr(r.err, "pt: PT_TEST_KILL_RANK=one: expected RANK@UNITS"), "%s", r.err);
 }
