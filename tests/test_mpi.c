@@ -98,7 +98,8 @@ static void expect_same_pixels(const char *a, const char *b)
     cr_assert_eq(fa.channel_count, fb.channel_count);
     size_t n = (size_t)fa.width * (size_t)fa.height;
     for (int c = 0; c < fa.channel_count; c++) {
-        float *va = exr_inspect_channel(&fa, fa.names[c]), *vb = exr_inspect_channel(&fb, fa.names[c]);
+        float *va = exr_inspect_channel(&fa, fa.names[c]);
+        float *vb = exr_inspect_channel(&fb, fa.names[c]);
         size_t differ = 0;
         double total = 0.0;
         for (size_t i = 0; i < n; i++) {

@@ -14,8 +14,8 @@
 
 bool render_cmd_wants_units(const Options *o)
 {
-    return mpi_link_size() > 1 || device_spec_is_list(o->device) || o->checkpoint_seconds > 0 || o->resume ||
-           o->unit_spp || o->unit_rows;
+    return mpi_link_size() > 1 || device_spec_is_list(o->device) || o->checkpoint_seconds > 0 ||
+           o->resume || o->unit_spp || o->unit_rows;
 }
 
 bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err)
@@ -29,11 +29,11 @@ bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err
 /* What the unit render cannot do (yet): decisions per pixel over the whole film. */
 static bool check_supported(const Options *o, const RenderSettings *s, Error *err)
 {
-    const char *what = mpi_link_size() > 1                 ? "several MPI ranks"
+    const char *what = mpi_link_size() > 1             ? "several MPI ranks"
                        : device_spec_is_list(o->device) ? "--device with several devices"
-                       : o->checkpoint_seconds > 0    ? "--checkpoint"
-                       : o->resume                    ? "--resume"
-                                                      : "--unit-spp/--unit-rows";
+                       : o->checkpoint_seconds > 0      ? "--checkpoint"
+                       : o->resume                      ? "--resume"
+                                                        : "--unit-spp/--unit-rows";
     if (s->noise_threshold > 0.0f) {
         error_set(err, ERR_USAGE, NULL, 0,
                   "%s: adaptive sampling (--noise-threshold or the scene's render.noise_threshold) "

@@ -14,7 +14,8 @@
  * not re-queued; --checkpoint is the recovery.
  *
  * PT_TEST_KILL_RANK=R@N (tests only): rank R kills itself (SIGKILL) once it has finished N units,
- * or, having finished fewer, before it sends its last film: a rank dying mid-run, without timing. */
+ * or, having finished fewer, before it sends its last film: a rank dying mid-run, without
+ * timing. */
 #ifndef PT_RENDER_RANKS_H
 #define PT_RENDER_RANKS_H
 

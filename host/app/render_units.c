@@ -173,25 +173,25 @@ static bool all_flushed(const Worker *workers, int n, uint64_t request)
 }
 
 /* MPI (app/render_ranks.h): the main thread, between its waits: rank 0 answers the other ranks;
- * another rank relays its threads' requests, and sends its film when rank 0 asks for it (*asked: the generation, until
- * sent). Called and returns with sh->lock held. */
+ * another rank relays its threads' requests, and sends its film when rank 0 asks for it
+ * (*asked: the generation, until sent). Called and returns with sh->lock held. */
 static bool serve_ranks(Shared *sh, Worker *workers, int n, uint64_t *asked, Error *err)
 {
     RankLink *l = sh->desc->ranks;
     bool ok;
     if (rank_link_is_root(l)) {
-        int signal = stop_signal_received();
-        bool stop = sh->stop || signal;
+        int sig = stop_signal_received();
+        bool stop = sh->stop || sig;
         pthread_mutex_unlock(&sh->lock);
         ok = rank_link_serve(l, &sh->sched, sh->film, stop, err);
         pthread_mutex_lock(&sh->lock);
-        if (ok && signal && !rank_link_all_final(l)) {
+        if (ok && sig && !rank_link_all_final(l)) {
             /* mpirun sends SIGTERM to every rank when one dies: this image would lack its units. */
             char missing[256];
             rank_link_missing(l, missing, sizeof missing);
             error_set(err, ERR_USAGE, NULL, 0,
                       "rank 0: stopped by %s before rank(s) %s sent their film (a rank that dies "
-                      "makes mpirun stop the others): no image is written", stop_signal_name(signal),
+                      "makes mpirun stop the others): no image is written", stop_signal_name(sig),
                       missing);
             ok = false;
         }
@@ -321,7 +321,8 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
         Worker *k = &workers[i];
         Device *dev = i == 0 ? &devices->session->dev : &devices->extra[i - 1].dev;
         const SceneBuffers *buffers = i == 0 ? &devices->session->buffers : &devices->extra[i - 1].buffers;
-        k->sh = &sh, k->index = i, k->dev = dev, k->report = &report->device[i];
+        k->sh = &sh, k->dev = dev, k->report = &report->device[i];
+        k->index = i; /* MPI */
         snprintf(k->report->spec, sizeof k->report->spec, "%d:%d", dev->platform_index, dev->device_index);
         snprintf(k->report->name, sizeof k->report->name, "%s", dev->name);
         k->w = wavefront_create(dev, scene, buffers, &desc->settings, err);
