@@ -158,6 +158,19 @@ Test(mpi, unit_sizes_1_7_64_give_the_same_bits)
     expect_same_pixels(alone, render(2, "--unit-spp 64", "u64.exr"));
 }
 
+/* Each rank's device threads ask rank 0 through their own slot of the relay. */
+Test(mpi, two_ranks_of_two_devices_each_render_the_bits_of_one_process)
+{
+    make_dir();
+    const char *alone = render(0, "--device cpu", "alone.exr");
+    MpiRun r;
+    const char *four = run_scene(&r, "POCL_DEVICES='pthread pthread'", 2,
+                                 "--device all", "four.exr");
+    cr_assert_eq(r.exit_code, 0, "stderr:\n%s", r.err);
+    cr_expect(strstr(r.err, "pt: rank 1 device 0:1 "), "%s", r.err);
+    expect_same_pixels(alone, four);
+}
+
 Test(mpi, a_rank_killed_mid_run_fails_the_job_without_output)
 {
     make_dir();
