@@ -5,19 +5,17 @@
 
 #include "app/bench.h"
 #include "app/cli.h"
+#include "app/mpi_link.h"
 #include "app/render_cmd.h"
 #include "base/error.h"
 #include "base/version.h"
 #include "device/device.h"
 #include "viewer/viewer.h"
 
-int main(int argc, char **argv)
+static int run_command(const Options *o)
 {
-    Options o;
     Error err = {0};
-    if (!cli_parse(argc, argv, &o, &err))
-        die("%s", err.message);
-    switch (o.command) {
+    switch (o->command) {
     case CMD_HELP:
     case CMD_NONE:
         cli_print_help();
@@ -30,13 +28,27 @@ int main(int argc, char **argv)
             die("%s", err.message);
         return 0;
     case CMD_RENDER:
-        return command_render(&o);
+        return command_render(o);
     case CMD_VIEW: {
-        ViewerDesc view = cli_viewer_desc(&o);
+        ViewerDesc view = cli_viewer_desc(o);
         return command_view(&view);
     }
     case CMD_BENCH:
-        return command_bench(&o);
+        return command_bench(o);
     }
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    Options o;
+    Error err = {0};
+    /* Under mpirun (only then) this process is one rank of a job (app/mpi_link.h). */
+    if (!mpi_link_init(&argc, &argv, &err))
+        die("%s", err.message);
+    if (!cli_parse(argc, argv, &o, &err))
+        die("%s", err.message);
+    int status = run_command(&o);
+    mpi_link_finalize();
+    return status;
 }

@@ -3,7 +3,9 @@
 # bundle.sh BUILD_DIR VERSION: a relocatable dist/pt-VERSION-linux-x86_64/ (+ .tar.gz) that runs on a
 # machine with only an OpenCL ICD loader and a driver: bin/ (pt and the benchmark tools, linked with
 # an $ORIGIN/../lib rpath), lib/ (every shared library they link that such a machine may lack),
-# scenes/ and the README.
+# scenes/ and the README. lib/ holds libmpi and its libraries too (pt links MPI), which are all a
+# pt run without mpirun loads; OpenMPI's runtime (mpirun, orted, its plugins under its install
+# prefix) is not bundled: running under mpirun needs OpenMPI 4.1 installed on the machine (README).
 set -eu
 build=$1; version=$2
 name=pt-$version-linux-x86_64
@@ -21,6 +23,14 @@ for bin in "$dest"/bin/*; do
 done | sort -u | while read -r soname path; do
     if ! echo "$soname" | grep -Eq "$system"; then
         cp -L "$path" "$dest/lib/$soname"
+    fi
+done
+# A library with a RUNPATH of its own (OpenMPI's: libmpi, libopen-rte, libopen-pal point at its
+# install prefix) looks for its dependencies there and not in bin/pt's rpath: point it at lib/.
+for lib in "$dest"/lib/*; do
+    if readelf -d "$lib" | grep -q '(RUNPATH)'; then
+        command -v patchelf >/dev/null || { echo "bundle: needs patchelf (apt-get install patchelf)" >&2; exit 1; }
+        patchelf --set-rpath '$ORIGIN' "$lib"
     fi
 done
 cp -r scenes "$dest/"

@@ -5,10 +5,11 @@
 set -eu
 
 # Build and run: OpenCL loader + headers, the CPU OpenCL driver, the scene/texture/image libraries.
+# MPI: OpenMPI (pt links it; mpirun runs it on several processes or nodes); patchelf (make bundle).
 # Tests: Criterion (runner), Xvfb + Mesa (viewer tests in a real window), xdotool (window resizing).
 PACKAGES="build-essential pkg-config ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
 libtinyobjloader-dev libtinygltf-dev libstb-dev libopenexr-dev libglfw3-dev libcjson-dev libcriterion-dev \
-xvfb xauth libgl1-mesa-dri xdotool"
+libopenmpi-dev openmpi-bin patchelf xvfb xauth libgl1-mesa-dri xdotool"
 
 missing=""
 for p in $PACKAGES; do

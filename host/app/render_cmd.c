@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "app/mpi_link.h"
 #include "app/render_cmd_units.h"
 #include "app/render_loop.h"
 #include "app/render_output.h"
@@ -136,6 +137,16 @@ static void report_render(const Options *o, const RenderStats *stats)
     }
 }
 
+/* MPI: without --device, the ranks of a node take the devices of `--device all` in turn (one
+ * GPU each on a node of several; PoCL's one CPU device is shared), by their local rank. */
+static void choose_rank_device(const Options *o, RenderDesc *render, DeviceSpecList *devices)
+{
+    Error err = {0};
+    if (mpi_link_size() == 1 || o->device || !device_spec_list("all", devices, &err))
+        return; /* none found: the default device says why */
+    render->device = devices->spec[mpi_link_local_rank() % devices->count];
+}
+
 int command_render(const Options *o)
 {
     Error err = {0};
@@ -148,12 +159,18 @@ int command_render(const Options *o)
         die("%s", err.message);
     if (devices.count > 0)
         render.device = devices.spec[0]; /* the session's own; render_units opens the rest */
+    DeviceSpecList rank_devices; /* MPI: holds the spec chosen for this rank */
+    choose_rank_device(o, &render, &rank_devices);
+    if (mpi_link_rank() > 0)
+        warnings_set_quiet(true); /* the scene's warnings: rank 0 gives them once */
     if (!session_open(&session, &render, &err))
         die("%s", err.message);
+    bool root = mpi_link_rank() == 0; /* MPI: rank 0 alone writes and reports */
     OutputPaths out;
-    if (!plan_outputs(o, "", &out, &err))
+    memset(&out, 0, sizeof out);
+    if (root && !plan_outputs(o, "", &out, &err))
         die("%s", err.message);
-    if (!o->quiet)
+    if (!o->quiet && root)
         session_print_summary(&session);
 
     const SceneDesc *desc = &session.scene.desc;
@@ -199,8 +216,15 @@ int command_render(const Options *o)
     } else {
         rendered = render_loop_run(&session, &settings, &loop, &images, &stats, &stop, &err);
     }
-    if (!rendered)
+    if (!rendered && root)
         die("%s", err.message);
+    if (!rendered)
+        die("rank %d: %s", mpi_link_rank(), err.message);
+    if (!root) { /* MPI: this rank's film is rank 0's now */
+        render_images_free(&images);
+        session_close(&session);
+        return stop_exit_status();
+    }
     report_render(o, &stats);
     spp_done = stats.spp_done;
     if (stats.paths == 0 && stats.spp_done == 0) { /* a resumed film may be whole already */

@@ -6,14 +6,16 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "app/mpi_link.h"
+#include "app/render_ranks.h"
 #include "base/fs.h"
 #include "render/checkpoint.h"
 #include "render/film.h"
 
 bool render_cmd_wants_units(const Options *o)
 {
-    return device_spec_is_list(o->device) || o->checkpoint_seconds > 0 || o->resume ||
-           o->unit_spp || o->unit_rows;
+    return mpi_link_size() > 1 || device_spec_is_list(o->device) || o->checkpoint_seconds > 0 ||
+           o->resume || o->unit_spp || o->unit_rows;
 }
 
 bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err)
@@ -27,10 +29,11 @@ bool render_cmd_units_devices(const Options *o, DeviceSpecList *list, Error *err
 /* What the unit render cannot do (yet): decisions per pixel over the whole film. */
 static bool check_supported(const Options *o, const RenderSettings *s, Error *err)
 {
-    const char *what = device_spec_is_list(o->device) ? "--device with several devices"
-                       : o->checkpoint_seconds > 0    ? "--checkpoint"
-                       : o->resume                    ? "--resume"
-                                                      : "--unit-spp/--unit-rows";
+    const char *what = mpi_link_size() > 1             ? "several MPI ranks"
+                       : device_spec_is_list(o->device) ? "--device with several devices"
+                       : o->checkpoint_seconds > 0      ? "--checkpoint"
+                       : o->resume                      ? "--resume"
+                                                        : "--unit-spp/--unit-rows";
     if (s->noise_threshold > 0.0f) {
         error_set(err, ERR_USAGE, NULL, 0,
                   "%s: adaptive sampling (--noise-threshold or the scene's render.noise_threshold) "
@@ -52,19 +55,23 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
 {
     if (!check_supported(o, settings, err))
         return false;
+    /* MPI: rank 0 alone reports, keeps the checkpoint and watches the time; the others render. */
+    bool mpi = mpi_link_size() > 1, root = mpi_link_rank() == 0, quiet = o->quiet || !root;
     const SceneDesc *desc = &session->scene.desc;
     UnitRenderDesc ud = {.settings = *settings,
-                         .progress = render_loop_progress_style(o->quiet, o->progress,
+                         .progress = render_loop_progress_style(quiet, o->progress,
                                                                 isatty(STDERR_FILENO)),
-                         .time_limit = o->time_limit,
-                         .checkpoint_seconds = o->checkpoint_seconds,
-                         .resume = o->resume,
-                         .report_devices = !o->quiet};
+                         .time_limit = root ? o->time_limit : 0.0,
+                         .checkpoint_seconds = root ? o->checkpoint_seconds : 0.0,
+                         .resume = o->resume && root,
+                         .report_devices = !quiet};
     if (!unit_grid_init(&ud.grid, (uint32_t)desc->width, (uint32_t)desc->height,
                         (uint32_t)settings->spp, (uint32_t)o->unit_spp, (uint32_t)o->unit_rows, err))
         return false;
     char checkpoint[1200];
-    if (o->checkpoint_seconds > 0 || o->resume) {
+    if (mpi) /* every rank's, compared by rank_link_open */
+        ud.identity = render_identity(&session->scene, settings, &ud.grid);
+    if (root && (o->checkpoint_seconds > 0 || o->resume)) {
         checkpoint_path(checkpoint_base, checkpoint, sizeof checkpoint);
         ud.checkpoint_path = checkpoint;
         ud.identity = render_identity(&session->scene, settings, &ud.grid);
@@ -78,11 +85,11 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
     UnitFilm film;
     if (!unit_film_init(&film, &ud.grid, err))
         return false;
-    if (o->resume && !checkpoint_read(checkpoint, ud.identity, &film, err)) {
+    if (ud.resume && !checkpoint_read(checkpoint, ud.identity, &film, err)) {
         unit_film_free(&film);
         return false;
     }
-    if (o->resume && !o->quiet)
+    if (ud.resume && !quiet)
         fprintf(stderr, "pt: resuming %s: %u of %u work units done\n", checkpoint, film.units_done,
                 ud.grid.count);
 
@@ -93,7 +100,7 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
         ok = session_device_open(&extra[i - 1], &session->scene, list->spec[i], o->no_cache, err);
         if (ok) {
             num_extra++;
-            if (!o->quiet)
+            if (!quiet)
                 fprintf(stderr, "pt: device %s %s (%s, driver %s)\n", list->spec[i],
                         extra[i - 1].dev.name, extra[i - 1].dev.platform_name,
                         extra[i - 1].dev.driver_version);
@@ -101,14 +108,20 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
     }
     UnitRenderReport report;
     UnitDevices devices = {.session = session, .extra = extra, .num_extra = num_extra};
+    if (ok && mpi) {
+        ud.ranks = rank_link_open(&ud.grid, settings, ud.identity, 1 + num_extra, err);
+        if (!ud.ranks)
+            mpi_link_finalize(); /* every rank refuses: none is left waiting, no abort needed */
+        ok = ud.ranks != NULL;
+    }
     if (ok)
         ok = render_units_run(&devices, &ud, &film, stats, stop, &report, err);
-    if (ok) {
+    if (ok && root) {
         film_sums_to_rgb(film.sums, film.num_pixels, images->rgb);
         if (images->layer[AOV_LAYER_SPP])
             for (size_t i = 0; i < film.num_pixels; i++)
                 images->layer[AOV_LAYER_SPP][i] = (float)film.sums[FILM_WORDS * i + 3];
-        if (!o->quiet) {
+        if (!quiet) {
             fprintf(stderr, "pt: %u work units (%u tiles x %u sample blocks of %u spp)%s\n",
                     ud.grid.count, ud.grid.tiles, ud.grid.blocks, ud.grid.unit_spp,
                     report.units_resumed ? ", some from the checkpoint" : "");
@@ -120,10 +133,13 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
             }
             fprintf(stderr, "pt: device films merged into the host's in %.1f ms\n",
                     report.merge_seconds * 1e3);
+            if (ud.ranks)
+                rank_link_print_report(ud.ranks, stderr);
             if (report.checkpoints)
                 fprintf(stderr, "pt: %u checkpoints written to %s\n", report.checkpoints, checkpoint);
         }
     }
+    rank_link_close(ud.ranks);
     for (int i = 0; i < num_extra; i++)
         session_device_close(&extra[i]);
     free(extra);

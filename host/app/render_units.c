@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/render_ranks.h"
 #include "app/stop_signals.h"
 #include "base/clock.h"
 #include "render/checkpoint.h"
@@ -20,6 +21,7 @@ typedef struct Shared Shared;
 
 typedef struct {
     Shared *sh;
+    int index; /* MPI: its slot in the link to rank 0 */
     Device *dev;
     Wavefront *w;
     uint32_t appetite;   /* the most units a run may hold: about one window of the device */
@@ -69,6 +71,34 @@ static bool flush(Worker *k)
     return ok;
 }
 
+/* ---- MPI (app/render_ranks.h): on ranks other than 0, runs come from rank 0 ---- */
+
+static bool take_run(Worker *k, UnitRun *run)
+{
+    Shared *sh = k->sh;
+    RankLink *l = sh->desc->ranks;
+    if (!l || rank_link_is_root(l))
+        return unit_scheduler_take(&sh->sched, k->appetite, run);
+    rank_link_ask(l, k->index, k->appetite);
+    pthread_mutex_lock(&sh->lock);
+    pthread_cond_broadcast(&sh->changed); /* the main thread sends the request */
+    pthread_mutex_unlock(&sh->lock);
+    return rank_link_answer(l, k->index, run);
+}
+
+static void finish_run(Worker *k, UnitRun run)
+{
+    RankLink *l = k->sh->desc->ranks;
+    if (l && !rank_link_is_root(l))
+        rank_link_finished(l, k->index, run, unit_run_paths(&k->sh->desc->grid, run));
+    else
+        unit_scheduler_finish(&k->sh->sched, run);
+    if (l)
+        rank_link_test_kill(l, run.count, false);
+}
+
+/* ---- end of MPI ---- */
+
 static void *worker_main(void *arg)
 {
     Worker *k = arg;
@@ -88,14 +118,14 @@ static void *worker_main(void *arg)
             pthread_mutex_unlock(&sh->lock);
         }
         UnitRun run;
-        if (stop || !unit_scheduler_take(&sh->sched, k->appetite, &run))
+        if (stop || !take_run(k, &run))
             break;
         double start = seconds_now();
         PixelBlock block = unit_run_block(g, run);
         wavefront_render_block(k->w, &block);
         for (uint32_t u = run.first; u < run.first + run.count; u++)
             unit_bitmap_set(k->pending, u);
-        unit_scheduler_finish(&sh->sched, run);
+        finish_run(k, run);
         pthread_mutex_lock(&sh->lock);
         k->report->units += run.count;
         k->report->runs++;
@@ -145,6 +175,49 @@ static bool all_flushed(const Worker *workers, int n, uint64_t request)
     return true;
 }
 
+/* MPI (app/render_ranks.h): the main thread, between its waits: rank 0 answers the other ranks;
+ * another rank relays its threads' requests, and sends its film when rank 0 asks for it
+ * (*asked: the generation, until sent). Called and returns with sh->lock held. */
+static bool serve_ranks(Shared *sh, Worker *workers, int n, uint64_t *asked, Error *err)
+{
+    RankLink *l = sh->desc->ranks;
+    bool ok;
+    if (rank_link_is_root(l)) {
+        int sig = stop_signal_received();
+        bool stop = sh->stop || sig;
+        pthread_mutex_unlock(&sh->lock);
+        ok = rank_link_serve(l, &sh->sched, sh->film, stop, err);
+        pthread_mutex_lock(&sh->lock);
+        if (ok && sig && !rank_link_all_final(l)) {
+            /* mpirun sends SIGTERM to every rank when one dies: this image would lack its units. */
+            char missing[256];
+            rank_link_missing(l, missing, sizeof missing);
+            error_set(err, ERR_USAGE, NULL, 0,
+                      "rank 0: stopped by %s before rank(s) %s sent their film (a rank that dies "
+                      "makes mpirun stop the others): no image is written", stop_signal_name(sig),
+                      missing);
+            ok = false;
+        }
+        return ok;
+    }
+    uint64_t request = sh->flush_request;
+    pthread_mutex_unlock(&sh->lock);
+    ok = rank_link_pump(l, &request, err);
+    pthread_mutex_lock(&sh->lock);
+    if (request > sh->flush_request) {
+        sh->flush_request = *asked = request;
+        pthread_cond_broadcast(&sh->changed);
+    }
+    if (ok && *asked && all_flushed(workers, n, *asked)) {
+        uint64_t generation = *asked;
+        *asked = 0;
+        pthread_mutex_unlock(&sh->lock);
+        ok = rank_link_send_film(l, sh->film, generation, NULL, NULL, err);
+        pthread_mutex_lock(&sh->lock);
+    }
+    return ok;
+}
+
 /* The main thread's loop: progress, checkpoints, the time limit, until every worker has ended. */
 static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *report, RenderStop *stop,
                       Error *err)
@@ -157,10 +230,20 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
     double deadline = d->time_limit > 0 ? start + d->time_limit : 1e300;
     uint64_t total = (uint64_t)g->width * g->height * g->spp, pending_checkpoint = 0;
     bool ok = true;
+    RankLink *l = d->ranks;          /* MPI */
+    bool root = !l || rank_link_is_root(l);
+    uint64_t asked = 0;
     pthread_mutex_lock(&sh->lock);
-    while (sh->running > 0) {
+    while (sh->running > 0 || (l && root && !rank_link_all_final(l))) {
         double until = next_print < next_checkpoint ? next_print : next_checkpoint;
+        if (l && until > seconds_now() + RANK_POLL_SECONDS)
+            until = seconds_now() + RANK_POLL_SECONDS;
         wait_until(sh, until < deadline ? until : deadline);
+        if (l && !serve_ranks(sh, workers, n, &asked, err)) {
+            ok = false;
+            sh->stop = true;
+            break;
+        }
         double now = seconds_now();
         if (now >= deadline && !sh->stop) {
             sh->stop = true;
@@ -169,8 +252,14 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
         if (now >= next_checkpoint && !pending_checkpoint) {
             pending_checkpoint = ++sh->flush_request;
             next_checkpoint = 1e300;
+            if (l) {
+                pthread_mutex_unlock(&sh->lock);
+                rank_link_request_flush(l, pending_checkpoint);
+                pthread_mutex_lock(&sh->lock);
+            }
         }
-        if (pending_checkpoint && all_flushed(workers, n, pending_checkpoint)) {
+        if (pending_checkpoint && all_flushed(workers, n, pending_checkpoint) &&
+            (!l || rank_link_flushed(l, pending_checkpoint))) {
             pthread_mutex_unlock(&sh->lock);
             ok = checkpoint_write(d->checkpoint_path, d->identity, sh->film, err);
             pthread_mutex_lock(&sh->lock);
@@ -189,7 +278,11 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
             uint64_t done = 0;
             for (int i = 0; i < n; i++)
                 done += workers[i].report->paths;
-            uint32_t spp_done = unit_film_spp_done(sh->film);
+            /* Under MPI the other ranks' units reach the film at their end: count their paths. */
+            uint32_t spp_done =
+                l ? (uint32_t)((done + rank_link_paths(l)) / ((uint64_t)g->width * g->height))
+                  : unit_film_spp_done(sh->film);
+            done += l ? rank_link_paths(l) : 0;
             pthread_mutex_unlock(&sh->lock);
             render_loop_print_progress(d->progress, (int)spp_done, (int)g->spp, done, total,
                                        now - start);
@@ -213,7 +306,9 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
     int n = 1 + devices->num_extra;
     report->units_resumed = film->units_done;
     Shared sh = {.desc = desc, .film = film, .running = 0};
-    if (!unit_scheduler_init(&sh.sched, g, (uint32_t)n, film->done, err))
+    RankLink *l = desc->ranks; /* MPI: rank 0's scheduler serves every rank's devices */
+    bool root = !l || rank_link_is_root(l);
+    if (!unit_scheduler_init(&sh.sched, g, l ? rank_link_devices(l) : (uint32_t)n, film->done, err))
         return false;
     pthread_mutex_init(&sh.lock, NULL);
     pthread_condattr_t attr;
@@ -230,6 +325,7 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
         Device *dev = i == 0 ? &devices->session->dev : &devices->extra[i - 1].dev;
         const SceneBuffers *buffers = i == 0 ? &devices->session->buffers : &devices->extra[i - 1].buffers;
         k->sh = &sh, k->dev = dev, k->report = &report->device[i];
+        k->index = i; /* MPI */
         snprintf(k->report->spec, sizeof k->report->spec, "%d:%d", dev->platform_index, dev->device_index);
         snprintf(k->report->name, sizeof k->report->name, "%s", dev->name);
         k->w = wavefront_create(dev, scene, buffers, &desc->settings, err);
@@ -298,8 +394,14 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
     free(workers);
     stats->seconds = end - start;
     report->merge_seconds = sh.merge_seconds;
+    if (l && !root && ok) { /* MPI: this rank's film and report go to rank 0 */
+        rank_link_test_kill(l, 0, true);
+        ok = rank_link_send_film(l, film, 0, report, stats, err);
+    }
+    if (l && root)
+        rank_link_add_stats(l, stats);
     stats->spp_done = (int)unit_film_spp_done(film);
-    if (ok && *stop == RENDER_COMPLETE && !unit_film_complete(film))
+    if (ok && root && *stop == RENDER_COMPLETE && !unit_film_complete(film))
         *stop = RENDER_STOPPED_BY_SIGNAL;
     /* A stopped render keeps what it has for --resume. */
     if (ok && desc->checkpoint_path && *stop != RENDER_COMPLETE &&

@@ -17,6 +17,9 @@
 #include "render/unit_film.h"
 #include "render/wavefront.h"
 
+/* An MPI job's link between ranks (app/render_ranks.h). */
+typedef struct RankLink RankLink;
+
 /* The devices a unit render uses: the session's own, then the extra ones. */
 typedef struct {
     Session *session;
@@ -34,6 +37,8 @@ typedef struct {
     RenderIdentity identity;   /* render_identity: goes into every checkpoint */
     bool resume;               /* film starts from the checkpoint at checkpoint_path */
     bool report_devices;       /* print the units and Mpaths/s of each device at the end */
+    RankLink *ranks;           /* MPI: this rank's link (rank 0 schedules every rank's devices,
+                                * the others ask it for runs); NULL: this process alone */
 } UnitRenderDesc;
 
 /* Per device, for the report and pt bench. */
