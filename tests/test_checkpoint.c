@@ -305,3 +305,16 @@ Test(checkpoint, a_checkpoint_left_without_resume_is_refused, .timeout = 600)
               "the checkpoint changed");
     free(before), free(after);
 }
+
+/* The kill points' syntax (app/stop_signals.h): a count from 1, a known point; else one line. */
+Test(checkpoint, malformed_kill_points_are_one_clear_line, .timeout = 600)
+{
+    const char *bad[] = {"SIGKILL@unit:0", "SIGKILL@unit:", "SIGKILL@unit:x", "SIGKILL@unit:-1",
+                         "SIGKILL@unit:5x", "KILL@units", "SIGKILL@", "SIGSTOP@unit"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char env[64];
+        snprintf(env, sizeof env, "PT_TEST_RAISE=%s", bad[i]);
+        expect_clean_error(pt(env, SCENE " " FILM " -o /dev/null.exr"), bad[i], bad[i],
+                           "expected SIGNAL@POINT or SIGNAL@POINT:COUNT");
+    }
+}

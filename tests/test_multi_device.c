@@ -115,21 +115,23 @@ Test(multi_device, the_unit_path_refuses_adaptive_sampling_and_variance, .timeou
     const char *dir = test_temp_dir();
     char args[1024], out[512];
     snprintf(out, sizeof out, "%s/never.exr", dir);
-    snprintf(args, sizeof args, SCENE_ARGS " --spp 4 --quiet --device all --noise-threshold 0.05 -o %s",
-             out);
+    snprintf(args, sizeof args,
+             SCENE_ARGS " --spp 4 --quiet --device all --noise-threshold 0.05 -o %s", out);
     Run r = run_pt_env(NULL, TWO_DEVICES, args);
     expect_clean_error(r, "--noise-threshold", "adaptive sampling", "one device");
-    snprintf(args, sizeof args, SCENE_ARGS " --spp 4 --quiet --device all --aov variance -o %s", out);
+    snprintf(args, sizeof args, SCENE_ARGS " --spp 4 --quiet --device all --aov variance -o %s",
+             out);
     r = run_pt_env(NULL, TWO_DEVICES, args);
     expect_clean_error(r, "--aov variance", "--aov variance", "one-device");
-    snprintf(args, sizeof args, SCENE_ARGS " --spp 4 --quiet --unit-spp 2 --aov variance -o %s", out);
+    snprintf(args, sizeof args, SCENE_ARGS " --spp 4 --quiet --unit-spp 2 --aov variance -o %s",
+             out);
     r = run_pt(NULL, args);
     expect_clean_error(r, "--unit-spp with --aov variance", "--unit-spp", "variance");
     cr_expect_neq(access(out, F_OK), 0, "an image was written");
     remove_temp_dir(dir);
 }
 
-/* The EXR header of an interrupted render: partial = 1 and fewer spp than asked. Returns its spp. */
+/* The EXR header of an interrupted render: partial = 1, fewer spp than asked; returns its spp. */
 static int expect_partial(const char *path, int requested)
 {
     ExrInspect f;
@@ -244,9 +246,8 @@ Test(multi_device, bench_reports_the_unit_modes_per_device, .timeout = 600)
     for (const char *line = strchr(text, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
         char mode[32], spec[16];
         unsigned n = 0;
-        cr_assert_eq(sscanf(line + 1, "%31[^,],%15[^,],\"%*[^\"]\",\"%*[^\"]\",%*d,%*d,%*d,%u", mode,
-                            spec, &n),
-                     3, "%s", line + 1);
+        const char *format = "%31[^,],%15[^,],\"%*[^\"]\",\"%*[^\"]\",%*d,%*d,%*d,%u";
+        cr_assert_eq(sscanf(line + 1, format, mode, spec, &n), 3, "%s", line + 1);
         if (!strcmp(mode, "units"))
             units += n;
         else

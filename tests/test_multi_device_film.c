@@ -60,7 +60,8 @@ static void open_devices(Devices *t, int count)
     } env[NUM_DEVICES] = {{NULL, NULL},
                           {NULL, NULL},
                           {"2", NULL},
-                          {"2", "-cl-mad-enable -cl-no-signed-zeros -cl-unsafe-math-optimizations"}};
+                          {"2", "-cl-mad-enable -cl-no-signed-zeros "
+                                "-cl-unsafe-math-optimizations"}};
     memset(t, 0, sizeof *t);
     open_scene(&t->scene);
     for (int i = 0; i < count; i++) {

@@ -110,7 +110,8 @@ Test(work_units, defaults_and_clamps)
         cr_expect_eq(g.tiles, (h + g.unit_rows - 1) / g.unit_rows);
         if (g.tiles > 1) {
             uint32_t rows = (h + g.tiles - 2) / (g.tiles - 1);
-            cr_expect_gt((uint64_t)rows * w, UNIT_TILE_MAX_PIXELS, "%ux%u: %u tiles", w, h, g.tiles);
+            cr_expect_gt((uint64_t)rows * w, UNIT_TILE_MAX_PIXELS, "%ux%u: %u tiles", w, h,
+                         g.tiles);
         }
     }
     /* Sizes above the render are clamped to it. */
@@ -271,7 +272,8 @@ Test(unit_scheduler, requeued_runs_are_handed_out_again)
     count_runs(&g, &c, 1, taken);
     UnitRun run;
     cr_assert(unit_scheduler_take(&s, 0, &run));
-    cr_expect_eq(run.first, b.first, "the requeued run comes first: %u, not %u", run.first, b.first);
+    cr_expect_eq(run.first, b.first, "the requeued run comes first: %u, not %u", run.first,
+                 b.first);
     do {
         count_runs(&g, &run, 1, taken);
         unit_scheduler_finish(&s, run);

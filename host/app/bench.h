@@ -21,8 +21,9 @@ int command_bench(const Options *o);
 void bench_units(Session *s, const Options *o, const DeviceSpecList *list, RenderSettings settings,
                  float *rgb);
 
-/* Shared by both: a plain render (wavefront_render), a CSV file opened to append (its header
- * written when it is new), a row of the table, a row of the --csv file, FILE.csv -> FILE_<suffix>.csv. */
+/* Shared by both: a plain render (wavefront_render); a CSV file opened to append (its header
+ * written when it is new); a row of the table; a row of the --csv file; FILE.csv ->
+ * FILE_<suffix>.csv. */
 RenderStats bench_render(Session *s, RenderSettings settings, float *rgb);
 FILE *bench_open_csv(const char *path, const char *header);
 void bench_print_row(const char *label, const RenderStats *st);
