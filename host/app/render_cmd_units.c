@@ -109,7 +109,7 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
     UnitRenderReport report;
     UnitDevices devices = {.session = session, .extra = extra, .num_extra = num_extra};
     if (ok && mpi) {
-        ud.ranks = rank_link_open(&ud.grid, settings, ud.identity, 1 + num_extra, err);
+        ud.ranks = rank_link_open(&ud.grid, settings, ud.identity.scene, 1 + num_extra, err);
         if (!ud.ranks)
             mpi_link_finalize(); /* every rank refuses: none is left waiting, no abort needed */
         ok = ud.ranks != NULL;
