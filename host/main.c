@@ -5,7 +5,7 @@
 
 #include "app/bench.h"
 #include "app/cli.h"
-#include "app/mpi_link.h"
+#include "dist/mpi_link.h"
 #include "app/render_cmd.h"
 #include "base/error.h"
 #include "base/version.h"
@@ -43,7 +43,7 @@ int main(int argc, char **argv)
 {
     Options o;
     Error err = {0};
-    /* Under mpirun (only then) this process is one rank of a job (app/mpi_link.h). */
+    /* Under mpirun (only then) this process is one rank of a job (dist/mpi_link.h). */
     if (!mpi_link_init(&argc, &argv, &err))
         die("%s", err.message);
     if (!cli_parse(argc, argv, &o, &err))

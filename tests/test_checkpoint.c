@@ -25,7 +25,7 @@
 
 #include "cli_run.h"
 #include "io/image_io.h"
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "support.h"
 
 #define SCENE "render scenes/cornell-box"

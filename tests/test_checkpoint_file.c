@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* The checkpoint file (render/checkpoint.c) and the render identity (scene/scene_hash.c), in
+/* The checkpoint file (dist/checkpoint.c) and the render identity (scene/scene_hash.c), in
  * process, without a device: a round trip keeps every bit; every truncation and every flipped
  * bit of a checkpoint is refused with one message naming the file, leaving the film empty; each
  * difference of scene or settings is named; the scene hash is stable across loads and changes
@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "render/film.h"
 #include "scene/scene_hash.h"
 #include "support.h"

@@ -21,9 +21,9 @@
 
 #include "render/film.h"
 #include "render/session.h"
-#include "render/unit_film.h"
+#include "dist/unit_film.h"
 #include "render/wavefront.h"
-#include "render/work_units.h"
+#include "dist/work_units.h"
 #include "scene/scene.h"
 #include "support.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Work units (render/work_units.h) and the unit film (render/unit_film.h), on the host alone: the
+/* Work units (dist/work_units.h) and the unit film (dist/unit_film.h), on the host alone: the
  * grid covers every (pixel, sample) of a render exactly once however its units are grouped into
  * runs; its defaults and clamps; the scheduler hands every unit out exactly once to concurrent
  * takers, skips a resumed render's finished units, hands a requeued run out again and shortens its
@@ -10,8 +10,8 @@
 #include <string.h>
 
 #include "render/film.h"
-#include "render/unit_film.h"
-#include "render/work_units.h"
+#include "dist/unit_film.h"
+#include "dist/work_units.h"
 
 /* A small deterministic generator (the tests must not change from run to run). */
 static uint32_t next_random(uint64_t *state)

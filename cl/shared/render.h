@@ -45,7 +45,7 @@ typedef struct {
                           * height, or under RENDER_ADAPTIVE the length of active_pixels */
     float clamp_indirect; /* RENDER_CLAMP_INDIRECT: the most any channel of one indirect
                            * contribution may carry (shade_surface.cl, clamp_indirect) */
-    uint pixel_offset;   /* the first pixel of the block being rendered (render/work_units.h:
+    uint pixel_offset;   /* the first pixel of the block being rendered (dist/work_units.h:
                           * a unit's tile is pixels pixel_offset .. + window_pixels - 1); 0
                           * under RENDER_ADAPTIVE, whose active_pixels name whole-film pixels */
     uint film_pad1;

@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "app/mpi_link.h"
+#include "dist/mpi_link.h"
 #include "app/render_cmd_units.h"
 #include "app/render_loop.h"
 #include "app/render_output.h"

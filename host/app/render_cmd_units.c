@@ -6,10 +6,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "app/mpi_link.h"
+#include "dist/mpi_link.h"
 #include "app/render_ranks.h"
 #include "base/fs.h"
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "render/film.h"
 
 bool render_cmd_wants_units(const Options *o)

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/mpi_link.h"
+#include "dist/mpi_link.h"
 #include "app/render_ranks_wire.h"
 #include "base/version.h"
 #include "render/film.h"

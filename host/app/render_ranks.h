@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* render_ranks.h: a unit render (app/render_units.h) spread over the ranks of an MPI job
- * (app/mpi_link.h). Every rank loads the scene and renders on its own devices; rank 0 owns the
+ * (dist/mpi_link.h). Every rank loads the scene and renders on its own devices; rank 0 owns the
  * scheduler and hands runs of units to the other ranks' device threads as they ask (so a faster
  * node takes more), and those ranks send back the film of their finished units: when rank 0 asks
  * (a checkpoint) and at their end. Rank 0 adds them to its film (unit_film_merge: a unit counted

@@ -14,7 +14,7 @@
 #include "app/render_ranks.h"
 #include "app/stop_signals.h"
 #include "base/clock.h"
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "render/film.h"
 
 typedef struct Shared Shared;

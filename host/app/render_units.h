@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* render_units.h: `pt render` through work units (render/work_units.h): on several devices of this
+/* render_units.h: `pt render` through work units (dist/work_units.h): on several devices of this
  * process (--device all or a list: one host thread per device, each taking runs of units from one
  * scheduler as it finishes the last, so a fast device takes more), with checkpoints (--checkpoint,
- * --resume: render/checkpoint.h), and as one rank of an MPI job (app/mpi_link.h). Every device
- * renders into its own film; a device's film goes into the host's (render/unit_film.h) whole
+ * --resume: dist/checkpoint.h), and as one rank of an MPI job (dist/mpi_link.h). Every device
+ * renders into its own film; a device's film goes into the host's (dist/unit_film.h) whole
  * units at a time, and the image is that film: the same bits whatever the split. */
 #ifndef PT_RENDER_UNITS_H
 #define PT_RENDER_UNITS_H
@@ -12,9 +12,9 @@
 #include <stdint.h>
 
 #include "app/render_loop.h"
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "render/session.h"
-#include "render/unit_film.h"
+#include "dist/unit_film.h"
 #include "render/wavefront.h"
 
 /* An MPI job's link between ranks (app/render_ranks.h). */

@@ -12,7 +12,6 @@
 #include "scene/scene.h"
 #include "render/film.h"
 #include "render/scene_upload.h"
-#include "render/work_units.h"
 
 typedef struct {
     int spp, max_depth;  /* required */
@@ -80,6 +79,13 @@ typedef struct {
                                      * summed over windows */
 } RenderStats;
 
+/* A block of the film (a run of work units, dist/work_units.h): pixels first_pixel ..
+ * + num_pixels - 1 (row-major, row 0 at the top) times samples first_sample .. + num_samples - 1
+ * of each. */
+typedef struct {
+    uint32_t first_pixel, num_pixels, first_sample, num_samples;
+} PixelBlock;
+
 typedef struct Wavefront Wavefront;
 
 /* A progressive render: the device state of one film. Samples continue from where the last call
@@ -98,7 +104,7 @@ int wavefront_spp_done(const Wavefront *w);
 bool wavefront_at_whole_sample(const Wavefront *w);
 /* Adds samples b->first_sample .. + num_samples - 1 (counted from settings.first_sample) of pixels
  * b->first_pixel .. + num_pixels - 1 to the film, whole, and waits for them: a run of work units
- * (render/work_units.h). The film's sample count (wavefront_spp_done) does not follow blocks;
+ * (dist/work_units.h). The film's sample count (wavefront_spp_done) does not follow blocks;
  * not with adaptive sampling. */
 void wavefront_render_block(Wavefront *w, const PixelBlock *b);
 void wavefront_read_film(Wavefront *w, float *rgb); /* mean per pixel, 0 where none yet */

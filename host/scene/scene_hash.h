@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* scene_hash.h: a 64-bit hash of the scene as the devices see it (every flattened array of
  * SceneData, the camera, the film size, the background, the black holes), for the identity of a
- * checkpoint (render/checkpoint.h); and the streaming 64-bit hash it is made of, which the
+ * checkpoint (dist/checkpoint.h); and the streaming 64-bit hash it is made of, which the
  * checkpoint file's checksum uses too.
  *
  * The hash takes 8-byte little-endian words: word' = (w * K1) ^ >> 31, h = (h ^ word') * K2, a

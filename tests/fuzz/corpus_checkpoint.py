@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""Cases for the checkpoint reader (host/render/checkpoint.c, read by `pt render --resume`): a
+"""Cases for the checkpoint reader (host/dist/checkpoint.c, read by `pt render --resume`): a
 well-formed checkpoint of another scene, then truncated, damaged, other-version, out-of-range and
 missing ones, each a one-line error naming the file and the reason; and the seeds of the libFuzzer
 target (fuzz_checkpoint.c), made for its fixed identity. The format is checkpoint.h's; hash64 is

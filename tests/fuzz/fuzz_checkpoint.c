@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-/* libFuzzer target: the checkpoint reader (host/render/checkpoint.c). The input is the file, read
+/* libFuzzer target: the checkpoint reader (host/dist/checkpoint.c). The input is the file, read
  * twice: as it is (the checksum stops almost everything), then with its last 8 bytes replaced by
  * the right checksum, so that the fuzzer reaches the checks behind it. The identity is fixed (the
  * seeds of corpus_checkpoint.py are made for it). Accepted: the film must be consistent; refused:
  * a message, and the film left empty. */
 #include "fuzz_input.h"
 
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 #include "render/film.h"
 #include "scene/scene_hash.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "render/checkpoint.h"
+#include "dist/checkpoint.h"
 
 #include <errno.h>
 #include <limits.h>

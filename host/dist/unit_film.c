@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "render/unit_film.h"
+#include "dist/unit_film.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "render/work_units.h"
+#include "dist/work_units.h"
 
 #include <stdlib.h>
 #include <string.h>

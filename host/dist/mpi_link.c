@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "app/mpi_link.h"
+#include "dist/mpi_link.h"
 
 #include <mpi.h>
 #include <stdlib.h>

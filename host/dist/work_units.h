@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "render/wavefront.h" /* PixelBlock: what a run renders */
 
 /* Units are numbered tile-major: unit u is sample block u % blocks of tile u / blocks, so that
  * consecutive units of one tile are consecutive samples (a run, rendered as one block). */
@@ -38,11 +39,6 @@ typedef struct {
     uint32_t first, count;
 } UnitRun;
 
-/* What a run renders: pixels first_pixel .. + num_pixels - 1 (row-major, row 0 at the top) times
- * samples first_sample .. + num_samples - 1 of each. */
-typedef struct {
-    uint32_t first_pixel, num_pixels, first_sample, num_samples;
-} PixelBlock;
 
 PixelBlock unit_run_block(const UnitGrid *g, UnitRun run);
 uint64_t unit_run_paths(const UnitGrid *g, UnitRun run);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* checkpoint.h: a render's film saved so that a crash costs at most the last interval: the exact
- * film sums and the finished units (render/unit_film.h) with the identity of the render (a hash of
+ * film sums and the finished units (dist/unit_film.h) with the identity of the render (a hash of
  * the scene as flattened and every setting the image depends on). Written atomically beside the
  * output (OUTPUT.ptckpt: a temporary file in the same folder, fsync, rename: base/fs.h), read back
  * by --resume, which refuses a checkpoint of another scene, other settings, another version of the
@@ -12,7 +12,7 @@
  *  12  u32 80         bytes of this header
  *  16  u64 scene      scene_hash (scene/scene_hash.h)
  *  24  u32 max_depth, seed, first_sample, flags (1: no_nee), f32 clamp_indirect
- *  44  u32 width, height, spp, unit_spp, unit_rows, count  the unit grid (render/work_units.h)
+ *  44  u32 width, height, spp, unit_spp, unit_rows, count  the unit grid (dist/work_units.h)
  *  68  u32 units_done (the bits set below), film_words (FILM_WORDS), reserved 0
  *  80  the done bitmap: (count + 7) / 8 bytes (unit_bitmap_*), zero-padded to a multiple of 8
  *  ..  the film sums: width * height * film_words u64 (render/film.h)
@@ -25,7 +25,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "render/unit_film.h"
+#include "dist/unit_film.h"
 #include "render/wavefront.h"
 #include "scene/scene.h"
 

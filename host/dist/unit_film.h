@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "render/work_units.h"
+#include "dist/work_units.h"
 
 typedef struct {
     pthread_mutex_t lock;
