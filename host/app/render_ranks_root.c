@@ -125,18 +125,8 @@ uint64_t rank_link_paths(const RankLink *l)
 
 void rank_link_add_stats(const RankLink *l, RenderStats *stats)
 {
-    for (int r = 1; r < l->size; r++) {
-        const RenderStats *s = &l->peers[r].last.stats;
-        stats->paths += s->paths;
-        stats->extension_rays += s->extension_rays;
-        stats->shadow_rays += s->shadow_rays;
-        stats->nonfinite += s->nonfinite;
-        stats->batches += s->batches;
-        for (int st = 0; st < STAGE_COUNT; st++) {
-            stats->stage_ms[st] += s->stage_ms[st];
-            stats->stage_launches[st] += s->stage_launches[st];
-        }
-    }
+    for (int r = 1; r < l->size; r++)
+        render_stats_add(stats, &l->peers[r].last.stats);
 }
 
 void rank_link_print_report(const RankLink *l, FILE *out)

@@ -374,16 +374,7 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
         if (k->w) {
             wavefront_read_counters(k->w);
             const RenderStats *s = wavefront_stats(k->w);
-            stats->paths += s->paths;
-            stats->extension_rays += s->extension_rays;
-            stats->shadow_rays += s->shadow_rays;
-            stats->nonfinite += s->nonfinite;
-            stats->batches += s->batches;
-            stats->device_bytes += s->device_bytes;
-            for (int st = 0; st < STAGE_COUNT; st++) {
-                stats->stage_ms[st] += s->stage_ms[st];
-                stats->stage_launches[st] += s->stage_launches[st];
-            }
+            render_stats_add(stats, s);
             if (i == 0)
                 stats->pool_size = s->pool_size, stats->window_size = s->window_size;
             wavefront_destroy(k->w);

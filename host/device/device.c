@@ -63,14 +63,21 @@ static const char *type_name(cl_device_type type)
     return "other";
 }
 
+/* The platforms; 0 with ERR_NO_PLATFORM (and the help on installing one) when there is none. */
+static cl_uint get_platforms_or_fail(cl_platform_id *platforms, Error *err)
+{
+    cl_uint n = get_platforms(platforms);
+    if (n == 0)
+        error_set(err, ERR_NO_PLATFORM, NULL, 0, "%s", no_platform_help);
+    return n;
+}
+
 bool device_list(FILE *out, Error *err)
 {
     cl_platform_id platforms[MAX_PLATFORMS];
-    cl_uint num_platforms = get_platforms(platforms);
-    if (num_platforms == 0) {
-        error_set(err, ERR_NO_PLATFORM, NULL, 0, "%s", no_platform_help);
+    cl_uint num_platforms = get_platforms_or_fail(platforms, err);
+    if (num_platforms == 0)
         return false;
-    }
     bool any_gpu = false;
     for (cl_uint p = 0; p < num_platforms; p++) {
         char pname[256], pversion[256];
@@ -224,11 +231,9 @@ bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err)
 {
     memset(list, 0, sizeof *list);
     cl_platform_id platforms[MAX_PLATFORMS];
-    cl_uint num_platforms = get_platforms(platforms);
-    if (num_platforms == 0) {
-        error_set(err, ERR_NO_PLATFORM, NULL, 0, "%s", no_platform_help);
+    cl_uint num_platforms = get_platforms_or_fail(platforms, err);
+    if (num_platforms == 0)
         return false;
-    }
     if (spec && strcmp(spec, "all") == 0) {
         /* Every GPU; every CPU only where there is no GPU (mixing is asked for by a list). */
         for (int pass = 0; pass < 2 && list->count == 0; pass++)
@@ -283,11 +288,9 @@ bool device_open(Device *dev, const char *spec, Error *err)
 {
     memset(dev, 0, sizeof *dev);
     cl_platform_id platforms[MAX_PLATFORMS];
-    cl_uint num_platforms = get_platforms(platforms);
-    if (num_platforms == 0) {
-        error_set(err, ERR_NO_PLATFORM, NULL, 0, "%s", no_platform_help);
+    cl_uint num_platforms = get_platforms_or_fail(platforms, err);
+    if (num_platforms == 0)
         return false;
-    }
     if (!find_device(spec, platforms, num_platforms, &dev->platform_index, &dev->device_index,
                      &dev->device)) {
         report_missing_device(spec, platforms, num_platforms, err);

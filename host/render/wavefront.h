@@ -117,6 +117,9 @@ Film *wavefront_film(Wavefront *w);                 /* its sums: to merge or res
 void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
 void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
 RenderStats *wavefront_stats(Wavefront *w);
+/* Adds the counts and times of from (another device's, another rank's) to into: paths, rays,
+ * nonfinite samples, windows, device bytes, stage times and launches, live paths per step. */
+void render_stats_add(RenderStats *into, const RenderStats *from);
 /* Reads the device's counters into the stats (nonfinite: wavefront_read_film does it too). */
 void wavefront_read_counters(Wavefront *w);
 void wavefront_destroy(Wavefront *w);

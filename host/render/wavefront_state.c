@@ -269,6 +269,22 @@ int wavefront_spp_done(const Wavefront *w)
 Film *wavefront_film(Wavefront *w) { return &w->film; }
 RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
 
+void render_stats_add(RenderStats *into, const RenderStats *from)
+{
+    into->paths += from->paths;
+    into->extension_rays += from->extension_rays;
+    into->shadow_rays += from->shadow_rays;
+    into->nonfinite += from->nonfinite;
+    into->batches += from->batches;
+    into->device_bytes += from->device_bytes;
+    for (int st = 0; st < STAGE_COUNT; st++) {
+        into->stage_ms[st] += from->stage_ms[st];
+        into->stage_launches[st] += from->stage_launches[st];
+    }
+    for (int b = 0; b < 64; b++)
+        into->live_per_step[b] += from->live_per_step[b];
+}
+
 void wavefront_read_counters(Wavefront *w)
 {
     uint32_t counters[COUNTER_COUNT];
