@@ -55,8 +55,8 @@ inline LightSample analytic_light_sample(AnalyticLight l, float pick_pdf, float3
         /* Uniform in the cone around the sun's centre: cos t uniform in [cos(half-angle), 1]. */
         float cos_t = 1.0f - u1 * (1.0f - l.params.x);
         float sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t));
-        float phi = 2.0f * M_PI_F * u2;
-        ls.direction = normalize(to_world((float3)(sin_t * cos(phi), sin_t * sin(phi), cos_t), toward));
+        float2 phi = cos_sin_turns(u2); /* 2 pi u2 */
+        ls.direction = normalize(to_world((float3)(sin_t * phi.x, sin_t * phi.y, cos_t), toward));
         ls.radiance = xyz(l.color) * l.params.y;
         ls.pdf_w = pick_pdf * l.params.z;
         ls.delta = 0u;

@@ -98,11 +98,10 @@ inline EnvSample env_sample(const EnvMap *env, uint pick_bits, float u_coin, flo
     t = u_coin < slot.prob ? t : slot.alias;
     uint j = t / env->width, i = t - j * env->width;
     float u = ((float)i + u1) / (float)env->width, v = ((float)j + u2) / (float)env->height;
-    float phi = 2.0f * M_PI_F * (u - 0.5f - env->rotation);
-    float theta = M_PI_F * v;
-    float sin_theta = sin(theta);
+    /* phi = 2 pi (u - 1/2 - rotation), theta = pi v. */
+    float2 phi = cos_sin_turns(u - 0.5f - env->rotation), theta = cos_sin_turns(0.5f * v);
     EnvSample s;
-    s.direction = (float3)(sin_theta * sin(phi), cos(theta), -sin_theta * cos(phi));
+    s.direction = (float3)(theta.y * phi.y, theta.x, -theta.y * phi.x);
     /* Radiance and pdf as an escaped ray in this direction sees them: a direction on a texel edge
      * may round into the neighbour, and both strategies must weigh the same function. */
     s.radiance = env_lookup(env, s.direction, &s.pdf_w);

@@ -73,8 +73,9 @@ inline float3 ggx_sample_visible(float3 wo, float alpha_x, float alpha_y, float 
     float len2 = vh.x * vh.x + vh.y * vh.y;
     float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
     float3 t2 = cross(vh, t1);
-    float r = sqrt(u1), phi = 2.0f * M_PI_F * u2;
-    float p1 = r * cos(phi), p2 = r * sin(phi);
+    float r = sqrt(u1);
+    float2 cs = cos_sin_turns(u2); /* phi = 2 pi u2 */
+    float p1 = r * cs.x, p2 = r * cs.y;
     float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
     float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
