@@ -26,12 +26,10 @@ inline float2 cos_sin_turns(float turns)
 {
     float quarters = 4.0f * turns, nearest = rint(quarters);
     float2 cs = cos_sin_pi_quarter(0.5f * (quarters - nearest));
-    switch ((int)nearest & 3) {
-    case 1: return (float2)(-cs.y, cs.x);
-    case 2: return -cs;
-    case 3: return (float2)(cs.y, -cs.x);
-    default: return cs;
-    }
+    /* Rotated by the quarter turns (selects, not a switch: a GPU's lanes need not diverge). */
+    int quadrant = (int)nearest & 3;
+    float2 turned = quadrant & 1 ? (float2)(-cs.y, cs.x) : cs;
+    return quadrant & 2 ? -turned : turned;
 }
 
 /* Uniform point on the unit disc (Shirley-Chiu concentric map), area-preserving. */
@@ -41,13 +39,12 @@ inline float2 sample_disk_concentric(float u1, float u2)
     if (a == 0.0f && b == 0.0f)
         return (float2)(0.0f, 0.0f);
     /* The angle is pi/4 (b / a) in the wedges around the x axis, pi/2 - pi/4 (a / b) around the y
-     * axis, where cos and sin trade places: one quarter-range evaluation serves both. */
-    if (fabs(a) > fabs(b)) {
-        float2 cs = cos_sin_pi_quarter(0.25f * (b / a));
-        return a * cs;
-    }
-    float2 cs = cos_sin_pi_quarter(0.25f * (a / b));
-    return b * cs.yx;
+     * axis, where cos and sin trade places: one quarter-range evaluation serves both (selects, one
+     * division and one polynomial: a GPU's lanes need not diverge). */
+    bool x_wedge = fabs(a) > fabs(b);
+    float r = x_wedge ? a : b;
+    float2 cs = cos_sin_pi_quarter(0.25f * ((x_wedge ? b : a) / r));
+    return r * (x_wedge ? cs : cs.yx);
 }
 
 /* Cosine-weighted direction in the local frame (z = normal); pdf_w = cos(theta) / pi. */
