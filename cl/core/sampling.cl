@@ -3,7 +3,8 @@
 
 /* cos(pi x) and sin(pi x) for |x| <= 1/4 (|pi x| <= pi/4): their Taylor series to the x^10 and
  * x^9 terms, whose remainders (below 2e-9) lie under float rounding there. A general sinpi/cospi
- * reduces its argument first: on PoCL that was 8% of a Cornell box render (perf). */
+ * reduces its argument first: on PoCL that was most of bsdf_sample's 11% of a Cornell box render
+ * (perf), and this made the render 7% faster (bench/README.md, "CPU (PoCL) throughput"). */
 inline float2 cos_sin_pi_quarter(float x)
 {
     float t = M_PI_F * x, t2 = t * t;
