@@ -65,6 +65,14 @@ Test(megakernel, same_bits_with_clamp_and_adaptive_sampling, .timeout = 300)
                                         .pool_size = 24 * 24 * 2});
 }
 
+/* Asked for material sorting, the megakernel renders without a sorter (it has no shading launches
+ * to order) and the wavefront sorts its launches: neither changes a path's arithmetic. */
+Test(megakernel, same_bits_when_sorting_is_asked, .timeout = 300)
+{
+    expect_same_render("scenes/cornell-box/scene.json",
+                       (RenderSettings){.spp = 4, .max_depth = 8, .seed = 3, .sort_materials = true});
+}
+
 static bool auto_choice(RenderFixture *f, RenderSettings s)
 {
     RenderStats stats;

@@ -165,17 +165,18 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
      * around it also counted the blocking count read). */
     if (s->profile)
         compactor_set_profile(w->compactor, &stats->stage_ms[STAGE_COMPACT]);
-    if (s->sort_materials) {
-        w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
-        w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
-        if (!w->sorter)
-            return false;
-    }
     for (int k = 0; k < STAGE_COUNT; k++)
         if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC && k != STAGE_MEGAKERNEL)
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force, s->moments));
     if (!black_holes_init(w, &scene->desc, &scene->data, err) || !megakernel_init(w, err))
         return false;
+    /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
+    if (s->sort_materials && !stats->megakernel) {
+        w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
+        w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
+        if (!w->sorter)
+            return false;
+    }
     set_all_args(w);
     wavefront_reset(w);
     return true;
