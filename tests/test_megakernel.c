@@ -65,12 +65,30 @@ Test(megakernel, same_bits_with_clamp_and_adaptive_sampling, .timeout = 300)
                                         .pool_size = 24 * 24 * 2});
 }
 
+/* Device bytes of a render with path kernel k (PATH_KERNEL_*), sorting or not. */
+static uint64_t device_bytes(RenderFixture *f, int k, bool sort)
+{
+    RenderStats stats;
+    RenderSettings s = {.spp = 1, .max_depth = 2, .path_kernel = k, .sort_materials = sort};
+    free(render_fixture_render(f, s, &stats));
+    return stats.device_bytes;
+}
+
 /* Asked for material sorting, the megakernel renders without a sorter (it has no shading launches
- * to order) and the wavefront sorts its launches: neither changes a path's arithmetic. */
+ * to order: no sorted list on the device) and the wavefront sorts its launches (one more list);
+ * neither changes a path's arithmetic. */
 Test(megakernel, same_bits_when_sorting_is_asked, .timeout = 300)
 {
     expect_same_render("scenes/cornell-box/scene.json",
                        (RenderSettings){.spp = 4, .max_depth = 8, .seed = 3, .sort_materials = true});
+    RenderFixture f;
+    render_fixture_open(&f, "scenes/cornell-box/scene.json", 8, 8);
+    cr_expect_eq(device_bytes(&f, PATH_KERNEL_MEGAKERNEL, true),
+                 device_bytes(&f, PATH_KERNEL_MEGAKERNEL, false),
+                 "the megakernel allocated the sorter's list");
+    cr_expect_gt(device_bytes(&f, PATH_KERNEL_WAVEFRONT, true),
+                 device_bytes(&f, PATH_KERNEL_WAVEFRONT, false), "the wavefront did not sort");
+    render_fixture_close(&f);
 }
 
 static bool auto_choice(RenderFixture *f, RenderSettings s)

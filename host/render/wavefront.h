@@ -72,7 +72,7 @@ typedef struct {
     bool megakernel;           /* traced by the path-per-work-item kernel (PATH_KERNEL_*) */
     uint32_t active_pixels;    /* adaptive sampling: pixels still sampled (all before the first
                                 * decision, 0 once every pixel has stopped) */
-    uint64_t device_bytes;     /* path state, window and film on the device */
+    uint64_t device_bytes;     /* path state (with the sorted list when sorting), window and film on the device */
     double stage_ms[STAGE_COUNT];   /* with settings.profile */
     uint32_t stage_launches[STAGE_COUNT];
     uint64_t live_per_step[64];     /* live paths entering each step (= bounce without refills),

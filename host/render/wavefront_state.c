@@ -176,6 +176,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
         if (!w->sorter)
             return false;
+        stats->device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted active list */
     }
     set_all_args(w);
     wavefront_reset(w);
