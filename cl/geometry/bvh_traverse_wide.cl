@@ -28,7 +28,7 @@ typedef uint4 uintW;
 /* A comparison's lanes (all bits set where true) as a bit mask, lane i in bit i. OpenCL C has no
  * movemask; where the compiler is clang on AVX (PoCL on x86), its builtin is one instruction,
  * where the portable shifts and ORs took about ten per node and per pack (PoCL: Cornell box +10%,
- * dragon +6%, bench/README.md "CPU (PoCL) throughput"). */
+ * dragon 4-8% fewer CPU seconds, bench/README.md "CPU (PoCL) throughput"). */
 #if BVH_WIDTH == 8 && defined(__clang__) && defined(__AVX__) && !defined(PT_VENDOR_NVIDIA)
 typedef float LaneMaskFloats __attribute__((vector_size(32)));
 inline uint lane_bits(intW m) { return (uint)__builtin_ia32_movmskps256((LaneMaskFloats)as_float8(m)); }
