@@ -2,15 +2,17 @@
 /* bench_bvh: BVH build and traversal throughput.
  *
  *   build/tools/bench_bvh [--device gpu|cpu|P:D] [--spp N] [--reps R] [--assets DIR]
- *                         [--max-triangles N] [--out DIR] [--order tiles|rows] [--count-steps]
+ *                         [--max-triangles N] [--out DIR] [--order tiles|rows|random] [--count-steps]
+ *                         [--write-rays DIR]
  *
  * Build: bumpy tori of 10^3 .. 2*10^6 triangles and the dragon and skull assets; time on one core
  * (best of several runs, wall clock and thread CPU time), Mtris/s, node count, SAH cost, and for
  * meshes up to 200k triangles the SAH cost of the full-sweep reference build.
  * Trace: primary rays (480x320 pixels x spp samples in 4x4-pixel tiles, as tinybvh's speed test
- * orders them, or scanlines with --order rows; camera 1.4 bounding radii from the centre, 50
- * degrees field of view) and one diffuse bounce from their hits (cosine about the geometric
- * normal, origin from offset_ray_origin), each as closest-hit and any-hit queries, on the dragon,
+ * orders them, or scanlines with --order rows, or shuffled with --order random; camera 1.4
+ * bounding radii from the centre, 50 degrees field of view) and one diffuse bounce from their hits
+ * (cosine about the geometric normal, origin from offset_ray_origin), each as closest-hit and
+ * any-hit queries, on the dragon,
  * the skull and tori of 10^3 .. 10^6 triangles (the scaling of time per ray). Kernel times come
  * from profiling events: the best of R runs after a warm-up run.
  * CSVs go to DIR/<device>/bvh_build.csv and bvh_trace.csv (DIR: bench/results); a table is
@@ -23,7 +25,11 @@
  * counter; on NVIDIA one atomic per warp via inline PTX); no gain on the H100.
  * BVH_DYNAMIC=K: dynamic fetch (the same, but a work item starts a new ray as soon as its own is
  * done, on NVIDIA when DYNAMIC_FETCH_THRESHOLD lanes of the warp are idle); no gain on the H100.
- * Both are checked bit for bit against the plain kernel's hits. */
+ * Both are checked bit for bit against the plain kernel's hits.
+ * --write-rays DIR: also writes each traced mesh's triangles (NAME.tris: 9 floats per triangle)
+ * and its primary and diffuse rays (NAME-primary.rays, NAME-diffuse.rays: origin, tmin,
+ * direction, tmax as 8 floats per ray), little-endian float32, so that
+ * tools/bench_bvh_mitsuba.py can time Mitsuba 3 (Embree on CPUs, OptiX on GPUs) on the same rays. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -142,7 +148,9 @@ int main(int argc, char **argv)
     printf("bench_bvh: %s (%s, %s), %d-wide BVH%s, %d spp, rays in %s, ", dev.name,
            dev.platform_name, dev.driver_version, dev.bvh_width,
            dev.bvh_quantized ? " (quantised nodes)" : "", o.spp,
-           o.rows ? "scanline order" : "4x4-pixel tiles");
+           o.order == ORDER_ROWS     ? "scanline order"
+           : o.order == ORDER_RANDOM ? "random order"
+                                     : "4x4-pixel tiles");
     if (o.count_steps)
         printf("work counts\n");
     else

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 
 #include "base/error.h"
+#include "bench_bvh_options.h"
 #include "procedural_mesh.h"
 
 #define IMAGE_WIDTH 480
@@ -27,10 +28,11 @@ typedef struct {
  * miss). Rays are stored as tinybvh's speed test stores them: pixels in 4x4 tiles, each pixel's
  * samples together, stratified on a k x k grid when spp = k^2 (jittered within each cell, from
  * splitmix64). A warp so holds two neighbouring pixels and a GPU core's resident rays a compact
- * patch of the image; rows (--order rows) spread that patch along a scanline. */
+ * patch of the image; rows (--order rows) spread that patch along a scanline; --order random
+ * shuffles the tiled rays (Fisher-Yates, fixed seed). */
 #define RAY_TILE 4
 _Static_assert(IMAGE_WIDTH % RAY_TILE == 0 && IMAGE_HEIGHT % RAY_TILE == 0, "whole tiles");
-static Ray *primary_rays(const Mesh *mesh, int spp, bool rows, uint32_t *count)
+static Ray *primary_rays(const Mesh *mesh, int spp, RayOrder order, uint32_t *count)
 {
     float lo[3], hi[3], center[3], radius = 0.0f;
     mesh_bounds(mesh, lo, hi);
@@ -65,7 +67,7 @@ static Ray *primary_rays(const Mesh *mesh, int spp, bool rows, uint32_t *count)
     uint32_t i = 0;
     for (uint32_t pixel = 0; pixel < (uint32_t)IMAGE_WIDTH * IMAGE_HEIGHT; pixel++) {
         int x = (int)(pixel % IMAGE_WIDTH), y = (int)(pixel / IMAGE_WIDTH);
-        if (!rows) { /* IMAGE_WIDTH and IMAGE_HEIGHT are multiples of RAY_TILE */
+        if (order != ORDER_ROWS) { /* IMAGE_WIDTH and IMAGE_HEIGHT are multiples of RAY_TILE */
             uint32_t tile = pixel / (RAY_TILE * RAY_TILE), within = pixel % (RAY_TILE * RAY_TILE);
             x = (int)(tile % (IMAGE_WIDTH / RAY_TILE) * RAY_TILE + within % RAY_TILE);
             y = (int)(tile / (IMAGE_WIDTH / RAY_TILE) * RAY_TILE + within / RAY_TILE);
@@ -85,6 +87,13 @@ static Ray *primary_rays(const Mesh *mesh, int spp, bool rows, uint32_t *count)
             rays[i].dir = dir;
         }
     }
+    if (order == ORDER_RANDOM)
+        for (uint32_t k = n - 1; k > 0; k--) {
+            uint32_t j = (uint32_t)(mesh_rng_next(&rng) % (k + 1u));
+            Ray swap = rays[k];
+            rays[k] = rays[j];
+            rays[j] = swap;
+        }
     *count = n;
     return rays;
 }

@@ -6,6 +6,7 @@
 #ifndef PT_BENCH_BVH_TRACE_H
 #define PT_BENCH_BVH_TRACE_H
 
+#include <errno.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -16,6 +17,7 @@
 #include "accel/bvh.h"
 #include "accel/bvh_wide.h"
 #include "base/error.h"
+#include "base/fs.h"
 #include "bench_bvh_options.h"
 #include "bench_bvh_rays.h"
 #include "device/device.h"
@@ -163,6 +165,19 @@ static void bench_queries(FILE *csv, GpuMesh *g, const char *name, const char *k
     fflush(stdout);
 }
 
+/* --write-rays: DIR/NAME-SUFFIX, count records of `size` bytes. */
+static void write_records(const char *dir, const char *name, const char *suffix, const void *data,
+                          size_t size, size_t count)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s%s", dir, name, suffix);
+    FILE *f = fs_make_parent_dirs(path) ? fopen(path, "wb") : NULL;
+    if (!f)
+        die("cannot write %s: %s", path, strerror(errno));
+    if (fwrite(data, size, count, f) != count || fclose(f) != 0)
+        die("cannot write %s: %s", path, strerror(errno));
+}
+
 static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *mesh, const Options *o)
 {
     GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
@@ -195,14 +210,26 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
         for (int c = 0; c < 3; c++)
             corners[3 * i + c] = mesh->positions[mesh->triangles[i].v.s[c]];
     g.corners = upload(dev, "corners", 3 * (size_t)mesh->num_triangles * sizeof *corners, corners);
+    if (o->write_rays) {
+        float *tris = malloc(9 * (size_t)mesh->num_triangles * sizeof *tris);
+        if (!tris)
+            die("out of memory for %u triangles", mesh->num_triangles);
+        for (size_t i = 0; i < 3 * (size_t)mesh->num_triangles; i++)
+            for (int k = 0; k < 3; k++)
+                tris[3 * i + (size_t)k] = corners[i].s[k];
+        write_records(o->write_rays, name, ".tris", tris, 9 * sizeof *tris, mesh->num_triangles);
+        free(tris);
+    }
     free(corners);
 
     uint32_t n;
-    Ray *rays = primary_rays(mesh, o->spp, o->rows, &n);
+    Ray *rays = primary_rays(mesh, o->spp, o->order, &n);
     cl_mem ray_buf = upload(dev, "rays", n * sizeof(Ray), rays);
     cl_mem hits = upload(dev, "hits", n * sizeof(float4), NULL);
     cl_mem occluded = upload(dev, "occluded", n * sizeof(cl_uint), NULL);
     cl_mem bounce = upload(dev, "bounce_rays", n * sizeof(Ray), NULL);
+    if (o->write_rays)
+        write_records(o->write_rays, name, "-primary.rays", rays, sizeof(Ray), n);
     bench_queries(csv, &g, name, "primary", ray_buf, n, hits, occluded, o->reps);
 
     /* Diffuse bounce from the closest hits (left in `hits`), compacted to the rays that hit. */
@@ -221,6 +248,8 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
         if (rays[i].dir.s[0] != 0.0f || rays[i].dir.s[1] != 0.0f || rays[i].dir.s[2] != 0.0f)
             rays[m++] = rays[i];
     device_write(dev, bounce, 0, m * sizeof(Ray), rays);
+    if (o->write_rays)
+        write_records(o->write_rays, name, "-diffuse.rays", rays, sizeof(Ray), m);
     bench_queries(csv, &g, name, "diffuse", bounce, m, hits, occluded, o->reps);
 
     free(rays);

@@ -45,6 +45,9 @@ def main(name="bench_mitsuba", load_scene=None, build_scene=None, write_image=wr
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv")
+    ap.add_argument("--rr-depth", type=int,
+                    help="Mitsuba's rr_depth (default its own, 5); 3 is pt's: Russian roulette from "
+                    "the third vertex, so that both trace the same number of rays per path")
     ap.add_argument("--image", help="also write the last timed render here (EXR; mitsuba_forest: "
                     "or PNG in sRGB), to compare with pt's")
     args = ap.parse_args()
@@ -76,7 +79,10 @@ def main(name="bench_mitsuba", load_scene=None, build_scene=None, write_image=wr
         depth = int(scene.get("render", {}).get("max_depth", 8))
         start = time.perf_counter()
         with tempfile.TemporaryDirectory(prefix=f"{name}-") as temp_dir:
-            scene_obj = mi.load_dict(build_scene(scene_path, scene, args.spp, temp_dir, mi, np))
+            scene_dict = build_scene(scene_path, scene, args.spp, temp_dir, mi, np)
+            if args.rr_depth is not None:
+                scene_dict["integrator"]["rr_depth"] = args.rr_depth
+            scene_obj = mi.load_dict(scene_dict)
         load_seconds = time.perf_counter() - start
     except (ref.SceneError, OSError, ValueError, KeyError, TypeError) as e:
         print(f"{name}: {e}", file=sys.stderr)
