@@ -82,12 +82,17 @@ static char *test_kernel_source(void)
     return source;
 }
 
-Device *test_device(void)
+Device *test_device(void) { return test_device_built_with(""); }
+
+Device *test_device_built_with(const char *options)
 {
     Device *dev = calloc(1, sizeof *dev);
     Error err = {0};
     const char *spec = getenv("PT_TEST_DEVICE");
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
+    size_t used = strlen(dev->build_options);
+    cr_assert(used + strlen(options) < sizeof dev->build_options, "build options too long: %s", options);
+    memcpy(dev->build_options + used, options, strlen(options) + 1);
     char *source = test_kernel_source();
     bool built = device_build(dev, source, "tests", &err);
     free(source);
@@ -127,19 +132,33 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
     render_fixture_open_with(f, scene_path, width, height, INSTANCING_AUTO);
 }
 
-void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
-                              InstancingMode instancing)
+/* The fixture on dev, with the BVH two_level or not (as dev's program walks it). */
+static void render_fixture_load(RenderFixture *f, Device *dev, const char *scene_path, int width,
+                                int height, InstancingMode instancing, bool two_level)
 {
     Error err = {0};
-    f->dev = test_device();
+    f->dev = dev;
     cr_assert(scene_load_with(scene_path, instancing, &f->scene, &err), "scene_load %s: %s",
               scene_path, err.message);
     if (width)
         f->scene.desc.width = width;
     if (height)
         f->scene.desc.height = height;
-    scene_accel_build(&f->bvh, &f->scene.data, f->dev, PT_TESTS_TWO_LEVEL);
+    scene_accel_build(&f->bvh, &f->scene.data, f->dev, two_level);
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
+}
+
+void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
+                              InstancingMode instancing)
+{
+    render_fixture_load(f, test_device(), scene_path, width, height, instancing, PT_TESTS_TWO_LEVEL);
+}
+
+void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
+{
+    render_fixture_load(f, test_device_built_with(" -DPT_FEATURE_INSTANCES=0 -DPT_FEATURE_CUTOUT=0"),
+                        scene_path, width, height, INSTANCING_AUTO, false);
+    cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
 }
 
 void render_fixture_close(RenderFixture *f)

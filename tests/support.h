@@ -27,6 +27,8 @@ bool assets_available(void);
  * embedded cl/ sources plus every tests/cl/NAME.cl in name order, so all tests share one build (and
  * PoCL's kernel cache). Fails the test with the error on failure. */
 Device *test_device(void);
+/* The same with options appended to the program's build options. */
+Device *test_device_built_with(const char *options);
 void test_device_release(Device *dev);
 
 /* The absolute path of the pt binary the tests run: PT_BIN (the Makefile sets it), else
@@ -59,6 +61,10 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
 /* The same with a choice of instancing (scene/scene.h). */
 void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
                               InstancingMode instancing);
+/* The same on a program built as pt builds it for scenes of one mesh level without cut-out
+ * materials (-DPT_FEATURE_INSTANCES=0 -DPT_FEATURE_CUTOUT=0, the one-level BVH): the kernels that
+ * only such programs have (trace_paths_packets). */
+void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height);
 void render_fixture_close(RenderFixture *f);
 /* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */
 float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);

@@ -10,28 +10,60 @@
 
 #include "support.h"
 
-static void expect_same_render(const char *scene, RenderSettings s)
+/* Kernel k's render against the wavefront's: the same rays, the same bits. */
+static void expect_same_as_wavefront(const char *scene, RenderFixture *f, RenderSettings s, int k,
+                                     const float *wave_image, const RenderStats *wave,
+                                     RenderStats *stats)
+{
+    s.path_kernel = k;
+    float *b = render_fixture_render(f, s, stats);
+    const char *name = k == PATH_KERNEL_MEGAKERNEL ? "megakernel" : "megakernel-single";
+    cr_expect(stats->megakernel, "%s: %s: the megakernel was not used", scene, name);
+    cr_expect_eq(stats->extension_rays, wave->extension_rays, "%s: %s: %llu extension rays, wavefront %llu",
+                 scene, name, (unsigned long long)stats->extension_rays,
+                 (unsigned long long)wave->extension_rays);
+    cr_expect_eq(stats->shadow_rays, wave->shadow_rays, "%s: %s: %llu shadow rays, wavefront %llu", scene,
+                 name, (unsigned long long)stats->shadow_rays, (unsigned long long)wave->shadow_rays);
+    size_t n = (size_t)f->scene.desc.width * (size_t)f->scene.desc.height * 3, differ = 0;
+    for (size_t i = 0; i < n; i++)
+        differ += memcmp(&wave_image[i], &b[i], sizeof b[i]) != 0;
+    cr_expect_eq(differ, 0, "%s: %s: %zu of %zu values differ from the wavefront's", scene, name,
+                 differ, n);
+    free(b);
+}
+
+/* The wavefront, the megakernel and the one-path megakernel render the same bits with the same
+ * rays, on the tests' program (every feature: two BVH levels, cut-outs, so one path per work item)
+ * and on the program pt builds for such a scene (one level, no cut-outs), where the megakernel has
+ * eight paths per work item and traces their rays as packets on the 8-wide layout (CPUs). */
+static void expect_same_render_on(const char *scene, RenderSettings s, int width, int height,
+                                  bool one_level)
 {
     RenderFixture f;
-    render_fixture_open(&f, scene, 24, 24);
-    size_t n = 24 * 24 * 3;
-    RenderStats wave, mega;
+    if (one_level)
+        render_fixture_open_one_level(&f, scene, width, height);
+    else
+        render_fixture_open(&f, scene, width, height);
+    bool packets = one_level;
+    RenderStats wave, mega, single;
     s.path_kernel = PATH_KERNEL_WAVEFRONT;
     float *a = render_fixture_render(&f, s, &wave);
-    s.path_kernel = PATH_KERNEL_MEGAKERNEL;
-    float *b = render_fixture_render(&f, s, &mega);
-    cr_expect(!wave.megakernel && mega.megakernel, "%s: the path kernel asked for was not used", scene);
-    cr_expect_eq(mega.extension_rays, wave.extension_rays, "%s: %llu extension rays, wavefront %llu",
-                 scene, (unsigned long long)mega.extension_rays, (unsigned long long)wave.extension_rays);
-    cr_expect_eq(mega.shadow_rays, wave.shadow_rays, "%s: %llu shadow rays, wavefront %llu", scene,
-                 (unsigned long long)mega.shadow_rays, (unsigned long long)wave.shadow_rays);
-    cr_expect_gt(wave.extension_rays, 24u * 24u, "%s: no bounces traced", scene);
-    size_t differ = 0;
-    for (size_t i = 0; i < n; i++)
-        differ += memcmp(&a[i], &b[i], sizeof a[i]) != 0;
-    cr_expect_eq(differ, 0, "%s: %zu of %zu values differ from the wavefront's", scene, differ, n);
-    free(a), free(b);
+    cr_expect(!wave.megakernel, "%s: the wavefront was not used", scene);
+    cr_expect_gt(wave.extension_rays, (uint64_t)width * (uint64_t)height, "%s: no bounces traced", scene);
+    expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
+    expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
+    bool wide = f.dev->bvh_width == 8;
+    cr_expect_eq(mega.packets, packets && wide, "%s: packets %s (8-wide layout: %s)", scene,
+                 mega.packets ? "used" : "not used", wide ? "yes" : "no");
+    cr_expect(!single.packets, "%s: megakernel-single used packets", scene);
+    free(a);
     render_fixture_close(&f);
+}
+
+static void expect_same_render(const char *scene, RenderSettings s)
+{
+    expect_same_render_on(scene, s, 24, 24, false);
+    expect_same_render_on(scene, s, 24, 24, true);
 }
 
 Test(megakernel, same_bits_and_rays_as_the_wavefront, .timeout = 600)

@@ -10,8 +10,8 @@
 # (512), SPP (8), DEPTH (8), RR_DEPTH (3: Mitsuba's rr_depth set to pt's Russian roulette, from the
 # third vertex, so that both trace the same rays per path; Mitsuba's own default, 5, traces more:
 # figures before 2026-12-02's third session used it), PT (build/pt), PYTHON (a python3 that imports
-# mitsuba and numpy, e.g. from wheels installed with --target; default: .venv-mitsuba, created by tools/mitsuba-venv.sh),
-# MITSUBA_BENCH (default tools/bench_mitsuba.py; tools/mitsuba_forest.py for scenes with transforms,
+# mitsuba and numpy, e.g. from wheels installed with --target; default: .venv-mitsuba, created by
+# tools/mitsuba-venv.sh), MITSUBA_BENCH (default tools/bench_mitsuba.py; tools/mitsuba_forest.py for scenes with transforms,
 # instances and analytic lights: the forest and dragons of bench/README.md "Instancing").
 # The material benchmark (bench/README.md "Materials"), on the GPU machine:
 #   DEVICE=gpu WIDTH=1024 HEIGHT=1024 SPP=16 tools/bench-vs-mitsuba.sh \

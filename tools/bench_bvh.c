@@ -25,7 +25,9 @@
  * counter; on NVIDIA one atomic per warp via inline PTX); no gain on the H100.
  * BVH_DYNAMIC=K: dynamic fetch (the same, but a work item starts a new ray as soon as its own is
  * done, on NVIDIA when DYNAMIC_FETCH_THRESHOLD lanes of the warp are idle); no gain on the H100.
- * Both are checked bit for bit against the plain kernel's hits.
+ * BVH_PACKET=1 (8-wide layout): closest and any hits by trace_packet, eight consecutive rays per
+ * work item walked together (cl/geometry/bvh_traverse_packet.cl, what the CPU megakernel uses).
+ * All are checked bit for bit against the plain kernels' hits.
  * --write-rays DIR: also writes each traced mesh's triangles (NAME.tris: 9 floats per triangle)
  * and its primary and diffuse rays (NAME-primary.rays, NAME-diffuse.rays: origin, tmin,
  * direction, tmax as 8 floats per ray), little-endian float32, so that

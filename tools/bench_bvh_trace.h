@@ -35,6 +35,9 @@ typedef struct {
     size_t persistent_items;
     uint32_t num_prims; /* entries of tris: triangles, or packs of the wide layout */
     cl_kernel count;    /* --count-steps: bvh_test_count_steps, else NULL */
+    /* BVH_PACKET=1 (experiment, 8-wide layout): closest and any hits by the packet kernels, eight
+     * rays per work item, checked bit for bit against the plain kernels. */
+    cl_kernel packet_closest, packet_any;
 } GpuMesh;
 
 static cl_mem upload(Device *dev, const char *name, size_t size, const void *data)
@@ -57,6 +60,8 @@ static double time_query(GpuMesh *g, cl_kernel kernel, cl_mem rays, uint32_t n, 
     KERNEL_ARG(kernel, 4, num_rays);
     KERNEL_ARG(kernel, 5, out);
     size_t items = n;
+    if (kernel == g->packet_closest || kernel == g->packet_any)
+        items = (n + 7u) / 8u;
     if (kernel == g->persistent) {
         KERNEL_ARG(kernel, 6, g->counter);
         if (g->persistent_items < items)
@@ -79,18 +84,19 @@ static double time_query(GpuMesh *g, cl_kernel kernel, cl_mem rays, uint32_t n, 
 
 /* The persistent and dynamic kernels hand rays to work items in another order, which must not
  * change any ray's result: they are checked bit for bit against the plain kernel. */
-static void check_same_hits(GpuMesh *g, cl_mem rays, uint32_t n, cl_mem hits)
+static void check_same_hits_of(GpuMesh *g, cl_kernel kernel, size_t size, cl_mem rays, uint32_t n,
+                              cl_mem hits)
 {
-    cl_mem plain = upload(g->dev, "plain_hits", n * sizeof(float4), NULL);
-    time_query(g, g->closest, rays, n, plain, 0);
-    float4 *a = malloc(2 * (size_t)n * sizeof *a);
+    cl_mem plain = upload(g->dev, "plain_hits", n * size, NULL);
+    time_query(g, kernel, rays, n, plain, 0);
+    char *a = malloc(2 * (size_t)n * size);
     if (!a)
         die("out of memory for %u hits", n);
-    device_read(g->dev, hits, 0, n * sizeof *a, a);
-    device_read(g->dev, plain, 0, n * sizeof *a, a + n);
+    device_read(g->dev, hits, 0, n * size, a);
+    device_read(g->dev, plain, 0, n * size, a + n * size);
     for (uint32_t i = 0; i < n; i++)
-        if (memcmp(&a[i], &a[n + i], sizeof *a))
-            die("ray %u: the persistent or dynamic kernel's hit differs from the plain kernel's", i);
+        if (memcmp(a + i * size, a + (n + i) * size, size))
+            die("ray %u: the persistent, dynamic or packet kernel's hit differs from the plain kernel's", i);
     free(a);
     CL_CHECK(clReleaseMemObject(plain));
 }
@@ -144,10 +150,13 @@ static void bench_queries(FILE *csv, GpuMesh *g, const char *name, const char *k
         count_steps(csv, g, name, kind, rays, n);
         return;
     }
-    double closest_ms = time_query(g, g->persistent ? g->persistent : g->closest, rays, n, hits, reps);
-    if (g->persistent)
-        check_same_hits(g, rays, n, hits);
-    double any_ms = time_query(g, g->any, rays, n, occluded, reps);
+    cl_kernel closest = g->persistent ? g->persistent : g->packet_closest ? g->packet_closest : g->closest;
+    double closest_ms = time_query(g, closest, rays, n, hits, reps);
+    if (g->persistent || g->packet_closest)
+        check_same_hits_of(g, g->closest, sizeof(float4), rays, n, hits);
+    double any_ms = time_query(g, g->packet_any ? g->packet_any : g->any, rays, n, occluded, reps);
+    if (g->packet_any)
+        check_same_hits_of(g, g->any, sizeof(cl_uint), rays, n, occluded);
     cl_uint *flags = malloc(n * sizeof *flags);
     device_read(g->dev, occluded, 0, n * sizeof *flags, flags);
     uint32_t num_hits = 0;
@@ -183,7 +192,7 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
     GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
                  device_kernel(dev, "bvh_test_trace_any"), device_kernel(dev, "bvh_test_bounce_rays"),
                  NULL, NULL, NULL, mesh->num_triangles, NULL, NULL, 0, 0,
-                 o->count_steps ? device_kernel(dev, "bvh_test_count_steps") : NULL};
+                 o->count_steps ? device_kernel(dev, "bvh_test_count_steps") : NULL, NULL, NULL};
     const char *persistent = getenv("BVH_PERSISTENT"), *dynamic = getenv("BVH_DYNAMIC");
     if (dynamic && atoi(dynamic) > 0)
         persistent = dynamic;
@@ -195,6 +204,10 @@ static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *me
         if (!g.counter)
             die("%s", err.message);
         g.persistent_items = (size_t)dev->compute_units * (size_t)atoi(persistent);
+    }
+    if (getenv("BVH_PACKET") && atoi(getenv("BVH_PACKET")) > 0 && dev->bvh_width == 8) {
+        g.packet_closest = device_kernel(dev, "bvh_test_trace_closest_packet");
+        g.packet_any = device_kernel(dev, "bvh_test_trace_any_packet");
     }
     Bvh bvh;
     bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, dev->bvh_width);

@@ -240,22 +240,19 @@ PT_INLINE uint visit_children(const global TraversalNode *node, uint bits, const
     return near_ref;
 }
 
-/* The walk: the nearest child that the ray meets is visited next and the others are pushed with
- * their entry distances, farther ones deeper, so pops come nearest first; a popped entry that now
- * lies behind the closest hit is skipped. With any_hit it returns at the first hit, unsorted. */
-inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPrim *packs,
-                      float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
+/* The walk of the subtree at ref, from the hit found so far: the nearest child that the ray meets
+ * is visited next and the others are pushed with their entry distances, farther ones deeper, so
+ * pops come nearest first; a popped entry that now lies behind the closest hit is skipped. With
+ * any_hit it returns at the first hit, unsorted. trace_bvh walks the whole tree, trace_packet
+ * (bvh_traverse_packet.cl) hands its rays subtrees that too few of them enter. */
+PT_INLINE Hit walk_wide(const global TraversalNode *nodes, const global TraversalPrim *packs,
+                        WideRay bray, PackRay pray, float slack, float tmin, uint ref, Hit hit,
+                        bool any_hit)
 {
-    WideRay bray = wide_ray(origin, dir);
-    WatertightRay tray = watertight_ray(origin, dir);
-    PackRay pray = pack_ray(tray);
-    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
-    float slack = wide_box_slack(nodes, origin, tray);
     float box_tmin = tmin - slack;
     uint stack_ref[BVH_WIDE_STACK_SIZE];
     float stack_t[BVH_WIDE_STACK_SIZE];
     uint stack_size = 0;
-    uint ref = 0; /* the root, an inner node */
     for (;;) {
         if (!is_leaf_ref(ref)) {
             COUNT_STEPS(hit, 1u, 0u);
@@ -277,6 +274,15 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPr
         } while (!(stack_t[stack_size] <= (hit.t + slack) * BOX_EXIT_SCALE));
         ref = stack_ref[stack_size];
     }
+}
+
+inline Hit trace_bvh(const global TraversalNode *nodes, const global TraversalPrim *packs,
+                      float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
+{
+    WatertightRay tray = watertight_ray(origin, dir);
+    Hit hit = {tmax, 0.0f, 0.0f, HIT_NONE, 0u};
+    return walk_wide(nodes, packs, wide_ray(origin, dir), pack_ray(tray),
+                     wide_box_slack(nodes, origin, tray), tmin, 0u /* the root */, hit, any_hit);
 }
 
 /* Every pack, no tree: the baseline of the brute-force ablation (the *_brute_force stages). */

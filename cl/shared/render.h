@@ -200,6 +200,10 @@ typedef struct {
 #define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current batch */
 #define COUNTER_COUNT 4
 
+/* The paths of one trace_paths_packets work item (cl/stages/megakernel.cl), whose rays are traced
+ * as one packet: host/render/megakernel.c launches a work item per PACKET_RAYS samples. */
+#define PACKET_RAYS 8
+
 /* ---- Film ---------------------------------------------------------------------------------- */
 
 /* The film: FILM_WORDS 64-bit words per pixel (a ulong4 on the device, cl_ulong on the host):

@@ -92,7 +92,8 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
  * compaction without refills (window = pool: each pool's worth of paths runs to the end), and
  * neither (every bounce over the whole pool). "default" takes the path kernel pt render takes (on
  * CPUs the megakernel, render/megakernel.h); the wavefront's ablations are pinned to the
- * wavefront, and "megakernel" is the path-per-work-item kernel on any device. */
+ * wavefront; "megakernel" is the megakernel on any device (with packets where it has them),
+ * "megakernel-single" the one with one path per work item. */
 typedef struct {
     const char *name;
     bool no_compaction;
@@ -107,6 +108,7 @@ static const BenchMode modes[] = {
     {"default", false, 0, false, SORT_MATERIALS_AUTO, false, PATH_KERNEL_AUTO},
     {"refill", false, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
     {"megakernel", false, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_MEGAKERNEL},
+    {"megakernel-single", false, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_MEGAKERNEL_SINGLE},
     {"shadow-flags", false, 0, true, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
     {"no-refill", false, 1, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},
     {"no-compaction", true, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT},

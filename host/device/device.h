@@ -67,6 +67,8 @@ bool device_build(Device *dev, const char *extra_source, const char *extra_name,
 const char *device_build_options(const Device *dev);
 
 cl_kernel device_kernel(Device *dev, const char *name);
+/* The kernel, or NULL where the program's options compiled it out (#if around the kernel). */
+cl_kernel device_kernel_if_built(Device *dev, const char *name);
 
 /* Allocates a buffer named for error messages; a size above CL_DEVICE_MAX_MEM_ALLOC_SIZE is
  * ERR_ALLOC_TOO_LARGE naming the buffer, its size and the limit. host may be NULL. A zero size

@@ -170,6 +170,17 @@ bool device_build(Device *dev, const char *extra_source, const char *extra_name,
     return true;
 }
 
+cl_kernel device_kernel_if_built(Device *dev, const char *name)
+{
+    cl_int status;
+    cl_kernel kernel = clCreateKernel(dev->program, name, &status);
+    if (status == CL_INVALID_KERNEL_NAME)
+        return NULL;
+    if (status != CL_SUCCESS)
+        cl_fail(status, "clCreateKernel", __FILE__, __LINE__);
+    return kernel;
+}
+
 cl_kernel device_kernel(Device *dev, const char *name)
 {
     cl_int status;

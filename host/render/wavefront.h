@@ -43,11 +43,14 @@ typedef struct {
 } RenderSettings;
 
 /* How the paths of a window are traced: the wavefront (a kernel per stage, compaction, refills)
- * or the path-per-work-item kernel (cl/stages/megakernel.cl, the same stage functions; the film
- * gets the same bits). AUTO: PT_MEGAKERNEL=0|1 if set, else the megakernel on CPU devices. Either
- * way the ablations (no_compaction, brute_force) and scenes with black holes use the wavefront;
+ * or the megakernel (cl/stages/megakernel.cl, the same stage functions; the film gets the same
+ * bits): eight paths per work item with their rays traced as packets (trace_paths_packets) where
+ * the program has that kernel (8-wide layout, one BVH level, no cut-outs), else one path per work
+ * item (trace_paths); MEGAKERNEL_SINGLE: one path per work item always. AUTO: PT_MEGAKERNEL=0|1 if
+ * set, else the megakernel on CPU devices, with packets unless PT_PACKETS=0. Either way the
+ * ablations (no_compaction, brute_force) and scenes with black holes use the wavefront;
  * sort_materials applies to the wavefront only. */
-enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL };
+enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KERNEL_MEGAKERNEL_SINGLE };
 
 /* Default window: long enough that the pool stays full for most of it (the tail, where the last
  * paths of the window run with no refills, is about a pool's worth of work). */
@@ -69,7 +72,8 @@ typedef struct {
     uint32_t pool_size;
     uint32_t window_size;
     uint32_t batches;          /* windows rendered */
-    bool megakernel;           /* traced by the path-per-work-item kernel (PATH_KERNEL_*) */
+    bool megakernel;           /* traced by the megakernel (PATH_KERNEL_*) */
+    bool packets;              /* ... by trace_paths_packets: eight paths per work item */
     uint32_t active_pixels;    /* adaptive sampling: pixels still sampled (all before the first
                                 * decision, 0 once every pixel has stopped) */
     uint64_t device_bytes;     /* path state (with the sorted list when sorting), window and film on the device */

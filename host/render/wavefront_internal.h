@@ -44,6 +44,8 @@ struct Wavefront {
     RenderStats own_stats;
     Adaptive adaptive; /* adaptive sampling (render/adaptive.h); adaptive.on false: off */
     cl_uint megakernel_counts_arg; /* index of trace_paths' first_sample (render/megakernel.c) */
+    uint32_t megakernel_paths;     /* paths per work item: 1, or PACKET_RAYS for
+                                    * trace_paths_packets */
 };
 
 /* Binds params, [the scene's buffers] and the path state to k's first arguments, in the order of

@@ -198,6 +198,7 @@ void wavefront_reset(Wavefront *w)
     w->stats->window_size = sizes.window_size;
     w->stats->device_bytes = sizes.device_bytes;
     w->stats->megakernel = sizes.megakernel;
+    w->stats->packets = sizes.packets;
     w->next_sample = w->next_pixel = 0;
     adaptive_reset(w);
 }

@@ -36,6 +36,57 @@ kernel void bvh_test_trace_any(const global TraversalNode *restrict nodes,
     occluded[i] = trace_any(nodes, tris, num_tris, xyz(origin), xyz(dir), origin.w, dir.w) ? 1u : 0u;
 }
 
+#if BVH_WIDTH == 8
+/* Rays 8 i .. 8 i + 7 as one packet (trace_packet): closest hits as bvh_test_trace_closest writes
+ * them, or any-hit answers as bvh_test_trace_any. */
+inline HitPacket bvh_test_packet(const global TraversalNode *nodes, const global TraversalPrim *tris,
+                                 const global float4 *rays, uint num_rays, uint i, bool any_hit)
+{
+    float3 origin[8], dir[8];
+    float tmin[8], tmax[8];
+    int live[8];
+    for (uint k = 0; k < 8u; k++) {
+        uint r = min(8u * i + k, num_rays - 1u);
+        float4 o = rays[2 * r], d = rays[2 * r + 1];
+        origin[k] = xyz(o), dir[k] = xyz(d), tmin[k] = o.w, tmax[k] = d.w;
+        live[k] = 8u * i + k < num_rays ? -1 : 0;
+    }
+    RayPacket packet = ray_packet(nodes, origin, dir, tmin);
+    return trace_packet(nodes, tris, &packet, vload8(0, live), vload8(0, tmax), any_hit);
+}
+
+kernel void bvh_test_trace_closest_packet(const global TraversalNode *restrict nodes,
+                                          const global TraversalPrim *restrict tris, uint num_tris,
+                                          const global float4 *restrict rays, uint num_rays,
+                                          global float4 *restrict hits)
+{
+    uint i = get_global_id(0);
+    if (8u * i >= num_rays)
+        return;
+    HitPacket h = bvh_test_packet(nodes, tris, rays, num_rays, i, false);
+    float t[8], u[8], v[8];
+    uint prim[8];
+    vstore8(h.t, 0, t), vstore8(h.u, 0, u), vstore8(h.v, 0, v), vstore8(h.prim, 0, prim);
+    for (uint k = 0; k < 8u && 8u * i + k < num_rays; k++)
+        hits[8u * i + k] = (float4)(t[k], u[k], v[k], as_float(prim[k]));
+}
+
+kernel void bvh_test_trace_any_packet(const global TraversalNode *restrict nodes,
+                                      const global TraversalPrim *restrict tris, uint num_tris,
+                                      const global float4 *restrict rays, uint num_rays,
+                                      global uint *restrict occluded)
+{
+    uint i = get_global_id(0);
+    if (8u * i >= num_rays)
+        return;
+    HitPacket h = bvh_test_packet(nodes, tris, rays, num_rays, i, true);
+    uint prim[8];
+    vstore8(h.prim, 0, prim);
+    for (uint k = 0; k < 8u && 8u * i + k < num_rays; k++)
+        occluded[8u * i + k] = prim[k] != HIT_NONE ? 1u : 0u;
+}
+#endif
+
 #ifdef BVH_COUNT_STEPS
 /* bench_bvh --count-steps: each closest-hit query's node visits and triangle (or pack) tests. */
 kernel void bvh_test_count_steps(const global TraversalNode *restrict nodes,
