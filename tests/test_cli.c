@@ -124,6 +124,7 @@ Test(cli, bad_environment_variables, .timeout = 120)
     expect_clean_error(run_pt_env(NULL, "PT_BVH_QUANTIZED=yes", render), "quantized yes", "PT_BVH_QUANTIZED=yes:", "0 or 1");
     expect_clean_error(run_pt_env(NULL, "PT_NO_CACHE=yes", render), "no cache yes", "PT_NO_CACHE=yes:", "0 or 1");
     expect_clean_error(run_pt_env(NULL, "PT_MEGAKERNEL=2", render), "megakernel 2", "PT_MEGAKERNEL=2:", "0 or 1");
+    expect_clean_error(run_pt_env(NULL, "PT_PACKETS=on", render), "packets on", "PT_PACKETS=on:", "0 or 1");
     expect_clean_error(run_pt_env(NULL, "PT_CL_OPTIONS=\"$(printf 'a\\001b')\"", render), "options control character",
                        "PT_CL_OPTIONS", "not printable");
     char *long_options = malloc(2000);

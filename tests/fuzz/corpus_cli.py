@@ -66,6 +66,7 @@ def env_cases():
                 ("PT_BVH_QUANTIZED", ["2", "x", "", "0", "1"]),
                 ("PT_NO_CACHE", ["1", "0", "yes", ""]),
                 ("PT_MEGAKERNEL", ["0", "1", "2", "on", ""]),
+                ("PT_PACKETS", ["0", "1", "2", "off", ""]),
                 ("PT_LOCAL_SIZE", ["0", "-1", "abc", "1", "3", "100000", "99999999999"]),
                 ("PT_CL_OPTIONS", ["-this-is-not-an-option", "-D"]),
                 ("OCL_ICD_VENDORS", ["/nonexistent"])]
