@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Where the CPU time of a render goes, in pt on PoCL and in Mitsuba 3's llvm_ad_rgb, measured
-with perf on the same scene: ray traversal (pt's trace_bvh and trace_scene_bvh; Mitsuba's
+with perf on the same scene: ray traversal (pt's walks, TRAVERSAL_SYMBOLS; Mitsuba's
 libembree3) against everything else (pt's kernels otherwise; Mitsuba's JIT-compiled kernels and
 its runtime), as CPU nanoseconds per path. Both renderers use every core; Mitsuba runs with
 pt's Russian roulette (rr_depth 3: from the third vertex) so that both trace the same number of
@@ -22,7 +22,10 @@ import subprocess
 import sys
 import tempfile
 
-TRAVERSAL_SYMBOLS = ("trace_bvh", "trace_scene_bvh")
+# The walks as PoCL leaves them out of line (the rest is inlined into the kernels' bodies): one
+# ray's, two levels', and the packets' (with their setup and triangle test).
+TRAVERSAL_SYMBOLS = ("trace_bvh", "trace_scene_bvh", "trace_packet", "ray_packet", "packet_triangle",
+                     "walk_wide")
 
 
 def perf_shares(data, sort):
