@@ -27,7 +27,7 @@ inline float8 pick_axis(intW axis, float x, float y, float z)
 }
 
 /* Eight rays: box test constants (wide_ray's, lane by lane), watertight test constants
- * (pack_ray's), the box slack of each (wide_box_slack) and which lanes hold a ray. */
+ * (pack_ray's) and the box slack of each (wide_box_slack). */
 typedef struct {
     float8 ox, oy, oz, ix, iy, iz;
     intW negx, negy, negz;
@@ -77,14 +77,17 @@ inline RayPacket ray_packet(const global TraversalNode *root, const float3 *orig
     return r;
 }
 
+/* Lane k of a float8 or int8 (in private memory). */
+inline float lane_f(const float8 *v, uint k) { return ((const float *)v)[k]; }
+inline int lane_i(const intW *v, uint k) { return ((const int *)v)[k]; }
+
 /* Lane k's single-ray constants, for the subtrees a packet hands to its rays one by one. */
 inline WideRay wide_ray_lane(const RayPacket *r, uint k)
 {
     WideRay ray;
-    ray.origin = (float3)(((const float *)&r->ox)[k], ((const float *)&r->oy)[k], ((const float *)&r->oz)[k]);
-    ray.inv_dir = (float3)(((const float *)&r->ix)[k], ((const float *)&r->iy)[k], ((const float *)&r->iz)[k]);
-    bool nx = ((const int *)&r->negx)[k] != 0, ny = ((const int *)&r->negy)[k] != 0;
-    bool nz = ((const int *)&r->negz)[k] != 0;
+    ray.origin = (float3)(lane_f(&r->ox, k), lane_f(&r->oy, k), lane_f(&r->oz, k));
+    ray.inv_dir = (float3)(lane_f(&r->ix, k), lane_f(&r->iy, k), lane_f(&r->iz, k));
+    bool nx = lane_i(&r->negx, k) != 0, ny = lane_i(&r->negy, k) != 0, nz = lane_i(&r->negz, k) != 0;
     ray.entry_row[0] = nx ? 3 : 0, ray.exit_row[0] = nx ? 0 : 3;
     ray.entry_row[1] = ny ? 4 : 1, ray.exit_row[1] = ny ? 1 : 4;
     ray.entry_row[2] = nz ? 5 : 2, ray.exit_row[2] = nz ? 2 : 5;
@@ -93,17 +96,16 @@ inline WideRay wide_ray_lane(const RayPacket *r, uint k)
 inline PackRay pack_ray_lane(const RayPacket *r, uint k)
 {
     PackRay ray;
-    ray.origin = (float3)(((const float *)&r->px)[k], ((const float *)&r->py)[k], ((const float *)&r->pz)[k]);
-    ray.shear = (float3)(-((const float *)&r->sx)[k], -((const float *)&r->sy)[k], ((const float *)&r->sz)[k]);
-    ray.axis_z = ((const int *)&r->kz)[k];
+    ray.origin = (float3)(lane_f(&r->px, k), lane_f(&r->py, k), lane_f(&r->pz, k));
+    ray.shear = (float3)(-lane_f(&r->sx, k), -lane_f(&r->sy, k), lane_f(&r->sz, k));
+    ray.axis_z = lane_i(&r->kz, k);
     return ray;
 }
 
-
 /* intersect_pack's test of one triangle (corners a, b, c) against every live lane; lanes with a
  * closer hit (the tie rule included) take it. Returns the lanes that did. */
-PT_INLINE intW packet_triangle(const RayPacket *r, float3 a, float3 b, float3 c, uint prim, intW live,
-                            HitPacket *hit)
+PT_INLINE intW packet_triangle(const RayPacket *r, float3 a, float3 b, float3 c, uint prim,
+                               intW live, HitPacket *hit)
 {
     /* Per lane the axes kx, ky, kz of pack_ray: kz = axis_z, kx = kz + 1, ky = kx + 1 (mod 3). */
     intW kx = select(r->kz + 1, (intW)(0), r->kz == 2), ky = select(kx + 1, (intW)(0), kx == 2);
@@ -165,12 +167,11 @@ inline void set_hit_lane(HitPacket *h, uint k, Hit one)
 #define PACKET_MIN_RAYS 3u
 
 /* The walk of trace_bvh for eight rays at once. live: the lanes holding rays (all ones), tmax per
- * lane. Every stack entry carries the lanes
- * that met its box (Embree's active masks), so a subtree is tested for those only and, when fewer
- * than PACKET_MIN_RAYS of them still need it, walked by each of them alone from its current hit
- * (Embree's hybrid switch). Entries are pushed nearest (over their lanes) on top and skipped when
- * they lie behind all their lanes' closest hits. With any_hit a lane stops at its first hit and the
- * walk when every lane has stopped. */
+ * lane. Every stack entry carries the lanes that met its box (Embree's active masks), so a subtree
+ * is tested for those only and, when fewer than PACKET_MIN_RAYS of them still need it, walked by
+ * each of them alone from its current hit (Embree's hybrid switch). Entries are pushed nearest
+ * (over their lanes) on top and skipped when they lie behind all their lanes' closest hits. With
+ * any_hit a lane stops at its first hit and the walk when every lane has stopped. */
 inline HitPacket trace_packet(const global TraversalNode *nodes, const global TraversalPrim *packs,
                               const RayPacket *r, intW live, float8 tmax, bool any_hit)
 {
@@ -184,8 +185,7 @@ inline HitPacket trace_packet(const global TraversalNode *nodes, const global Tr
             for (uint bits = mask; bits != 0u; bits &= bits - 1u) {
                 uint k = lowest_lane(bits);
                 set_hit_lane(&hit, k, walk_wide(nodes, packs, wide_ray_lane(r, k), pack_ray_lane(r, k),
-                                                ((const float *)&r->slack)[k],
-                                                ((const float *)&r->tmin)[k], ref,
+                                                lane_f(&r->slack, k), lane_f(&r->tmin, k), ref,
                                                 hit_lane(&hit, k), any_hit));
             }
             if (any_hit)
@@ -203,12 +203,19 @@ inline HitPacket trace_packet(const global TraversalNode *nodes, const global Tr
                 float hx = row[24 + c], hy = row[32 + c], hz = row[40 + c];
                 if (!(lx <= hx)) /* an unused lane's empty box */
                     continue;
-                float8 t0 = max_into_w((select((float8)(lx), (float8)(hx), r->negx) - r->ox) * r->ix, r->box_tmin);
-                t0 = max_into_w((select((float8)(ly), (float8)(hy), r->negy) - r->oy) * r->iy, t0);
-                t0 = max_into_w((select((float8)(lz), (float8)(hz), r->negz) - r->oz) * r->iz, t0);
-                float8 t1 = min_into_w((select((float8)(hx), (float8)(lx), r->negx) - r->ox) * r->ix, t_far);
-                t1 = min_into_w((select((float8)(hy), (float8)(ly), r->negy) - r->oy) * r->iy, t1);
-                t1 = min_into_w((select((float8)(hz), (float8)(lz), r->negz) - r->oz) * r->iz, t1);
+                /* wide_box_hits per lane: entry through lo where the ray moves toward +. */
+                float8 in_x = select((float8)(lx), (float8)(hx), r->negx);
+                float8 in_y = select((float8)(ly), (float8)(hy), r->negy);
+                float8 in_z = select((float8)(lz), (float8)(hz), r->negz);
+                float8 out_x = select((float8)(hx), (float8)(lx), r->negx);
+                float8 out_y = select((float8)(hy), (float8)(ly), r->negy);
+                float8 out_z = select((float8)(hz), (float8)(lz), r->negz);
+                float8 t0 = max_into_w((in_x - r->ox) * r->ix, r->box_tmin);
+                t0 = max_into_w((in_y - r->oy) * r->iy, t0);
+                t0 = max_into_w((in_z - r->oz) * r->iz, t0);
+                float8 t1 = min_into_w((out_x - r->ox) * r->ix, t_far);
+                t1 = min_into_w((out_y - r->oy) * r->iy, t1);
+                t1 = min_into_w((out_z - r->oz) * r->iz, t1);
                 intW meets = in & (t0 <= t1 * BOX_EXIT_SCALE);
                 uint m = lane_bits(meets);
                 if (m == 0u)

@@ -23,7 +23,8 @@ static bool wants_megakernel(const Wavefront *w, Error *err, bool *out)
         if (!env_flag("PT_MEGAKERNEL", cpu, out, err))
             return false;
     } else {
-        *out = s->path_kernel == PATH_KERNEL_MEGAKERNEL || s->path_kernel == PATH_KERNEL_MEGAKERNEL_SINGLE;
+        *out = s->path_kernel == PATH_KERNEL_MEGAKERNEL ||
+               s->path_kernel == PATH_KERNEL_MEGAKERNEL_SINGLE;
     }
     /* The ablations measure the wavefront's parts; bent rays are a stage of their own. Material
      * sorting orders the wavefront's shading launches and has nothing to order here (and loses on
