@@ -12,13 +12,37 @@
  * Not for the ablations (no compaction, brute force) nor scenes with black holes (their bent rays
  * are a stage of their own). */
 
+/* The work-group's ray counts (extension, shadow) in local memory, one global atomic each per
+ * group: cleared before the paths start, added to counters after all have ended. Both contain a
+ * barrier, so every work item of the group calls them. */
+inline void clear_group_rays(local uint *group_rays)
+{
+    if (get_local_id(0) == 0)
+        group_rays[0] = group_rays[1] = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+inline void count_group_rays(local uint *group_rays, uint extension, uint shadow,
+                             global uint *counters)
+{
+    if (extension > 0)
+        atomic_add(&group_rays[0], extension);
+    if (shadow > 0)
+        atomic_add(&group_rays[1], shadow);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0) {
+        if (group_rays[0] > 0)
+            atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_rays[0]);
+        if (group_rays[1] > 0)
+            atomic_add(&counters[COUNTER_SHADOW_RAYS], group_rays[1]);
+    }
+}
+
 kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint first_sample,
                         uint n, global uint *counters)
 {
-    local uint group_extension, group_shadow;
-    if (get_local_id(0) == 0)
-        group_extension = group_shadow = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
+    local uint group_rays[2];
+    clear_group_rays(group_rays);
     SceneView scene = SCENE_VIEW;
     uint slot = get_global_id(0);
     uint extension = 0, shadow = 0;
@@ -31,18 +55,8 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                 shadow++;
         }
     }
-    if (extension > 0)
-        atomic_add(&group_extension, extension);
-    if (shadow > 0)
-        atomic_add(&group_shadow, shadow);
-    /* Every work item reaches this barrier: no early return above. */
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0) {
-        if (group_extension > 0)
-            atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_extension);
-        if (group_shadow > 0)
-            atomic_add(&counters[COUNTER_SHADOW_RAYS], group_shadow);
-    }
+    /* Every work item gets here: no early return above. */
+    count_group_rays(group_rays, extension, shadow, counters);
 }
 
 #if BVH_WIDTH == 8 && !PT_FEATURE_INSTANCES && !PT_FEATURE_CUTOUT
@@ -58,32 +72,41 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
  * walks pass through hits); scenes with bent rays never take a megakernel. The host launches
  * ceil(n / PACKET_RAYS) work items. */
 
-/* Extends the live paths of slots first .. first + 7 (those < n) by their closest hits. */
-PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint first, uint n)
+/* The rays of slots first + k for the bits k set in lanes (!= 0) as one packet from tmin 0:
+ * origins in origins' xyz, directions in dirs' xyz, tmax in origins' w where tmax_in_w, else
+ * infinite. A lane without a ray holds another lane's, which trace_packet leaves out. */
+PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *origins,
+                                const global float4 *dirs, bool tmax_in_w, uint first, uint lanes,
+                                bool any_hit)
 {
     float3 origin[8], dir[8];
     float tmin[8], tmax[8];
-    int live[8];
-    bool any = false;
     for (uint k = 0; k < 8u; k++) {
-        uint slot = first + k;
-        bool on = slot < n && path_depth[slot] != 0u;
-        uint s = on ? slot : first; /* a dead lane holds some ray: trace_packet leaves it out */
-        origin[k] = xyz(ray_origin[s]), dir[k] = xyz(ray_direction[s]);
-        tmin[k] = 0.0f, tmax[k] = INFINITY;
-        live[k] = on ? -1 : 0;
-        any |= on;
+        uint s = first + ((lanes >> k) & 1u ? k : lowest_lane(lanes));
+        float4 o = origins[s];
+        origin[k] = xyz(o), dir[k] = xyz(dirs[s]);
+        tmin[k] = 0.0f, tmax[k] = tmax_in_w ? o.w : INFINITY;
     }
-    if (!any)
-        return;
     RayPacket r = ray_packet(scene->bvh_nodes, origin, dir, tmin);
-    HitPacket h = trace_packet(scene->bvh_nodes, scene->bvh_tris, &r, vload8(0, live),
-                               vload8(0, tmax), false);
+    return trace_packet(scene->bvh_nodes, scene->bvh_tris, &r, lanes_of(lanes), vload8(0, tmax),
+                        any_hit);
+}
+
+/* extend_path for the live paths of slots first .. first + 7 (those < n), as one packet. */
+PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint first, uint n)
+{
+    uint lanes = 0;
+    for (uint k = 0; k < 8u; k++)
+        if (first + k < n && path_depth[first + k] != 0u)
+            lanes |= 1u << k;
+    if (lanes == 0u)
+        return;
+    HitPacket h = trace_slots(scene, ray_origin, ray_direction, false, first, lanes, false);
     float t[8], u[8], v[8];
     uint prim[8];
     vstore8(h.t, 0, t), vstore8(h.u, 0, u), vstore8(h.v, 0, v), vstore8(h.prim, 0, prim);
     for (uint k = 0; k < 8u; k++)
-        if (live[k]) {
+        if ((lanes >> k) & 1u) {
 #if PT_FEATURE_BLACK_HOLES
             t[k] += ray_origin[first + k].w; /* as extend_path: 0 for straight rays */
 #endif
@@ -95,35 +118,21 @@ PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint firs
  * slot first + k's is occluded. */
 PT_INLINE uint connect_packet(const SceneView *scene, PATH_STATE_PARAMS uint first, uint n)
 {
-    float3 origin[8], dir[8];
-    float tmin[8], tmax[8];
-    int live[8];
-    bool any = false;
-    for (uint k = 0; k < 8u; k++) {
-        uint slot = first + k;
-        bool on = slot < n && shadow_contribution[slot].w != 0.0f;
-        uint s = on ? slot : first;
-        float4 o = shadow_origin[s];
-        origin[k] = xyz(o), dir[k] = xyz(shadow_direction[s]);
-        tmin[k] = 0.0f, tmax[k] = o.w;
-        live[k] = on ? -1 : 0;
-        any |= on;
-    }
-    if (!any)
+    uint lanes = 0;
+    for (uint k = 0; k < 8u; k++)
+        if (first + k < n && shadow_contribution[first + k].w != 0.0f)
+            lanes |= 1u << k;
+    if (lanes == 0u)
         return 0u;
-    RayPacket r = ray_packet(scene->bvh_nodes, origin, dir, tmin);
-    HitPacket h = trace_packet(scene->bvh_nodes, scene->bvh_tris, &r, vload8(0, live),
-                               vload8(0, tmax), true);
-    return lane_bits(vload8(0, live) & (h.prim != (uint8)(HIT_NONE)));
+    HitPacket h = trace_slots(scene, shadow_origin, shadow_direction, true, first, lanes, true);
+    return lanes & lane_bits(h.prim != (uint8)(HIT_NONE));
 }
 
 kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                                 uint first_sample, uint n, global uint *counters)
 {
-    local uint group_extension, group_shadow;
-    if (get_local_id(0) == 0)
-        group_extension = group_shadow = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
+    local uint group_rays[2];
+    clear_group_rays(group_rays);
     SceneView scene = SCENE_VIEW;
     uint first = PACKET_RAYS * get_global_id(0);
     uint extension = 0, shadow = 0;
@@ -151,17 +160,7 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
             }
         }
     }
-    if (extension > 0)
-        atomic_add(&group_extension, extension);
-    if (shadow > 0)
-        atomic_add(&group_shadow, shadow);
-    /* Every work item reaches this barrier: no early return above. */
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0) {
-        if (group_extension > 0)
-            atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_extension);
-        if (group_shadow > 0)
-            atomic_add(&counters[COUNTER_SHADOW_RAYS], group_shadow);
-    }
+    /* Every work item gets here: no early return above. */
+    count_group_rays(group_rays, extension, shadow, counters);
 }
 #endif
