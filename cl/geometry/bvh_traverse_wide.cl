@@ -113,6 +113,32 @@ inline floatW difference_of_products_w(floatW a, floatW b, floatW c, floatW d)
     return fma(a, b, -cd) + cd_error;
 }
 
+/* intersect_triangle_watertight from the sheared corners (shear_vertex's x and y, z scaled by
+ * shear.z), lane by lane: the edge functions w1 and w2 (w0 only decides), 1 / det and t; inside
+ * where the edge functions share a sign and det != 0. The pack test (8 triangles, one ray) and
+ * the packet test (one triangle, 8 rays, bvh_traverse_packet.cl) both end in it, so every lane of
+ * either computes what the scalar test does. */
+typedef struct {
+    floatW w1, w2, inv_det, t;
+    intW inside;
+} EdgeTestW;
+
+PT_INLINE EdgeTestW edge_test_w(floatW ax, floatW ay, floatW az, floatW bx, floatW by, floatW bz,
+                                floatW cx, floatW cy, floatW cz)
+{
+    EdgeTestW e;
+    floatW w0 = difference_of_products_w(cx, by, cy, bx);
+    e.w1 = difference_of_products_w(ax, cy, ay, cx);
+    e.w2 = difference_of_products_w(bx, ay, by, ax);
+    intW negative = (w0 < 0.0f) | (e.w1 < 0.0f) | (e.w2 < 0.0f);
+    intW positive = (w0 > 0.0f) | (e.w1 > 0.0f) | (e.w2 > 0.0f);
+    floatW det = w0 + e.w1 + e.w2;
+    e.inv_det = 1.0f / det;
+    e.t = fma(w0, az, fma(e.w1, bz, e.w2 * cz)) * e.inv_det;
+    e.inside = ~(negative & positive) & (det != 0.0f);
+    return e;
+}
+
 /* The pack test's per-ray constants: watertight_ray's with the origin permuted once per ray, where
  * the scalar test permutes (vertex - origin) per vertex; the same values either way. */
 typedef struct {
@@ -140,17 +166,9 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     floatW ax = fma(sx, az, v[kx] - ray.origin.x), ay = fma(sy, az, v[ky] - ray.origin.y);
     floatW bx = fma(sx, bz, v[3 + kx] - ray.origin.x), by = fma(sy, bz, v[3 + ky] - ray.origin.y);
     floatW cx = fma(sx, cz, v[6 + kx] - ray.origin.x), cy = fma(sy, cz, v[6 + ky] - ray.origin.y);
-    az *= ray.shear.z;
-    bz *= ray.shear.z;
-    cz *= ray.shear.z;
-    floatW w0 = difference_of_products_w(cx, by, cy, bx);
-    floatW w1 = difference_of_products_w(ax, cy, ay, cx);
-    floatW w2 = difference_of_products_w(bx, ay, by, ax);
-    intW negative = (w0 < 0.0f) | (w1 < 0.0f) | (w2 < 0.0f);
-    intW positive = (w0 > 0.0f) | (w1 > 0.0f) | (w2 > 0.0f);
-    floatW det = w0 + w1 + w2;
-    floatW inv_det = 1.0f / det;
-    floatW t = fma(w0, az, fma(w1, bz, w2 * cz)) * inv_det;
+    EdgeTestW e = edge_test_w(ax, ay, az * ray.shear.z, bx, by, bz * ray.shear.z, cx, cy,
+                              cz * ray.shear.z);
+    floatW t = e.t;
     /* Ties at exactly hit->t go to the lower (instance, original index) (hit_tie_limit,
      * hit_wins); before any hit nothing ties, hit->t being the ray's tmax. */
     uintW prims = pack->prim;
@@ -158,7 +176,7 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
     if (PT_FEATURE_INSTANCES && hit->prim != HIT_NONE && instance != hit->instance)
         tie_below = instance < hit->instance ? HIT_NONE : 0u;
     intW closer = (t < hit->t) | ((t == hit->t) & (prims < (uintW)(tie_below)));
-    uint bits = lane_bits(~(negative & positive) & (det != 0.0f) & (t >= tmin) & closer);
+    uint bits = lane_bits(e.inside & (t >= tmin) & closer);
     if (bits == 0u)
         return false;
     float ts[BVH_WIDTH], us[BVH_WIDTH], vs[BVH_WIDTH];
@@ -171,8 +189,8 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
             if (ts[lane] < ts[best] || (ts[lane] == ts[best] && lane_prim[lane] < lane_prim[best]))
                 best = lane;
         }
-    VSTORE_W(w1 * inv_det, 0, us);
-    VSTORE_W(w2 * inv_det, 0, vs);
+    VSTORE_W(e.w1 * e.inv_det, 0, us);
+    VSTORE_W(e.w2 * e.inv_det, 0, vs);
     hit->t = ts[best];
     hit->u = us[best];
     hit->v = vs[best];

@@ -60,6 +60,9 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
 }
 
 #if BVH_WIDTH == 8 && !PT_FEATURE_INSTANCES && !PT_FEATURE_CUTOUT
+#if PACKET_RAYS != 8
+#error "trace_paths_packets traces PACKET_RAYS paths in float8 lanes: the host's count must be 8"
+#endif
 /* trace_paths_packets: trace_paths with eight paths per work item, whose rays are traced as
  * packets (trace_packet, bvh_traverse_packet.cl). Work item i runs window samples 8 i .. 8 i + 7 in
  * slots 8 i .. 8 i + 7, bounce by bounce: their extension rays as one packet (extend_packet), each
