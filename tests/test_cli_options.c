@@ -254,3 +254,63 @@ Test(cli_options, bad_values_are_one_line)
     }
     unlink("/tmp/pt-cli-bad.png");
 }
+
+static bool parse_command(const char *command, const char *a1, const char *a2, Options *o,
+                          Error *err)
+{
+    char *argv[] = {"pt", (char *)command, "scene.json", (char *)a1, (char *)a2, NULL};
+    memset(err, 0, sizeof *err);
+    return cli_parse(a2 ? 5 : 4, argv, o, err);
+}
+
+/* An option a command would ignore is one line naming the option, the command and the commands
+ * that take it (pt bench and pt view used to accept --noise-threshold and the like and ignore
+ * them). */
+Test(cli_options, commands_refuse_the_options_they_do_not_use)
+{
+    static const char *const refused[][4] = {
+        {"bench", "--noise-threshold", "0.1", "pt render and pt view do"},
+        {"bench", "--min-spp", "4", "pt render and pt view do"},
+        {"bench", "--no-compaction", NULL, "pt render and pt view do"},
+        {"view", "--aov", "all", "pt render does"},
+        {"view", "-o", "x.png", "pt render does"},
+        {"view", "--time-limit", "2", "pt render does"},
+        {"render", "--frames", "3", "pt view does"},
+        {"render", "--csv", "x.csv", "pt bench does"},
+        {"devices", "--spp", "3", "pt render, pt view and pt bench do"},
+    };
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        Options o;
+        Error err;
+        const char *const *r = refused[i];
+        cr_expect_not(parse_command(r[0], r[1], r[2], &o, &err), "pt %s %s accepted", r[0], r[1]);
+        char needle[128];
+        snprintf(needle, sizeof needle, "%s: 'pt %s' does not take this option (%s)", r[1], r[0],
+                 r[3]);
+        cr_expect(strstr(err.message, needle), "%s", err.message);
+    }
+}
+
+/* --clamp and adaptive sampling become the settings of every command that takes them: pt bench
+ * measures with --clamp, pt view renders with it (the viewer's film test checks the image). */
+Test(cli_options, clamp_and_adaptive_reach_the_render_settings)
+{
+    const char *commands[] = {"render", "view", "bench"};
+    for (int i = 0; i < 3; i++) {
+        Options o;
+        Error err;
+        cr_assert(parse_command(commands[i], "--clamp", "2.5", &o, &err), "%s", err.message);
+        cr_expect_eq(cli_render_settings(&o).clamp_indirect, 2.5f, "pt %s --clamp", commands[i]);
+    }
+    const char *adaptive[] = {"render", "view"};
+    for (int i = 0; i < 2; i++) {
+        Options o;
+        Error err;
+        cr_assert(parse_command(adaptive[i], "--noise-threshold", "0.05", &o, &err), "%s",
+                  err.message);
+        RenderSettings s = cli_render_settings(&o);
+        cr_expect(s.noise_threshold == 0.05f && s.moments, "pt %s --noise-threshold", adaptive[i]);
+        cr_assert(parse_command(adaptive[i], "--min-spp", "3", &o, &err), "%s", err.message);
+        cr_expect_eq(cli_render_settings(&o).min_spp, 3, "pt %s --min-spp", adaptive[i]);
+    }
+}

@@ -101,29 +101,28 @@ Test(view, keys_drag_and_resize_in_a_real_window)
     free(film[0]), free(film[1]);
 }
 
-/* The film at N spp is 'pt render' at N spp bit for bit (--screenshot FILE.exr writes the film).
- * 512x512 keeps both at one sample per pixel per window (the viewer's windows are at most 16384
- * samples here, pt render's 4 x 65536 on a CPU), so the film sums samples in the same order in
- * both: this holds whatever the viewer's windows once the film sums exactly (integer sums). */
-Test(view, film_at_n_spp_is_pt_render_bit_for_bit)
+/* The film at N spp is 'pt render' at N spp bit for bit (--screenshot FILE.exr writes the film),
+ * with the settings options given to both (extra). 64x64 at 8 spp: each of the viewer's windows
+ * (and pt render's single one) holds several samples per pixel, so only an exact,
+ * order-independent film makes the two agree. */
+static void expect_view_film_is_render(const char *extra)
 {
     require_display();
     const char *dir = test_temp_dir();
     char root[PATH_MAX];
     cr_assert(getcwd(root, sizeof root));
-    /* 64x64 at 8 spp: each of the viewer's windows (and pt render's single one) holds several
-     * samples per pixel, so only an exact, order-independent film makes the two agree. */
-    const char *size = "--width 64 --height 64 --seed 3";
-    char args[PATH_MAX + 256];
+    char size[256];
+    snprintf(size, sizeof size, "--width 64 --height 64 --seed 3 %s", extra);
+    char args[PATH_MAX + 512];
     snprintf(args, sizeof args, "'%s/scenes/cornell-box' %s --screenshot view.exr", root, size);
     ViewSession s;
     int exit_code = view_until_converged(&s, dir, 8, args);
     char err[8192];
     slurp(s.err_path, err, sizeof err);
-    cr_assert_eq(exit_code, 0, "pt view: %s", err);
+    cr_assert_eq(exit_code, 0, "pt view %s: %s", extra, err);
     cr_assert(strstr(s.out, "wrote view.exr (8 spp)"), "stdout: %s", s.out);
     Run r = run_pt("render scenes/cornell-box %s --spp 8 -q -o %s/render.exr", size, dir);
-    cr_assert_eq(r.exit_code, 0, "pt render: %s", r.err);
+    cr_assert_eq(r.exit_code, 0, "pt render %s: %s", extra, r.err);
 
     float *view, *render;
     int view_width, view_height, render_width, render_height;
@@ -140,10 +139,20 @@ Test(view, film_at_n_spp_is_pt_render_bit_for_bit)
     for (size_t i = 0; i < n; i++)
         if (memcmp(&view[i], &render[i], sizeof(float)) != 0)
             differ++, first = first < n ? first : i;
-    cr_expect_eq(differ, 0, "%zu of %zu values differ; the first, pixel %zu channel %zu: %.9g in "
-                 "the viewer, %.9g in pt render", differ, n, first / 3, first % 3,
+    cr_expect_eq(differ, 0, "%s: %zu of %zu values differ; the first, pixel %zu channel %zu: %.9g "
+                 "in the viewer, %.9g in pt render", extra, differ, n, first / 3, first % 3,
                  first < n ? view[first] : 0.0f, first < n ? render[first] : 0.0f);
     free(view), free(render);
+}
+
+Test(view, film_at_n_spp_is_pt_render_bit_for_bit) { expect_view_film_is_render(""); }
+
+/* --clamp and adaptive sampling reach the viewer's settings (pt view used to accept them and
+ * render without them): its film is pt render's with the same options. */
+Test(view, clamp_and_adaptive_sampling_apply_in_the_viewer)
+{
+    expect_view_film_is_render("--clamp 0.25");
+    expect_view_film_is_render("--noise-threshold 0.3 --min-spp 2");
 }
 
 /* Reads dir/name (an EXR film) into *rgb; its size must be width x height. */

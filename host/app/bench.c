@@ -136,8 +136,10 @@ int command_bench(const Options *o)
     float *rgb = malloc((size_t)d->width * d->height * 3 * sizeof *rgb);
     if (!rgb)
         die("out of memory for a %dx%d film", d->width, d->height);
-    RenderSettings base = {.spp = d->spp, .max_depth = d->max_depth, .seed = o->seed,
-                           .no_nee = o->no_nee};
+    /* The options' settings (--clamp measured as pt render renders with it); the switches below
+     * are the modes'. */
+    RenderSettings base = cli_render_settings(o);
+    session_settle_settings(&s, &base, SORT_MATERIALS_OFF);
 
     RenderStats stats[NUM_MODES];
     size_t num_modes = NUM_MODES;

@@ -1,18 +1,28 @@
 // SPDX-License-Identifier: MIT
+/* cli.c: the command line, read with the one list of options (app/cli_options.h): getopt_long's
+ * table, `pt help` and the check that the command takes each option all come from it. */
 #include "app/cli.h"
 
-#include "io/gltf_loader.h"
-#include "io/obj_loader.h"
+#include "app/cli_options.h"
 #include "render/aov_layers.h"
-#include "scene/scene.h"
 
-#include <errno.h>
 #include <getopt.h>
-#include <math.h>
-#include <limits.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
+
+/* getopt_long's codes: OPTION_CODE + the row of cli_options (short options return their char). */
+#define OPTION_CODE 1000
+
+/* The rows of one help section: "  USAGE" padded to the help column, then the help text. */
+static void print_option_rows(HelpSection section)
+{
+    for (size_t i = 0; i < cli_option_count; i++) {
+        const CliOption *c = &cli_options[i];
+        if (c->section == section && c->help)
+            printf("  %-*s%s\n", strlen(c->usage) < 19 ? 19 : (int)strlen(c->usage) + 3, c->usage,
+                   c->help);
+    }
+}
 
 void cli_print_help(void)
 {
@@ -32,283 +42,136 @@ void cli_print_help(void)
          "  pt help                     this text\n"
          "  pt --version                the version\n"
          "\n");
-    puts("options (--opt VALUE or --opt=VALUE, before or after SCENE):\n"
-         "  --spp N            samples per pixel (default: the scene's, else 64)\n"
-         "  --max-depth D      path segments from the camera: 1 = emitters seen directly,\n"
-         "                     2 adds direct light (default: the scene's, else 8)\n"
-         "  --width W, --height H   film size (default: the scene's, else 512x512)\n"
-         "  --seed S           random seed (default 0); the image is a pure function of scene,\n"
-         "                     settings, seed and spp\n"
-         "  --device gpu|cpu|P:D    OpenCL device (default: first GPU, else first CPU)\n"
-         "  --device all|P:D,P:D,...   render on several devices at once (all: every GPU, or\n"
-         "                     every CPU device where there is none): the same image\n"
-         "  --checkpoint S     every S seconds, save the film beside the output (OUTPUT.ptckpt,\n"
-         "                     written atomically); --resume continues from it\n"
-         "  --resume           continue the render of the checkpoint beside the output (the\n"
-         "                     same scene and settings, or it is refused): the same bits as an\n"
-         "                     uninterrupted render\n"
-         "  --unit-spp N, --unit-rows N   work unit: N samples of a band of N rows (defaults:\n"
-         "                     1 sample, bands of at most 2^20 pixels); the image is the same\n"
-         "                     for every unit size\n"
-         "  -o FILE            output .exr (linear) or .png (sRGB); overwrites FILE. Without -o:\n"
-         "                     out/<scene>.exr and .png, numbered so nothing is overwritten\n"
-         "  --preview          with -o FILE.exr, also write FILE.png\n"
-         "  --exposure EV      exposure in stops for PNG output and the viewer (default 0)\n"
-         "  --tonemap NAME     display curve for PNG output and the viewer (EXR stays linear):\n"
-         "                     agx (default, Blender's look), aces (Hill's fit), filmic (Hable),\n"
-         "                     pbr-neutral (Khronos), reinhard (per channel), clamp (hard clip)\n"
-         "  --bloom S[,R]      glow around bright areas for PNG and the viewer (the EXR stays\n"
-         "                     linear, without it): a share S in [0, 1] of the light above\n"
-         "                     luminance 1 spread by a Gaussian of radius R pixels (3 sigma;\n"
-         "                     default 1% of the image diagonal)\n"
-         "  --clamp MAX        clamp each indirect sample's radiance to MAX (removes fireflies,\n"
-         "                     biases the image; off by default)\n"
-         "  --aov LIST         add layers to the EXR beside the image: albedo, normal, depth,\n"
-         "                     variance, spp (comma-separated) or all\n"
-         "  --noise-threshold T   adaptive sampling: pixels stop once their relative error is\n"
-         "                     below T (after --min-spp samples); --spp is the most a pixel gets\n"
-         "  --min-spp N        samples every pixel gets before adaptive sampling decides\n"
-         "  --time-limit S     stop after S seconds of rendering, at a whole sample: the image is\n"
-         "                     marked partial, the exit status is 0\n"
-         "  --camera JSON      replace the scene's camera (render) or set the start pose (view),\n"
-         "                     e.g. '{\"eye\": [0, 1, 3.9], \"target\": [0, 1, 0]}'"
-         "");
-    puts("  --no-nee           pure BSDF sampling (validation; same converged image)\n"
-         "  --sort-materials, --no-sort-materials   shade paths grouped by the material they hit,\n"
-         "                     or not (same image). Default: sorted when the scene has materials\n"
-         "                     beyond Lambert, smooth mirrors and glass (pt bench measures both)\n"
-         "  --no-compaction    keep dead paths in the wavefront (validation; same image)\n"
-         "  --instancing auto|always|never   how objects become instances (same image): auto\n"
-         "                     merges objects without a transform whose file is used once into\n"
-         "                     one mesh and instances the rest (two-level BVH); always instances\n"
-         "                     every object; never bakes every static object's transform into\n"
-         "                     its vertices (memory grows with the objects)\n"
-         "  --profile          per-kernel timing table\n"
-         "  --no-cache         compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
-         "                     default ~/.cache/pt) holds them\n"
-         "  --no-default-light a scene without any light (no emissive triangles, lights,\n"
-         "                     environment or background) stays black; by default it gets a\n"
-         "                     uniform white sky (background [1, 1, 1]) and a warning\n"
-         "  --quiet            no progress output (and no summary)\n"
-         "  --progress         progress lines at most once a second. Without it, progress goes\n"
-         "                     to stderr as one line rewritten in place on a terminal, else as\n"
-         "                     lines \"pt: progress: D/N spp (P%), S s\" after the first window,\n"
-         "                     at most every 5 s, and at the end\n"
-         "\n"
-         "");
+    puts("options (--opt VALUE or --opt=VALUE, before or after SCENE; a command refuses those it\n"
+         "does not use):");
+    print_option_rows(HELP_OPTIONS);
+    puts("\n");
     puts("pt render stops early on SIGINT (Ctrl-C), SIGTERM or SIGHUP: it writes the image so far\n"
          "(marked partial) and exits with 130, 143 or 129 (128 + the signal). Other exits: 0 done\n"
          "or stopped by --time-limit, 1 bad input or a failure (one 'pt: ...' line on stderr).\n"
          "\n"
-         "pt view (keys: press H in the window; --spp N stops sampling at N):\n"
-         "  --camera JSON      start pose (keys of the scene's camera; the C key prints one)\n"
-         "  --frames N         quit after N frames\n"
-         "  --screenshot FILE  at exit, save the film as FILE.exr (linear, as pt render writes it)\n"
-         "                     or else the window's framebuffer as a PNG\n"
-         "  --events           print a line on stdout per input event read and per state change\n"
-         "                     ('event: converged N spp'), for scripts and tests to wait on");
+         "pt view (keys: press H in the window; --spp N stops sampling at N):");
+    print_option_rows(HELP_VIEW);
 }
 
-static bool parse_int(const char *arg, const char *value, int min, int max, int *out, Error *err)
+/* getopt_long's view of the list: the long names and, as "o:qh", the short ones. */
+#define MAX_OPTIONS 64
+static struct option long_options[MAX_OPTIONS + 1];
+static char short_options[2 * MAX_OPTIONS + 2];
+
+static void build_getopt_tables(void)
 {
-    if (!value) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", arg);
-        return false;
-    }
-    char *end;
-    errno = 0;
-    long v = strtol(value, &end, 10);
-    if (errno || end == value || *end || v < min || v > max) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not an integer in [%d, %d]", arg, value, min,
-                  max);
-        return false;
-    }
-    *out = (int)v;
-    return true;
-}
-
-/* The seed is a 32-bit unsigned: 0 to 4294967295 (strtoul alone would take "-1" as ULONG_MAX). */
-static bool parse_seed(const char *arg, const char *value, unsigned *out, Error *err)
-{
-    if (!value) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", arg);
-        return false;
-    }
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(value, &end, 10);
-    if (errno || end == value || *end || value[strspn(value, " \t")] == '-' || v > UINT_MAX) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not an integer in [0, %u]", arg, value,
-                  UINT_MAX);
-        return false;
-    }
-    *out = (unsigned)v;
-    return true;
-}
-
-/* A finite number in [min, max]. */
-static bool parse_number(const char *arg, const char *value, double min, double max, double *out,
-                         Error *err)
-{
-    char *end;
-    double v = value ? strtod(value, &end) : 0.0;
-    if (!value || end == value || *end || !isfinite(v) || v < min || v > max) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not a number in [%g, %g]", arg,
-                  value ? value : "", min, max);
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-static bool parse_float_in(const char *arg, const char *value, double min, double max, float *out,
-                           Error *err)
-{
-    double v;
-    if (!parse_number(arg, value, min, max, &v, err))
-        return false;
-    *out = (float)v;
-    return true;
-}
-
-/* --bloom STRENGTH[,RADIUS]: strength in [0, 1] (the share of the bright part's energy spread
- * out), radius in pixels. */
-static bool parse_bloom(const char *value, Options *o, Error *err)
-{
-    char strength[64];
-    size_t len = strcspn(value, ",");
-    if (len >= sizeof strength) {
-        error_set(err, ERR_USAGE, NULL, 0, "--bloom: '%s' is not STRENGTH[,RADIUS]", value);
-        return false;
-    }
-    memcpy(strength, value, len);
-    strength[len] = '\0';
-    if (!parse_float_in("--bloom (strength)", strength, 0.0, 1.0, &o->bloom_strength, err))
-        return false;
-    return !value[len] ||
-           parse_float_in("--bloom (radius in pixels)", value + len + 1, 0.5, 1024.0,
-                          &o->bloom_radius, err);
-}
-
-/* Long options: the flag of those without a value, or a code for those with one. */
-enum {
-    OPT_SPP = 1000, OPT_MAX_DEPTH, OPT_WIDTH, OPT_HEIGHT, OPT_SEED, OPT_DEVICE, OPT_CSV, OPT_FRAMES,
-    OPT_SCREENSHOT, OPT_CAMERA, OPT_EXPOSURE, OPT_INSTANCING, OPT_AOV, OPT_TONEMAP, OPT_BLOOM,
-    OPT_CLAMP, OPT_NOISE_THRESHOLD, OPT_MIN_SPP, OPT_TIME_LIMIT, OPT_VERSION, OPT_PREVIEW,
-    OPT_PROGRESS, OPT_NO_NEE, OPT_SORT, OPT_NO_SORT, OPT_NO_COMPACTION, OPT_PROFILE, OPT_NO_CACHE,
-    OPT_NO_DEFAULT_LIGHT, OPT_EVENTS, OPT_CHECKPOINT, OPT_RESUME, OPT_UNIT_SPP, OPT_UNIT_ROWS,
-};
-
-static const struct option long_options[] = {
-    {"spp", required_argument, NULL, OPT_SPP},
-    {"max-depth", required_argument, NULL, OPT_MAX_DEPTH},
-    {"width", required_argument, NULL, OPT_WIDTH},
-    {"height", required_argument, NULL, OPT_HEIGHT},
-    {"seed", required_argument, NULL, OPT_SEED},
-    {"device", required_argument, NULL, OPT_DEVICE},
-    {"output", required_argument, NULL, 'o'},
-    {"csv", required_argument, NULL, OPT_CSV},
-    {"frames", required_argument, NULL, OPT_FRAMES},
-    {"screenshot", required_argument, NULL, OPT_SCREENSHOT},
-    {"camera", required_argument, NULL, OPT_CAMERA},
-    {"exposure", required_argument, NULL, OPT_EXPOSURE},
-    {"instancing", required_argument, NULL, OPT_INSTANCING},
-    {"aov", required_argument, NULL, OPT_AOV},
-    {"tonemap", required_argument, NULL, OPT_TONEMAP},
-    {"bloom", required_argument, NULL, OPT_BLOOM},
-    {"clamp", required_argument, NULL, OPT_CLAMP},
-    {"noise-threshold", required_argument, NULL, OPT_NOISE_THRESHOLD},
-    {"min-spp", required_argument, NULL, OPT_MIN_SPP},
-    {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
-    {"quiet", no_argument, NULL, 'q'},
-    {"help", no_argument, NULL, 'h'},
-    {"version", no_argument, NULL, OPT_VERSION},
-    {"preview", no_argument, NULL, OPT_PREVIEW},
-    {"progress", no_argument, NULL, OPT_PROGRESS},
-    {"no-nee", no_argument, NULL, OPT_NO_NEE},
-    {"sort-materials", no_argument, NULL, OPT_SORT},
-    {"no-sort-materials", no_argument, NULL, OPT_NO_SORT},
-    {"no-compaction", no_argument, NULL, OPT_NO_COMPACTION},
-    {"profile", no_argument, NULL, OPT_PROFILE},
-    {"no-cache", no_argument, NULL, OPT_NO_CACHE},
-    {"no-default-light", no_argument, NULL, OPT_NO_DEFAULT_LIGHT},
-    {"events", no_argument, NULL, OPT_EVENTS},
-    {"checkpoint", required_argument, NULL, OPT_CHECKPOINT},
-    {"resume", no_argument, NULL, OPT_RESUME},
-    {"unit-spp", required_argument, NULL, OPT_UNIT_SPP},
-    {"unit-rows", required_argument, NULL, OPT_UNIT_ROWS},
-    {NULL, 0, NULL, 0},
-};
-
-static bool parse_option(int code, const char *a, const char *v, Options *o, Error *err)
-{
-    switch (code) {
-    case OPT_SPP: return parse_int(a, v, 1, INT_MAX, &o->spp, err);
-    case OPT_MAX_DEPTH: return parse_int(a, v, 1, MAX_DEPTH_LIMIT, &o->max_depth, err);
-    case OPT_WIDTH: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->width, err);
-    case OPT_HEIGHT: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->height, err);
-    case OPT_SEED: o->seed_given = true; return parse_seed(a, v, &o->seed, err);
-    case OPT_DEVICE: o->device = v; return true;
-    case 'o': o->output = v; return true;
-    case OPT_CSV: o->csv = v; return true;
-    case OPT_FRAMES: return parse_int(a, v, 1, INT_MAX, &o->frames, err);
-    case OPT_SCREENSHOT: o->screenshot = v; return true;
-    case OPT_CAMERA: o->camera_json = v; return true;
-    case OPT_EXPOSURE: return parse_float_in(a, v, -64.0, 64.0, &o->exposure, err);
-    case OPT_INSTANCING:
-        if (!strcmp(v, "auto")) o->instancing = INSTANCING_AUTO;
-        else if (!strcmp(v, "always")) o->instancing = INSTANCING_ALWAYS;
-        else if (!strcmp(v, "never")) o->instancing = INSTANCING_NEVER;
-        else {
-            error_set(err, ERR_USAGE, NULL, 0, "--instancing: '%s' is not auto, always or never", v);
-            return false;
+    if (cli_option_count > MAX_OPTIONS)
+        die("bug: %zu options, room for %d (MAX_OPTIONS)", cli_option_count, MAX_OPTIONS);
+    size_t n = 0, s = 0;
+    short_options[s++] = ':'; /* a missing value returns ':' */
+    for (size_t i = 0; i < cli_option_count; i++) {
+        const CliOption *c = &cli_options[i];
+        if (c->kind == ARG_HELP_ONLY)
+            continue;
+        bool value = cli_option_takes_value(c);
+        long_options[n++] = (struct option){c->name, value ? required_argument : no_argument, NULL,
+                                            OPTION_CODE + (int)i};
+        if (c->short_name) {
+            short_options[s++] = c->short_name;
+            if (value)
+                short_options[s++] = ':';
         }
-        return true;
-    case OPT_AOV: return aov_parse_list(v, &o->aov_mask, err);
-    case OPT_TONEMAP:
-        if (!tonemap_from_name(v, &o->tonemap)) {
-            char known[128] = "";
-            for (int t = 0; t < TONEMAP_COUNT; t++)
-                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s",
-                         t ? ", " : "", tonemap_name((Tonemap)t));
-            error_set(err, ERR_USAGE, NULL, 0, "--tonemap: '%s' is not a tone map (%s)", v, known);
-            return false;
-        }
-        return true;
-    case OPT_BLOOM: return parse_bloom(v, o, err);
-    case OPT_CLAMP: return parse_float_in(a, v, 1e-6, 1e30, &o->clamp_max, err);
-    case OPT_NOISE_THRESHOLD: return parse_float_in(a, v, 1e-9, 1e9, &o->noise_threshold, err);
-    case OPT_MIN_SPP: return parse_int(a, v, 1, INT_MAX, &o->min_spp, err);
-    case OPT_TIME_LIMIT: return parse_number(a, v, 1e-3, 1e9, &o->time_limit, err);
-    case 'q':
-        o->quiet = true;
-        obj_loader_set_quiet(true); /* MTL statements pt does not use: no warnings */
-        gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
-        return true;
-    case 'h': o->command = CMD_HELP; return true;
-    case OPT_VERSION: o->command = CMD_VERSION; return true;
-    case OPT_PREVIEW: o->preview = true; return true;
-    case OPT_PROGRESS: o->progress = true; return true;
-    case OPT_NO_NEE: o->no_nee = true; return true;
-    case OPT_SORT: o->sort_materials = SORT_MATERIALS_ON; return true;
-    case OPT_NO_SORT: o->sort_materials = SORT_MATERIALS_OFF; return true;
-    case OPT_NO_COMPACTION: o->no_compaction = true; return true;
-    case OPT_PROFILE: o->profile = true; return true;
-    case OPT_NO_CACHE: o->no_cache = true; return true;
-    case OPT_NO_DEFAULT_LIGHT: o->no_default_light = true; return true;
-    case OPT_EVENTS: o->print_events = true; return true;
-    case OPT_CHECKPOINT: return parse_number(a, v, 1e-3, 1e9, &o->checkpoint_seconds, err);
-    case OPT_RESUME: o->resume = true; return true;
-    case OPT_UNIT_SPP: return parse_int(a, v, 1, INT_MAX, &o->unit_spp, err);
-    case OPT_UNIT_ROWS: return parse_int(a, v, 1, FILM_SIZE_LIMIT, &o->unit_rows, err);
     }
-    return true;
+    long_options[n] = (struct option){0};
+    short_options[s] = '\0';
+}
+
+static const CliOption *option_of_code(int code)
+{
+    if (code >= OPTION_CODE && code < OPTION_CODE + (int)cli_option_count)
+        return &cli_options[code - OPTION_CODE];
+    for (size_t i = 0; i < cli_option_count; i++)
+        if (code == cli_options[i].short_name)
+            return &cli_options[i];
+    return NULL;
+}
+
+/* An option the command would ignore is refused, naming the commands that take it. */
+static bool check_command_takes(const CliOption *c, const char *arg, Command command,
+                                const char *cmd, Error *err)
+{
+    if (command == CMD_HELP || command == CMD_VERSION || (c->commands & CMD_BIT(command)))
+        return true;
+    static const char *const names[] = {[CMD_RENDER] = "pt render", [CMD_VIEW] = "pt view",
+                                        [CMD_BENCH] = "pt bench"};
+    char takers[64] = "";
+    int count = 0, total = 0;
+    for (int k = CMD_RENDER; k <= CMD_BENCH; k++)
+        total += names[k] && (c->commands & CMD_BIT(k));
+    for (int k = CMD_RENDER; k <= CMD_BENCH; k++)
+        if (names[k] && (c->commands & CMD_BIT(k)))
+            snprintf(takers + strlen(takers), sizeof takers - strlen(takers), "%s%s",
+                     count == 0 ? "" : count == total - 1 ? " and " : ", ", names[k]), count++;
+    error_set(err, ERR_USAGE, NULL, 0, "%s: 'pt %s' does not take this option (%s %s)", arg, cmd,
+              takers, count > 1 ? "do" : "does");
+    return false;
 }
 
 /* The option as the user wrote it (argv[optind - 1] after getopt_long), for messages. */
 static const char *option_as_written(char **argv, int index)
 {
     return index > 0 ? argv[index - 1] : "?";
+}
+
+static bool parse_command(const char *cmd, Options *o, Error *err)
+{
+    if (!strcmp(cmd, "render")) o->command = CMD_RENDER;
+    else if (!strcmp(cmd, "view")) o->command = CMD_VIEW;
+    else if (!strcmp(cmd, "devices")) o->command = CMD_DEVICES;
+    else if (!strcmp(cmd, "bench")) o->command = CMD_BENCH;
+    else if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) o->command = CMD_HELP;
+    else if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) o->command = CMD_VERSION;
+    else {
+        error_set(err, ERR_USAGE, NULL, 0, "unknown command '%s' (try 'pt help')", cmd);
+        return false;
+    }
+    return true;
+}
+
+/* getopt_long's error codes as pt's messages: an unknown option, or one without its value. */
+static void getopt_error(int code, char **sub_argv, Error *err)
+{
+    const char *written = option_as_written(sub_argv, optind);
+    if (code == ':')
+        error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", written);
+    else if (optopt && optopt < 256)
+        error_set(err, ERR_USAGE, NULL, 0, "unknown option '-%c' (try 'pt help')", optopt);
+    else
+        error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", written);
+}
+
+/* The options after the command, by getopt_long: --opt VALUE and --opt=VALUE alike, options and
+ * the SCENE in any order ("--" ends the options). opterr = 0: pt words its own messages. */
+static bool parse_options(int sub_argc, char **sub_argv, Options *o, Error *err)
+{
+    Command command = o->command; /* as named: --help may change o->command */
+    build_getopt_tables();
+    opterr = 0;
+    optind = 0; /* 0, not 1: glibc's full reset, so that cli_parse can run more than once */
+    int code;
+    while ((code = getopt_long(sub_argc, sub_argv, short_options, long_options, NULL)) != -1) {
+        const CliOption *c = option_of_code(code);
+        if (code == '?' || code == ':' || !c) {
+            getopt_error(code, sub_argv, err);
+            return false;
+        }
+        char name[64];
+        const char *written = option_as_written(sub_argv, optind);
+        /* "--spp=x" is named "--spp" in messages; a value given separately is argv[optind - 1]. */
+        if (optarg && written == optarg && optind >= 2)
+            written = sub_argv[optind - 2];
+        snprintf(name, sizeof name, "%.*s", (int)strcspn(written, "="), written);
+        if (!check_command_takes(c, name, command, sub_argv[0], err) ||
+            !cli_option_parse(c, name, optarg, o, err))
+            return false;
+    }
+    return true;
 }
 
 bool cli_parse(int argc, char **argv, Options *o, Error *err)
@@ -320,46 +183,10 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
         return true;
     }
     const char *cmd = argv[1];
-    if (!strcmp(cmd, "render")) o->command = CMD_RENDER;
-    else if (!strcmp(cmd, "view")) o->command = CMD_VIEW;
-    else if (!strcmp(cmd, "devices")) o->command = CMD_DEVICES;
-    else if (!strcmp(cmd, "bench")) o->command = CMD_BENCH;
-    else if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) o->command = CMD_HELP;
-    else if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) o->command = CMD_VERSION;
-    else {
-        error_set(err, ERR_USAGE, NULL, 0, "unknown command '%s' (try 'pt help')", cmd);
-        return false;
-    }
-    /* getopt_long over the arguments after the command: --opt VALUE and --opt=VALUE alike,
-     * options and the SCENE in any order ("--" ends the options). opterr = 0: pt words its own
-     * messages. */
     int sub_argc = argc - 1;
     char **sub_argv = argv + 1;
-    opterr = 0;
-    optind = 0; /* 0, not 1: glibc's full reset, so that cli_parse can run more than once */
-    int code;
-    while ((code = getopt_long(sub_argc, sub_argv, ":o:qh", long_options, NULL)) != -1) {
-        if (code == '?') {
-            const char *written = option_as_written(sub_argv, optind);
-            if (optopt && optopt < 256)
-                error_set(err, ERR_USAGE, NULL, 0, "unknown option '-%c' (try 'pt help')", optopt);
-            else
-                error_set(err, ERR_USAGE, NULL, 0, "unknown option '%s' (try 'pt help')", written);
-            return false;
-        }
-        if (code == ':') {
-            error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", option_as_written(sub_argv, optind));
-            return false;
-        }
-        char name[64];
-        const char *written = option_as_written(sub_argv, optind);
-        /* "--spp=x" is named "--spp" in messages; a value given separately is argv[optind - 1]. */
-        if (optarg && written == optarg && optind >= 2)
-            written = sub_argv[optind - 2];
-        snprintf(name, sizeof name, "%.*s", (int)strcspn(written, "="), written);
-        if (!parse_option(code, name, optarg, o, err))
-            return false;
-    }
+    if (!parse_command(cmd, o, err) || !parse_options(sub_argc, sub_argv, o, err))
+        return false;
     for (int i = optind; i < sub_argc; i++) {
         if (!o->scene)
             o->scene = sub_argv[i];
@@ -388,12 +215,30 @@ RenderDesc cli_render_desc(const Options *o)
                         .instancing = o->instancing, .camera_json = o->camera_json};
 }
 
+/* The one place the options become render settings: pt render, pt bench (its modes then vary
+ * the switches they measure) and pt view (ViewerDesc.settings) all start from it. spp and
+ * max_depth stay 0 (the scene's: session_settle_settings), material sorting is settled there
+ * too, from o->sort_materials. The variance layer needs the samples' squares as adaptive sampling
+ * does. */
+RenderSettings cli_render_settings(const Options *o)
+{
+    return (RenderSettings){
+        .seed = o->seed,
+        .no_nee = o->no_nee,
+        .no_compaction = o->no_compaction,
+        .profile = o->profile,
+        .clamp_indirect = o->clamp_max,
+        .noise_threshold = o->noise_threshold,
+        .min_spp = o->min_spp,
+        .moments = o->noise_threshold > 0.0f || (o->aov_mask & AOV_MASK(AOV_LAYER_VARIANCE)),
+    };
+}
+
 ViewerDesc cli_viewer_desc(const Options *o)
 {
-    return (ViewerDesc){.render = cli_render_desc(o), .seed = o->seed, .exposure = o->exposure,
-                        .tonemap = o->tonemap, .bloom_strength = o->bloom_strength,
-                        .bloom_radius = o->bloom_radius,
-                        .no_nee = o->no_nee, .no_compaction = o->no_compaction,
+    return (ViewerDesc){.render = cli_render_desc(o), .settings = cli_render_settings(o),
+                        .exposure = o->exposure, .tonemap = o->tonemap,
+                        .bloom_strength = o->bloom_strength, .bloom_radius = o->bloom_radius,
                         .sort_materials = o->sort_materials, .quiet = o->quiet,
                         .frames = o->frames, .screenshot = o->screenshot,
                         .print_events = o->print_events};

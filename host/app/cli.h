@@ -8,6 +8,7 @@
 #include "base/error.h"
 #include "io/tonemap.h"
 #include "render/session.h"
+#include "render/wavefront.h"
 #include "viewer/viewer.h"
 
 typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
@@ -49,11 +50,15 @@ typedef struct {
                               * (view), a JSON object with the keys of the scene's camera */
 } Options;
 
-/* Parses argv; returns false with ERR_USAGE naming the offending argument. */
+/* Parses argv; returns false with ERR_USAGE naming the offending argument (or an option the
+ * command does not take: app/cli_options.c lists who takes what). */
 bool cli_parse(int argc, char **argv, Options *out, Error *err);
 void cli_print_help(void);
 /* The parts of the options that the render core and the viewer take. */
 RenderDesc cli_render_desc(const Options *o);
+/* The render settings the options ask for; the scene's part (spp, depth, material sorting) is
+ * settled by session_settle_settings once the scene is open. */
+RenderSettings cli_render_settings(const Options *o);
 ViewerDesc cli_viewer_desc(const Options *o);
 
 #endif

@@ -178,25 +178,14 @@ int command_render(const Options *o)
     RenderImages images;
     if (!render_images_alloc(&images, o->aov_mask, num_pixels))
         die("out of memory for a %dx%d film", desc->width, desc->height);
-    unsigned seed = o->seed_given ? o->seed : 0u;
+    unsigned seed = o->seed; /* 0 unless --seed */
     int spp = desc->spp, spp_done = spp;
     RenderStop stop = RENDER_COMPLETE; /* anything else: the image is partial */
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
     stop_signals_install();
     fs_set_before_rename_hook(raise_at_write_point);
-    RenderSettings settings = {
-        .spp = desc->spp,
-        .max_depth = desc->max_depth,
-        .seed = seed,
-        .no_nee = o->no_nee,
-        .sort_materials = session_sorts_materials(&session.scene.data, o->sort_materials),
-        .no_compaction = o->no_compaction,
-        .profile = o->profile,
-        .clamp_indirect = o->clamp_max,
-        .noise_threshold = o->noise_threshold,
-        .min_spp = o->min_spp,
-        .moments = o->noise_threshold > 0.0f || (images.mask & AOV_MASK(AOV_LAYER_VARIANCE)),
-    };
+    RenderSettings settings = cli_render_settings(o);
+    session_settle_settings(&session, &settings, o->sort_materials);
     RenderStats stats;
     RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
     bool rendered;

@@ -177,3 +177,11 @@ bool session_sorts_materials(const SceneData *d, int request)
         return request == SORT_MATERIALS_ON;
     return material_features(d->materials, d->num_materials, &d->textures) != 0;
 }
+
+void session_settle_settings(const Session *s, RenderSettings *settings, int sort_request)
+{
+    if (!settings->spp)
+        settings->spp = s->scene.desc.spp;
+    settings->max_depth = s->scene.desc.max_depth;
+    settings->sort_materials = session_sorts_materials(&s->scene.data, sort_request);
+}

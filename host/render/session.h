@@ -8,6 +8,7 @@
 #include "device/device.h"
 #include "scene/scene.h"
 #include "render/scene_upload.h"
+#include "render/wavefront.h"
 
 /* What to render and where: the scene file, the device, and overrides of the scene's settings
  * (zero keeps the scene's value). Commands fill it from their command line. */
@@ -49,6 +50,10 @@ void session_device_close(SessionDevice *d);
  * Cornell box about a quarter slower (the textured scene about a tenth). */
 enum { SORT_MATERIALS_AUTO = 0, SORT_MATERIALS_ON = 1, SORT_MATERIALS_OFF = 2 };
 bool session_sorts_materials(const SceneData *data, int request);
+/* The scene's part of settings asked for on the command line: spp 0 becomes the scene's (with
+ * the session's override), max_depth the scene's, sort_materials session_sorts_materials of
+ * sort_request. */
+void session_settle_settings(const Session *s, RenderSettings *settings, int sort_request);
 void session_close(Session *s);
 
 #endif

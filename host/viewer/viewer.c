@@ -311,10 +311,9 @@ int command_view(const ViewerDesc *o)
     if (!(v->scene_size > 0.0f))
         v->scene_size = 1.0f;
     v->target_spp = o->render.spp ? o->render.spp : UNLIMITED_SPP;
-    v->settings = (RenderSettings){.spp = v->target_spp, .max_depth = d->max_depth,
-                                   .seed = o->seed, .no_nee = o->no_nee,
-                                   .sort_materials = session_sorts_materials(&v->session.scene.data, o->sort_materials),
-                                   .no_compaction = o->no_compaction};
+    v->settings = o->settings;
+    v->settings.spp = v->target_spp;
+    session_settle_settings(&v->session, &v->settings, o->sort_materials);
     if (!o->quiet) {
         session_print_summary(&v->session);
         fprintf(stderr, "pt: view: press H in the window for the keys\n");

@@ -8,15 +8,17 @@
 
 #include "io/tonemap.h"
 #include "render/session.h"
+#include "render/wavefront.h"
 
 /* What 'pt view' is asked for; zero means default. */
 typedef struct {
     RenderDesc render;       /* .spp 0 = sample until closed */
-    unsigned seed;
+    RenderSettings settings; /* from the command line (app/cli.h cli_render_settings): seed,
+                              * --clamp, adaptive sampling, ...; the scene's part settled here */
     float exposure;          /* stops */
     Tonemap tonemap;         /* display curve (io/tonemap.h); 0 is AgX, the default */
     float bloom_strength, bloom_radius; /* --bloom (render/bloom.h): 0 = none; radius 0 = default */
-    bool no_nee, no_compaction, quiet;
+    bool quiet;
     int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool print_events;       /* --events: a stdout line per input event and state change */
     int frames;              /* quit after this many frames; 0 = run until closed */
