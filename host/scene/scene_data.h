@@ -93,5 +93,10 @@ bool scene_data_add_instance(SceneData *data, const SceneInstance *instance, Err
  * bounds. scene_data_finish calls it (adding mesh 0 and one identity instance when no mesh was
  * added); call it again after changing instances. */
 void scene_data_finish_instances(SceneData *data);
+/* Applies m to the triangles and vertices appended since first_triangle / first_vertex: points by
+ * m, normals by its inverse transpose, and a mirroring m (det < 0) reverses each triangle's
+ * corners so that the front stays where the transformed normal points (DESIGN "Objects"). */
+void scene_data_bake_transform(SceneData *data, uint32_t first_triangle, uint32_t first_vertex,
+                               const Affine *m);
 
 #endif
