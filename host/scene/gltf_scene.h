@@ -31,9 +31,4 @@ bool gltf_scene_add(SceneDesc *d, const char *path, const ObjectOptions *options
  * created on first use, NULL for the objects before). False: out of memory. */
 bool scene_desc_reserve_objects(SceneDesc *d, int extra);
 
-/* The materials and images of a loaded file (gltf_material_read.cc); the materials carry one more
- * entry, the glTF default material, used by primitives that name none. False: out of memory. */
-bool gltf_read_materials(const GltfFile *file, GltfMaterial **materials, int *count,
-                         GltfImage **images, int *num_images);
-
 #endif
