@@ -258,7 +258,7 @@ static void check_scene(InstancedScene *s, uint32_t n, uint64_t seed, const char
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s->all);
+    test_mesh_free(&s->all);
 }
 
 Test(instances_bvh, overlapping_mirrored_and_composed_instances_match_brute_force, .timeout = 600)
@@ -329,7 +329,7 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s.all);
+    test_mesh_free(&s.all);
 }
 
 /* No instances at all (an empty scene is two-level with none): every ray misses, in every layout
@@ -355,5 +355,5 @@ Test(instances_bvh, empty_scene_misses_everything, .timeout = 600)
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s.all);
+    test_mesh_free(&s.all);
 }

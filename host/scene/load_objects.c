@@ -90,7 +90,7 @@ static bool object_moves(const SceneDesc *d, int i)
 static bool load_object(SceneData *data, const SceneDesc *d, int i, const NamedMaterials *named,
                         Error *err)
 {
-    ObjMesh mesh;
+    Mesh mesh;
     memset(&mesh, 0, sizeof mesh);
     if (d->object_meshes && d->object_meshes[i]) /* a glTF primitive, decoded in memory */
         return scene_data_append_object(data, d->object_meshes[i], d->objects[i],
@@ -99,7 +99,7 @@ static bool load_object(SceneData *data, const SceneDesc *d, int i, const NamedM
     bool ok = (ply ? ply_load(d->objects[i], &mesh, err) : obj_load(d->objects[i], &mesh, err)) &&
               scene_data_append_object(data, &mesh, d->objects[i], &d->object_options[i], named,
                                        err);
-    obj_free(&mesh);
+    mesh_free(&mesh);
     return ok;
 }
 

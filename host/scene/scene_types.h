@@ -69,7 +69,7 @@ typedef struct {
     MeshFormat *object_formats; /* per object, by the key that named it; NULL: all MESH_OBJ */
     ObjectOptions *object_options; /* per object; material indexes `materials` */
     ObjectTransform *object_transforms; /* per object */
-    const ObjMesh **object_meshes; /* per object: the in-memory mesh of a MESH_GLTF object, else
+    const Mesh **object_meshes; /* per object: the in-memory mesh of a MESH_GLTF object, else
                                       NULL (objects[i] is read); NULL: none */
     SceneGltf *gltf_files; /* the glTF files the objects come from */
     int num_gltf_files;
