@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh_fixtures.h: what the BVH tests (tests/test_bvh_*.c) share. bvh_fixtures.c: the host-side
+/* bvh_fixtures.h: what the BVH tests (tests/test_accel_bvh_*.c) share. bvh_fixtures.c: the host-side
  * invariants of a built tree and the builder's awkward meshes; bvh_fixtures_trace.c: a mesh on the
  * test device, traced by the batch kernels of tests/cl/bvh_test.cl, and random rays into it;
  * bvh_fixtures_reference.c: the brute-force reference those traces are compared with. */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bvh_fixtures_instances.h: scenes of instanced procedural meshes for the two-level BVH tests
- * (tests/test_instances_bvh.c): the meshes in one triangle array, instances with composed,
+ * (tests/test_accel_instances_bvh.c): the meshes in one triangle array, instances with composed,
  * mirrored or moving transforms (host/base/transform.h), and their world boxes. Header-only. */
 #ifndef PT_BVH_FIXTURES_INSTANCES_H
 #define PT_BVH_FIXTURES_INSTANCES_H

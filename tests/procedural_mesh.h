@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* procedural_mesh.h: meshes generated in memory for tests/test_bvh_*.c and tools/bench_bvh.c (header
+/* procedural_mesh.h: meshes generated in memory for tests/test_accel_bvh_*.c and tools/bench_bvh.c (header
  * only: both include it, neither links the other). Closed meshes with shared vertices (icosphere,
  * subdivided cube, bumpy torus) for watertightness, and a random triangle soup with exact
  * duplicates and coplanar overlaps for tie handling. */

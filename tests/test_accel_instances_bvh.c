@@ -5,7 +5,7 @@
  * rays into overlapping, mirrored, composed ("nested") and moving instances at random times; the
  * hits are the world-space truth (a double-precision host reference over transformed triangles);
  * and two identical instances in one place always report the lower index.
- * (test_instances_bvh_tlas.c: the TLAS's boxes in every layout.) */
+ * (test_accel_instances_bvh_tlas.c: the TLAS's boxes in every layout.) */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>

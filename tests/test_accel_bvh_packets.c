@@ -2,7 +2,7 @@
 /* trace_packet (cl/geometry/bvh_traverse_packet.cl): eight rays walked together through the 8-wide
  * layout report, lane by lane, what trace_bvh reports for each ray alone, bit for bit (closest hit
  * with its t, barycentrics and triangle; any-hit answer), and so what the brute-force loop reports
- * (test_bvh_traverse.c). Rays come as packets of eight: the renderer's mix of awkward rays (tmin >
+ * (test_accel_bvh_traverse.c). Rays come as packets of eight: the renderer's mix of awkward rays (tmin >
  * 0, finite tmax, axis-parallel with signed zeros) one per lane, bundles of nearly parallel rays
  * from nearly one point (which walk together deep into the tree), identical lanes, and two bundles
  * interleaved (which part at the root); the count is no multiple of eight, so the last packet has
