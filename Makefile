@@ -71,14 +71,16 @@ run: deps
 	$(Q)$(MAKE) --no-print-directory all
 	$(BUILD)/pt render $(SCENE) $(if $(DEVICE),--device $(DEVICE))
 
+# The tests run again under every other BVH layout (make test).
+BVH_LAYOUT_TESTS := $(addprefix $(BUILD)/tests/,test_accel_bvh_traverse test_accel_hit_ties \
+                    test_accel_instances_bvh)
+
 test: deps
 	$(Q)./tools/check-layers.sh
 	$(Q)$(MAKE) --no-print-directory all $(TESTS)
 	$(Q)PT_BIN=$(BUILD)/pt ./tools/run-tests.sh $(TESTS) \
-	    PT_BVH_WIDTH=4 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties $(BUILD)/tests/test_instances_bvh \
-	    PT_BVH_WIDTH=2 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties $(BUILD)/tests/test_instances_bvh \
-	    PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 $(BUILD)/tests/test_bvh_traverse $(BUILD)/tests/test_hit_ties \
-	    $(BUILD)/tests/test_instances_bvh
+	    PT_BVH_WIDTH=4 $(BVH_LAYOUT_TESTS) PT_BVH_WIDTH=2 $(BVH_LAYOUT_TESTS) \
+	    PT_BVH_WIDTH=2 PT_BVH_QUANTIZED=1 $(BVH_LAYOUT_TESTS)
 	$(Q)$(MAKE) --no-print-directory fuzz-replay
 
 asan:
@@ -177,7 +179,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
 
 # The BVH tests share tests/bvh_fixtures*.c (bvh_fixtures.h).
-$(filter $(BUILD)/tests/test_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/bvh_fixtures*.c))
+$(filter $(BUILD)/tests/test_accel_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/bvh_fixtures*.c))
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o

@@ -10,7 +10,7 @@
 
 typedef struct {
     const Bvh *bvh;
-    const Mesh *mesh;
+    const TestMesh *mesh;
     uint32_t *leaf_hits;  /* per leaf-order triangle: how many leaves hold it */
     uint8_t *node_seen;
     int max_depth;        /* deepest inner node, root = 0 */
@@ -105,7 +105,7 @@ static void check_node(TreeCheck *check, uint32_t index, const float lo[3], cons
     check_child(check, index, &node->rmin, &node->rmax, depth + 1);
 }
 
-int check_tree_with_costs(const Bvh *bvh, const Mesh *mesh, const char *name, BvhCosts costs)
+int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name, BvhCosts costs)
 {
     TreeCheck check = {bvh, mesh, calloc(bvh->num_tris + 1, 4), calloc(bvh->num_nodes, 1), 0, 0, 0, costs};
     cr_assert_eq(bvh->num_tris, mesh->num_triangles, "%s: triangle count", name);
@@ -147,9 +147,9 @@ int check_tree_with_costs(const Bvh *bvh, const Mesh *mesh, const char *name, Bv
     return check.max_depth;
 }
 
-Mesh mesh_axis_chains(uint32_t per_axis)
+TestMesh mesh_axis_chains(uint32_t per_axis)
 {
-    Mesh mesh = mesh_alloc(9 * per_axis, 3 * per_axis);
+    TestMesh mesh = mesh_alloc(9 * per_axis, 3 * per_axis);
     for (uint32_t i = 0; i < per_axis; i++)
         for (int axis = 0; axis < 3; axis++) {
             float p[3] = {0, 0, 0};
@@ -166,9 +166,9 @@ Mesh mesh_axis_chains(uint32_t per_axis)
     return mesh;
 }
 
-Mesh mesh_copies(uint32_t n)
+TestMesh mesh_copies(uint32_t n)
 {
-    Mesh mesh = mesh_alloc(3, n);
+    TestMesh mesh = mesh_alloc(3, n);
     mesh.positions[mesh.num_positions++] = mesh_point(0, 0, 0);
     mesh.positions[mesh.num_positions++] = mesh_point(1, 0, 0);
     mesh.positions[mesh.num_positions++] = mesh_point(0, 1, 0);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh_fixtures.h: what the BVH tests (tests/test_bvh_*.c) share. bvh_fixtures.c: the host-side
+/* bvh_fixtures.h: what the BVH tests (tests/test_accel_bvh_*.c) share. bvh_fixtures.c: the host-side
  * invariants of a built tree and the builder's awkward meshes; bvh_fixtures_trace.c: a mesh on the
  * test device, traced by the batch kernels of tests/cl/bvh_test.cl, and random rays into it;
  * bvh_fixtures_reference.c: the brute-force reference those traces are compared with. */
@@ -21,14 +21,14 @@
 /* Every invariant of a built tree (boxes contain what is below them, every triangle in exactly
  * one leaf, pre-order layout, bounded depth, stored SAH cost in the given costs); returns the
  * deepest inner node's depth. */
-int check_tree_with_costs(const Bvh *bvh, const Mesh *mesh, const char *name, BvhCosts costs);
+int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name, BvhCosts costs);
 
 /* Three chains of unit triangles along the axes, the i-th at distance (16/15)^i (up to 1e36).
  * A binned split only takes the far sixteenth of one axis's range off (a few dozen triangles),
  * so SAH alone would build a tree about 90 levels deep. */
-Mesh mesh_axis_chains(uint32_t per_axis);
+TestMesh mesh_axis_chains(uint32_t per_axis);
 /* n copies of one triangle. */
-Mesh mesh_copies(uint32_t n);
+TestMesh mesh_copies(uint32_t n);
 
 /* ---- Tracing on the device (bvh_fixtures_trace.c) ------------------------------------------ */
 
@@ -40,7 +40,7 @@ typedef struct {
 
 typedef struct {
     Device *dev;
-    Mesh mesh;
+    TestMesh mesh;
     Bvh bvh;
     cl_mem nodes, tris;
     uint32_t num_prims; /* entries of tris (triangles, or packs of the wide layout) */
@@ -49,7 +49,7 @@ typedef struct {
 } TraceScene;
 
 /* Builds mesh's tree for the device's layout and uploads it; takes the mesh over. */
-TraceScene trace_scene_create(Device *dev, Mesh mesh);
+TraceScene trace_scene_create(Device *dev, TestMesh mesh);
 void trace_scene_release(TraceScene *scene);
 /* Runs bvh_test_trace_closest or _any over rays; out gets one float4 (closest) or uint (any) per
  * ray. */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bvh_fixtures_instances.h: scenes of instanced procedural meshes for the two-level BVH tests
- * (tests/test_instances_bvh.c): the meshes in one triangle array, instances with composed,
+ * (tests/test_accel_instances_bvh.c): the meshes in one triangle array, instances with composed,
  * mirrored or moving transforms (host/base/transform.h), and their world boxes. Header-only. */
 #ifndef PT_BVH_FIXTURES_INSTANCES_H
 #define PT_BVH_FIXTURES_INSTANCES_H
@@ -25,7 +25,7 @@ typedef struct {
 } TestInstance;
 
 typedef struct {
-    Mesh all;         /* every mesh's triangles, in object space, one after another */
+    TestMesh all;         /* every mesh's triangles, in object space, one after another */
     BvhMesh meshes[4];
     uint32_t num_meshes;
     TestInstance inst[MAX_INSTANCES];
@@ -33,7 +33,7 @@ typedef struct {
     float lo[3], hi[3]; /* the world box of every instance */
 } InstancedScene;
 
-static inline void add_mesh(InstancedScene *s, Mesh m)
+static inline void add_mesh(InstancedScene *s, TestMesh m)
 {
     uint32_t base = s->all.num_positions, first = s->all.num_triangles;
     s->all.positions = realloc(s->all.positions, (base + m.num_positions) * sizeof(float4));
@@ -49,7 +49,7 @@ static inline void add_mesh(InstancedScene *s, Mesh m)
     s->all.num_positions += m.num_positions;
     s->all.num_triangles += m.num_triangles;
     s->meshes[s->num_meshes++] = (BvhMesh){first, m.num_triangles};
-    mesh_free(&m);
+    test_mesh_free(&m);
 }
 
 static inline InstancedScene scene_with_meshes(void)
@@ -111,7 +111,7 @@ static inline Affine instance_at_time(const TestInstance *in, double f)
 
 static inline void world_box(const InstancedScene *s, const TestInstance *in, float lo[3], float hi[3])
 {
-    Mesh m = s->all;
+    TestMesh m = s->all;
     m.triangles += s->meshes[in->mesh].first_triangle;
     m.num_triangles = s->meshes[in->mesh].num_triangles;
     float olo[3], ohi[3];

@@ -108,7 +108,7 @@ float4 brute_force_closest(const TraceScene *scene, const Ray *r)
     float line_scale = 1.7320509f * max_abs3(d[0], d[1], d[2]);
     float best_t = r->dir.s[3], best_u = 0.0f, best_v = 0.0f;
     uint32_t best = HIT_NONE;
-    const Mesh *mesh = &scene->mesh;
+    const TestMesh *mesh = &scene->mesh;
     for (uint32_t k = 0; k < mesh->num_triangles; k++) {
         const float *sphere = scene->spheres[k].s;
         float w[3] = {sphere[0] - o[0], sphere[1] - o[1], sphere[2] - o[2]};

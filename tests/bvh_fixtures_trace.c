@@ -9,7 +9,7 @@
 #include "accel/bvh_wide.h"
 #include "bvh_fixtures.h"
 
-TraceScene trace_scene_create(Device *dev, Mesh mesh)
+TraceScene trace_scene_create(Device *dev, TestMesh mesh)
 {
     TraceScene scene = {dev, mesh, {0}, NULL, NULL, 0, NULL, {0}, {0}};
     Error err = {0};
@@ -52,7 +52,7 @@ void trace_scene_release(TraceScene *scene)
     clReleaseMemObject(scene->tris);
     free(scene->spheres);
     bvh_free(&scene->bvh);
-    mesh_free(&scene->mesh);
+    test_mesh_free(&scene->mesh);
 }
 
 void trace(TraceScene *scene, const char *kernel_name, const Ray *rays, uint32_t n, void *out)
@@ -106,7 +106,7 @@ Ray *random_rays(const TraceScene *scene, uint32_t n, uint64_t seed)
         radius += 0.25f * extent[k] * extent[k];
     }
     radius = sqrtf(radius);
-    const Mesh *mesh = &scene->mesh;
+    const TestMesh *mesh = &scene->mesh;
     for (uint32_t i = 0; i < n; i++) {
         float kind = mesh_rng_float(&rng), origin[3], target[3], dir[3];
         const float4 vertex =

@@ -96,7 +96,7 @@ static inline void write_ball_obj(const char *dir, bool floor)
     snprintf(path, sizeof path, "%s/ball.obj", dir);
     FILE *f = fopen(path, "w");
     cr_assert(f);
-    Mesh m = mesh_icosphere(3);
+    TestMesh m = mesh_icosphere(3);
     fprintf(f, "mtllib ball.mtl\nusemtl ball\n");
     for (uint32_t v = 0; v < m.num_positions; v++)
         fprintf(f, "v %.7f %.7f %.7f\n", m.positions[v].s[0], m.positions[v].s[1], m.positions[v].s[2]);
@@ -108,7 +108,7 @@ static inline void write_ball_obj(const char *dir, bool floor)
                 o + 1, o + 3, o + 2, o + 1, o + 4, o + 3);
     }
     fclose(f);
-    mesh_free(&m);
+    test_mesh_free(&m);
 }
 
 typedef struct {

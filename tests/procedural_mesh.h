@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* procedural_mesh.h: meshes generated in memory for tests/test_bvh_*.c and tools/bench_bvh.c (header
+/* procedural_mesh.h: meshes generated in memory for tests/test_accel_bvh_*.c and tools/bench_bvh.c (header
  * only: both include it, neither links the other). Closed meshes with shared vertices (icosphere,
  * subdivided cube, bumpy torus) for watertightness, and a random triangle soup with exact
  * duplicates and coplanar overlaps for tie handling. */
@@ -20,7 +20,7 @@ typedef struct {
     uint32_t num_positions;
     Triangle *triangles;
     uint32_t num_triangles;
-} Mesh;
+} TestMesh;
 
 /* splitmix64: small, seedable, and the same on every platform. */
 static inline uint64_t mesh_rng_next(uint64_t *state)
@@ -43,9 +43,9 @@ static inline float4 mesh_point(float x, float y, float z)
     return p;
 }
 
-static inline Mesh mesh_alloc(uint32_t num_positions, uint32_t num_triangles)
+static inline TestMesh mesh_alloc(uint32_t num_positions, uint32_t num_triangles)
 {
-    Mesh mesh = {0};
+    TestMesh mesh = {0};
     mesh.positions = malloc((num_positions ? num_positions : 1) * sizeof *mesh.positions);
     mesh.triangles = malloc((num_triangles ? num_triangles : 1) * sizeof *mesh.triangles);
     if (!mesh.positions || !mesh.triangles)
@@ -53,7 +53,7 @@ static inline Mesh mesh_alloc(uint32_t num_positions, uint32_t num_triangles)
     return mesh;
 }
 
-static inline void mesh_add_triangle(Mesh *mesh, uint32_t a, uint32_t b, uint32_t c)
+static inline void mesh_add_triangle(TestMesh *mesh, uint32_t a, uint32_t b, uint32_t c)
 {
     Triangle *t = &mesh->triangles[mesh->num_triangles++];
     t->v.s[0] = a;
@@ -62,7 +62,7 @@ static inline void mesh_add_triangle(Mesh *mesh, uint32_t a, uint32_t b, uint32_
     t->v.s[3] = 0;
 }
 
-static inline void mesh_free(Mesh *mesh)
+static inline void test_mesh_free(TestMesh *mesh)
 {
     free(mesh->positions);
     free(mesh->triangles);
@@ -71,7 +71,7 @@ static inline void mesh_free(Mesh *mesh)
 
 /* Midpoint of edge (a, b) on the unit sphere, created once per edge so neighbours share it:
  * edge_key[] maps a sorted pair to a vertex through open addressing. */
-static inline uint32_t icosphere_midpoint(Mesh *mesh, uint64_t *keys, uint32_t *values,
+static inline uint32_t icosphere_midpoint(TestMesh *mesh, uint64_t *keys, uint32_t *values,
                                           uint32_t capacity, uint32_t a, uint32_t b)
 {
     uint64_t key = a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a);
@@ -91,10 +91,10 @@ static inline uint32_t icosphere_midpoint(Mesh *mesh, uint64_t *keys, uint32_t *
 }
 
 /* Unit icosphere: 20 * 4^subdivisions triangles, closed, convex, counter-clockwise outside. */
-static inline Mesh mesh_icosphere(int subdivisions)
+static inline TestMesh mesh_icosphere(int subdivisions)
 {
     uint32_t num_triangles = 20u << (2 * subdivisions);
-    Mesh mesh = mesh_alloc(num_triangles / 2 + 2, num_triangles);
+    TestMesh mesh = mesh_alloc(num_triangles / 2 + 2, num_triangles);
     const float t = (1.0f + sqrtf(5.0f)) / 2.0f, s = 1.0f / sqrtf(1.0f + t * t);
     const float corners[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
                                   {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
@@ -138,10 +138,10 @@ static inline Mesh mesh_icosphere(int subdivisions)
 /* The cube [-1, 1]^3 with each face cut into k x k squares (12 k^2 triangles), closed and with
  * shared vertices: grid coordinates are exact in float, so rays along the axes can be aimed
  * exactly at edges and vertices. */
-static inline Mesh mesh_cube_grid(int k)
+static inline TestMesh mesh_cube_grid(int k)
 {
     uint32_t side = (uint32_t)k + 1;
-    Mesh mesh = mesh_alloc(side * side * side, 12u * (uint32_t)(k * k));
+    TestMesh mesh = mesh_alloc(side * side * side, 12u * (uint32_t)(k * k));
     for (uint32_t z = 0; z < side; z++)
         for (uint32_t y = 0; y < side; y++)
             for (uint32_t x = 0; x < side; x++)
@@ -174,12 +174,12 @@ static inline Mesh mesh_cube_grid(int k)
 
 /* Bumpy torus of about `target` triangles (a grid of nu x nv quads, nu = 2 nv): closed, no
  * degenerate triangles, with detail at every scale; the benchmark's size-scaling mesh. */
-static inline Mesh mesh_torus(uint32_t target)
+static inline TestMesh mesh_torus(uint32_t target)
 {
     uint32_t nv = (uint32_t)sqrt((double)target / 4.0);
     nv = nv < 3 ? 3 : nv;
     uint32_t nu = 2 * nv;
-    Mesh mesh = mesh_alloc(nu * nv, 2 * nu * nv);
+    TestMesh mesh = mesh_alloc(nu * nv, 2 * nu * nv);
     for (uint32_t i = 0; i < nu; i++)
         for (uint32_t j = 0; j < nv; j++) {
             double u = 6.283185307179586 * i / nu, v = 6.283185307179586 * j / nv;
@@ -203,9 +203,9 @@ static inline Mesh mesh_torus(uint32_t target)
 /* n random triangles in [-1, 1]^3 of mixed sizes. About a tenth are exact duplicates of an earlier
  * triangle (same corners, other order) and a tenth lie in an earlier triangle's plane, overlapping
  * it, so closest-hit queries meet exact ties. */
-static inline Mesh mesh_soup(uint32_t n, uint64_t seed)
+static inline TestMesh mesh_soup(uint32_t n, uint64_t seed)
 {
-    Mesh mesh = mesh_alloc(3 * n, n);
+    TestMesh mesh = mesh_alloc(3 * n, n);
     uint64_t rng = seed;
     for (uint32_t i = 0; i < n; i++) {
         uint32_t base = mesh.num_positions;
@@ -245,9 +245,9 @@ static inline Mesh mesh_soup(uint32_t n, uint64_t seed)
 }
 
 /* Copies an OBJ's positions and triangles. */
-static inline Mesh mesh_from_obj(const ObjMesh *obj)
+static inline TestMesh mesh_from_obj(const Mesh *obj)
 {
-    Mesh mesh = mesh_alloc((uint32_t)obj->num_positions, (uint32_t)obj->num_triangles);
+    TestMesh mesh = mesh_alloc((uint32_t)obj->num_positions, (uint32_t)obj->num_triangles);
     for (size_t i = 0; i < obj->num_positions; i++)
         mesh.positions[mesh.num_positions++] = mesh_point(
             obj->positions[3 * i], obj->positions[3 * i + 1], obj->positions[3 * i + 2]);
@@ -258,7 +258,7 @@ static inline Mesh mesh_from_obj(const ObjMesh *obj)
 }
 
 /* Bounding box of the positions that triangles use. */
-static inline void mesh_bounds(const Mesh *mesh, float lo[3], float hi[3])
+static inline void mesh_bounds(const TestMesh *mesh, float lo[3], float hi[3])
 {
     for (int k = 0; k < 3; k++) {
         lo[k] = INFINITY;

@@ -4,7 +4,7 @@
  * 0.5 is fully open and fully opaque in its cells, not 70% and 30% see-through. A black 1 x 1
  * card at y = 0.5 over a diffuse floor (albedo 0.8) lit straight down by a directional light,
  * seen from above (direct light only): the open cells show the lit floor 0.8 / pi, the opaque
- * ones black. The glTF mapping gives this material (test_gltf_material's MASK case). */
+ * ones black. The glTF mapping gives this material (test_scene_gltf_material's MASK case). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>

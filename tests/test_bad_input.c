@@ -123,7 +123,7 @@ Test(bad_input, mtllib_naming_a_directory_is_an_error)
     cr_assert_eq(mkdir(folder, 0755), 0);
     const char *obj = write_text(dir, "dir.obj", "mtllib materials\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
                                                  "usemtl x\nf 1 2 3\n");
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_expect_not(obj_load(obj, &mesh, &err));
     cr_expect_eq(err.code, ERR_FILE_READ, "%s", err.message);
@@ -135,7 +135,7 @@ Test(bad_input, mtllib_dev_zero_is_an_error, .timeout = 20)
     const char *dir = test_temp_dir();
     const char *obj = write_text(dir, "zero.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
                                                   "f 1 2 3\n");
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_expect_not(obj_load(obj, &mesh, &err));
     cr_expect(strstr(err.message, "/dev/zero: is a character device"), "%s", err.message);
@@ -144,7 +144,7 @@ Test(bad_input, mtllib_dev_zero_is_an_error, .timeout = 20)
 /* Reading /dev/zero as an OBJ grew a string without end (> 8 GiB); a FIFO blocked forever. */
 Test(bad_input, obj_that_is_a_device_or_fifo_is_an_error, .timeout = 20)
 {
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_expect_not(obj_load("/dev/zero", &mesh, &err));
     cr_expect_eq(err.code, ERR_FILE_READ, "%s", err.message);
@@ -180,7 +180,7 @@ Test(bad_input, obj_line_longer_than_the_limit_is_an_error)
     text[at + n] = '\n';
     const char *obj = write_bytes(dir, "long.obj", text, at + n + 1);
     free(text);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_expect_not(obj_load(obj, &mesh, &err));
     cr_expect_eq(err.code, ERR_TOO_LARGE, "%s", err.message);

@@ -69,7 +69,7 @@ static FILE *open_csv(const char *folder, const char *name, const char *header)
 
 /* ---- Build ------------------------------------------------------------------------------------ */
 
-static void bench_build(FILE *csv, const char *name, const Mesh *mesh)
+static void bench_build(FILE *csv, const char *name, const TestMesh *mesh)
 {
     uint32_t n = mesh->num_triangles;
     int runs = n <= 100000 ? 7 : 3;
@@ -103,11 +103,11 @@ static void bench_build(FILE *csv, const char *name, const Mesh *mesh)
 
 /* ---- Main ------------------------------------------------------------------------------------- */
 
-static bool load_asset(const Options *o, const char *relative, Mesh *mesh)
+static bool load_asset(const Options *o, const char *relative, TestMesh *mesh)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", o->assets, relative);
-    ObjMesh obj;
+    Mesh obj;
     Error err = {0};
     warnings_set_quiet(true);
     if (!obj_load(path, &obj, &err)) {
@@ -115,7 +115,7 @@ static bool load_asset(const Options *o, const char *relative, Mesh *mesh)
         return false;
     }
     *mesh = mesh_from_obj(&obj);
-    obj_free(&obj);
+    mesh_free(&obj);
     return true;
 }
 
@@ -162,7 +162,7 @@ int main(int argc, char **argv)
     const struct {
         const char *name, *path;
     } assets[] = {{"dragon", "stanford-dragon/dragon.obj"}, {"skull", "skull/skull.obj"}};
-    Mesh meshes[7];
+    TestMesh meshes[7];
     char names[7][32];
     int count = 0;
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
@@ -185,7 +185,7 @@ int main(int argc, char **argv)
         fclose(steps_csv);
         printf("\nwrote %s/bvh_steps.csv\n", folder);
         for (int i = 0; i < count; i++)
-            mesh_free(&meshes[i]);
+            test_mesh_free(&meshes[i]);
         device_close(&dev);
         return 0;
     }
@@ -208,7 +208,7 @@ int main(int argc, char **argv)
     fclose(trace_csv);
     printf("\nwrote %s/bvh_build.csv and %s/bvh_trace.csv\n", folder, folder);
     for (int i = 0; i < count; i++)
-        mesh_free(&meshes[i]);
+        test_mesh_free(&meshes[i]);
     device_close(&dev);
     return 0;
 }

@@ -32,7 +32,7 @@ typedef struct {
  * shuffles the tiled rays (Fisher-Yates, fixed seed). */
 #define RAY_TILE 4
 _Static_assert(IMAGE_WIDTH % RAY_TILE == 0 && IMAGE_HEIGHT % RAY_TILE == 0, "whole tiles");
-static Ray *primary_rays(const Mesh *mesh, int spp, RayOrder order, uint32_t *count)
+static Ray *primary_rays(const TestMesh *mesh, int spp, RayOrder order, uint32_t *count)
 {
     float lo[3], hi[3], center[3], radius = 0.0f;
     mesh_bounds(mesh, lo, hi);

@@ -187,7 +187,7 @@ static void write_records(const char *dir, const char *name, const char *suffix,
         die("cannot write %s: %s", path, strerror(errno));
 }
 
-static void bench_trace(FILE *csv, Device *dev, const char *name, const Mesh *mesh, const Options *o)
+static void bench_trace(FILE *csv, Device *dev, const char *name, const TestMesh *mesh, const Options *o)
 {
     GpuMesh g = {dev, device_kernel(dev, "bvh_test_trace_closest"),
                  device_kernel(dev, "bvh_test_trace_any"), device_kernel(dev, "bvh_test_bounce_rays"),

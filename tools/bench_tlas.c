@@ -61,7 +61,7 @@ static double best_boxes_ms(const BvhInstance *instances, uint32_t n, int reps, 
     return best;
 }
 
-static double best_scene_ms(const Mesh *mesh, const BvhInstance *instances, uint32_t n, int width,
+static double best_scene_ms(const TestMesh *mesh, const BvhInstance *instances, uint32_t n, int width,
                             bool quantized, int reps, double *tlas_ms)
 {
     BvhMesh meshes[1] = {{0, mesh->num_triangles}};
@@ -97,7 +97,7 @@ int main(int argc, char **argv)
     char path[1024];
     FILE *csv = bench_open_results_csv("host", out, "tlas_build.csv", path, sizeof path);
     fprintf(csv, "instances,what,ms,tlas_ms,tlas_nodes\n");
-    Mesh mesh = mesh_icosphere(1);
+    TestMesh mesh = mesh_icosphere(1);
     const uint32_t counts[] = {10000, 100000};
     const struct {
         const char *name;
@@ -122,7 +122,7 @@ int main(int argc, char **argv)
         free(instances);
     }
     fclose(csv);
-    mesh_free(&mesh);
+    test_mesh_free(&mesh);
     printf("wrote %s\n", path);
     return 0;
 }

@@ -49,6 +49,15 @@ for f in $(find host -mindepth 2 -type f \( -name '*.c' -o -name '*.h' -o -name 
         esac
     done
 done >/tmp/check-layers.$$
+# scene/ has two floors: scene.h (scene_load) calls the readers (scene_json, gltf_scene,
+# load_objects...), which see only scene_types.h below them. Only the top floor, scene.c and what
+# hashes a loaded Scene, may include scene/scene.h.
+for f in $(grep -l '^[[:space:]]*#[[:space:]]*include[[:space:]]*"scene/scene.h"' host/scene/*); do
+    case ${f#host/scene/} in
+        scene.c|scene.h|scene_hash.c|scene_hash.h) ;;
+        *) echo "$f: includes scene/scene.h, the floor above the readers (use scene/scene_types.h)" ;;
+    esac
+done >>/tmp/check-layers.$$
 for f in host/*.c host/*.h; do
     [ -e "$f" ] || continue
     [ "$f" = host/main.c ] || echo "$f: only main.c lives at the top of host/" >>/tmp/check-layers.$$

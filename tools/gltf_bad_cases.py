@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """gltf_bad_cases.py: broken variants of make_gltf_tests.py's features scene, each with the text
-its one-line error must contain (tests/test_gltf.c reads bad/cases.txt; tests/fuzz/corpus_gltf.py
+its one-line error must contain (tests/test_io_gltf.c reads bad/cases.txt; tests/fuzz/corpus_gltf.py
 replays them)."""
 import json
 import os

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""make_gltf_tests.py OUT_DIR: the glTF files of tests/test_gltf.c, written with the standard
+"""make_gltf_tests.py OUT_DIR: the glTF files of tests/test_io_gltf.c, written with the standard
 library only (json, struct, base64: CI has no pip), and their equivalent JSON + OBJ scene.
 
 features.gltf + features.bin, features.glb and features_embedded.gltf (base64 data URIs) hold one

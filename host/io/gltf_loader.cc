@@ -295,7 +295,7 @@ extern "C" bool gltf_load(const char *path, GltfFile *out, Error *err)
 extern "C" void gltf_free(GltfFile *file)
 {
     for (int p = 0; p < file->num_primitives; p++)
-        obj_free(&file->primitives[p].mesh);
+        mesh_free(&file->primitives[p].mesh);
     free(file->primitives);
     free(file->mesh_first);
     free(file->placements);

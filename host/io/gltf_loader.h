@@ -2,7 +2,7 @@
 /* gltf_loader.h: C API over tinygltf (Debian's libtinygltf, host/io/gltf_loader.cc) for the
  * geometry of a glTF 2.0 file (.gltf with .bin or data URIs, or .glb): the default scene's node
  * hierarchy flattened to world matrices, each placed mesh's primitives decoded once into the
- * ObjMesh that OBJ files load to, the first perspective camera and KHR_lights_punctual lights.
+ * Mesh that OBJ files load to, the first perspective camera and KHR_lights_punctual lights.
  * Materials and images are read from the parsed model by scene/gltf_material_read.cc.
  * glTF is +Y up, metres, right-handed, counter-clockwise fronts: pt's own conventions, so nothing
  * is converted but texture coordinates, whose v is flipped (v_pt = 1 - v_gltf: glTF's v = 0 is
@@ -14,14 +14,14 @@
 
 #include "base/error.h"
 #include "base/transform.h"
-#include "io/obj_loader.h"
+#include "io/mesh.h"
 
 /* One primitive of a mesh, decoded: positions, normals when given (else none: pt shades flat, as
  * the glTF specification asks), TEXCOORD_0 when given; TANGENT is checked but not kept (pt builds
  * tangent frames from the uv parameterisation, DESIGN "Conventions"). Strips and fans are
  * converted to triangle lists; degenerate triangles (repeated indices) are dropped. */
 typedef struct {
-    ObjMesh mesh;    /* material_ids -1, no materials */
+    Mesh mesh;    /* material_ids -1, no materials */
     int material;    /* glTF material index; -1: the glTF default material */
     int mesh_index, primitive_index;
     bool placed;     /* a node of the scene places its mesh: only those are decoded */

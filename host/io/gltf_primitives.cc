@@ -308,7 +308,7 @@ bool read_attribute(Reader &r, const tinygltf::Primitive &prim, const char *pref
 } // namespace
 
 bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, const char *path,
-                      ObjMesh *out, Error *err)
+                      Mesh *out, Error *err)
 {
     Reader r{model, path, err, {0}};
     char prefix[64];
@@ -356,7 +356,7 @@ bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, con
     out->corners = (int32_t *)alloc_array(9 * nt, sizeof(int32_t));
     out->material_ids = (int32_t *)alloc_array(nt, sizeof(int32_t));
     if (!out->positions || !out->normals || !out->texcoords || !out->corners || !out->material_ids) {
-        obj_free(out);
+        mesh_free(out);
         memset(out, 0, sizeof *out);
         return r.fail(ERR_TOO_LARGE, "out of memory for %zu triangles", nt);
     }

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* gltf_primitives.h (C++, io/ only): decoding a glTF mesh primitive from the parsed model into an
- * ObjMesh (host/io/gltf_primitives.cc): accessors of every component type (normalized integers as
+ * Mesh (host/io/gltf_primitives.cc): accessors of every component type (normalized integers as
  * the specification decodes them), byteStride, sparse substitution, range checks of accessor,
  * buffer view and buffer, and strips and fans to triangle lists. */
 #ifndef PT_GLTF_PRIMITIVES_H
@@ -23,7 +23,7 @@ namespace gltf_io {
 /* Decodes meshes[mesh].primitives[primitive] of model into *out (empty on entry). Errors name
  * path and the JSON path, e.g. "meshes[2].primitives[0].indices (accessors[4])". */
 bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, const char *path,
-                      ObjMesh *out, Error *err);
+                      Mesh *out, Error *err);
 
 } // namespace gltf_io
 

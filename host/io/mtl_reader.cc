@@ -281,5 +281,3 @@ void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras
 }
 
 } // namespace mtl_reader
-
-void obj_loader_set_quiet(bool quiet) { mtl_reader::quiet_unused = quiet; }

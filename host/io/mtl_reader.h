@@ -21,7 +21,7 @@
 #define _Noreturn [[noreturn]]
 extern "C" {
 #include "base/error.h"
-#include "io/obj_loader.h"
+#include "io/mesh.h"
 }
 #undef _Noreturn
 
@@ -38,7 +38,8 @@ struct MaterialExtras {
     }
 };
 
-/* Silences the warnings about unused statements and texture options (obj_loader_set_quiet). */
+/* Silences the warnings about unused statements and texture options (obj_loader_set_quiet,
+ * obj_loader.cc). */
 extern bool quiet_unused;
 
 /* Reads each mtllib from the OBJ's folder, warning (default material) when it is missing. One that

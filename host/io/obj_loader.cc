@@ -4,7 +4,7 @@
  * numbers), then tinyobjloader parses the same bytes with its own triangulation off, and every
  * face is triangulated here by ear clipping. Nothing from tinyobjloader is trusted blindly: counts
  * and indices are checked again before they are used. The MTL files are read by mtl_reader.cc. */
-#include "io/mtl_reader.h" /* tinyobjloader, error.h, obj_loader.h; the MTL side */
+#include "io/mtl_reader.h" /* tinyobjloader, error.h, mesh.h; the MTL side */
 
 #include <cmath>
 #include <cstdlib>
@@ -17,6 +17,7 @@
 
 extern "C" {
 #include "io/input_file.h"
+#include "io/obj_loader.h"
 #include "io/obj_lines.h"
 #include "io/triangulate.h"
 }
@@ -68,7 +69,7 @@ bool index_ok(int index, int lowest, size_t count)
 
 /* Triangulates every face into out->corners / material_ids; checks every index first. */
 bool emit_triangles(const std::vector<tinyobj::shape_t> &shapes, const std::string &text,
-                    const char *path, ObjMesh *out, Error *err)
+                    const char *path, Mesh *out, Error *err)
 {
     size_t max_triangles = 0;
     for (const tinyobj::shape_t &shape : shapes)
@@ -161,7 +162,7 @@ bool copy_error(const Error &from, Error *to)
     return false;
 }
 
-bool load(const char *path, ObjMesh *out, Error *err)
+bool load(const char *path, Mesh *out, Error *err)
 {
     std::string text;
     if (!read_whole_file(path, "an OBJ file", INPUT_LIMIT_OBJ, &text, err))
@@ -210,7 +211,7 @@ bool load(const char *path, ObjMesh *out, Error *err)
 
 } // namespace
 
-extern "C" bool obj_load(const char *path, ObjMesh *out, Error *err)
+extern "C" bool obj_load(const char *path, Mesh *out, Error *err)
 {
     memset(out, 0, sizeof *out);
     bool loaded = false;
@@ -226,17 +227,8 @@ extern "C" bool obj_load(const char *path, ObjMesh *out, Error *err)
         error_set(err, ERR_OBJ_PARSE, path, 0, "%s: cannot load (unknown exception)", path);
     }
     if (!loaded)
-        obj_free(out);
+        mesh_free(out);
     return loaded;
 }
 
-extern "C" void obj_free(ObjMesh *mesh)
-{
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->texcoords);
-    free(mesh->corners);
-    free(mesh->material_ids);
-    free(mesh->materials);
-    memset(mesh, 0, sizeof *mesh);
-}
+extern "C" void obj_loader_set_quiet(bool quiet) { mtl_reader::quiet_unused = quiet; }

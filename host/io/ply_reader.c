@@ -240,7 +240,7 @@ static bool find_layout(Ply *p, MeshLayout *m)
 }
 
 /* Reads one vertex's values into out (positions, normals, uvs as the mesh has them). */
-static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, ObjMesh *out)
+static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, Mesh *out)
 {
     const PlyElement *e = &p->h.elements[m->vertex_element];
     float values[NUM_ROLES] = {0};
@@ -271,7 +271,7 @@ static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, ObjMesh *out)
 }
 
 /* Reads or skips every item of element e. */
-static bool read_element(Ply *p, const MeshLayout *m, int e_index, ObjMesh *out)
+static bool read_element(Ply *p, const MeshLayout *m, int e_index, Mesh *out)
 {
     const PlyElement *e = &p->h.elements[e_index];
     if (e->num_properties == 0)
@@ -304,7 +304,7 @@ static bool read_element(Ply *p, const MeshLayout *m, int e_index, ObjMesh *out)
 }
 
 /* Triangulates the faces read, in file order, like OBJ n-gons. */
-static bool emit_triangles(Ply *p, ObjMesh *out)
+static bool emit_triangles(Ply *p, Mesh *out)
 {
     size_t max_triangles = 0, short_faces = 0;
     for (size_t f = 0; f < p->num_faces; f++)
@@ -344,7 +344,7 @@ static bool emit_triangles(Ply *p, ObjMesh *out)
     return true;
 }
 
-static bool load(Ply *p, ObjMesh *out)
+static bool load(Ply *p, Mesh *out)
 {
     MeshLayout m;
     if (!ply_header_parse(p->path, p->data, p->size, &p->h, p->err))
@@ -372,7 +372,7 @@ static bool load(Ply *p, ObjMesh *out)
     return emit_triangles(p, out);
 }
 
-bool ply_load(const char *path, ObjMesh *out, Error *err)
+bool ply_load(const char *path, Mesh *out, Error *err)
 {
     memset(out, 0, sizeof *out);
     Ply *p = calloc(1, sizeof *p);
@@ -393,6 +393,6 @@ bool ply_load(const char *path, ObjMesh *out, Error *err)
     free(p->face_corners);
     free(p);
     if (!ok)
-        obj_free(out);
+        mesh_free(out);
     return ok;
 }

@@ -14,36 +14,6 @@
 #include "scene/gltf_texture.h"
 #include "scene/materials.h"
 
-static void texture_ref_default(GltfTextureRef *t)
-{
-    memset(t, 0, sizeof *t);
-    t->image = -1;
-    t->wrap_s = t->wrap_t = GLTF_WRAP_REPEAT;
-    t->scale[0] = t->scale[1] = 1.0f;
-    t->amount = 1.0f;
-}
-
-void gltf_material_default(GltfMaterial *m)
-{
-    memset(m, 0, sizeof *m);
-    for (int c = 0; c < 4; c++)
-        m->base_color[c] = 1.0f;
-    m->metallic = m->roughness = 1.0f;
-    m->emissive_strength = 1.0f;
-    m->alpha_cutoff = 0.5f;
-    m->specular = 1.0f;
-    m->ior = 1.5f;
-    m->attenuation_distance = INFINITY;
-    for (int c = 0; c < 3; c++)
-        m->specular_color[c] = m->attenuation_color[c] = 1.0f;
-    GltfTextureRef *refs[] = {&m->base_color_texture, &m->metallic_roughness_texture,
-                              &m->normal_texture, &m->occlusion_texture, &m->emissive_texture,
-                              &m->specular_texture, &m->specular_color_texture,
-                              &m->transmission_texture};
-    for (size_t i = 0; i < sizeof refs / sizeof refs[0]; i++)
-        texture_ref_default(refs[i]);
-}
-
 /* One value of the file outside its range: "file.gltf: materials[2].metallicFactor: 1.5 is out of
  * range [0, 1]". */
 static bool check_range(const GltfMaterial *g, const char *key, const float *v, int n, float lo,

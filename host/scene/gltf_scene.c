@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /* gltf_scene.c: see gltf_scene.h. Why objects and not a sub-scene: the description's objects are
- * what instances.c already groups into meshes and instances (dedup by key, the merged static mesh,
+ * what load_objects.c already groups into meshes and instances (dedup by key, the merged static mesh,
  * motion from transform_end), so a glTF node is placed exactly like a JSON object, and a JSON
  * object's transform composes with the nodes' matrices as one more parent. */
 #define _DEFAULT_SOURCE /* realpath */

@@ -3,7 +3,7 @@
  * (node, mesh primitive) of its scene becomes one object whose mesh is the primitive decoded in
  * memory (SceneDesc.object_meshes) and whose transform is the node's world matrix after the JSON
  * object's own; objects of one primitive share one key ("<file>#meshes[m].primitives[p]"), so
- * instances.c loads and builds it once and places it once per node. Its materials are appended
+ * load_objects.c loads and builds it once and places it once per node. Its materials are appended
  * to the scene's (gltf_material.h), its KHR_lights_punctual lights to the scene's lights, and its
  * first perspective camera becomes the scene's camera when none was given. */
 #ifndef PT_GLTF_SCENE_H
@@ -14,7 +14,7 @@
 #include "base/error.h"
 #include "io/gltf_loader.h"
 #include "scene/gltf_material.h"
-#include "scene/scene.h"
+#include "scene/scene_types.h"
 
 /* pt's radiometric unit per photometric one (KHR_lights_punctual candela and lux): 683 lm/W, the
  * luminous efficacy at 555 nm that defines the candela. point/spot intensity (W/sr) = colour x
@@ -30,10 +30,5 @@ bool gltf_scene_add(SceneDesc *d, const char *path, const ObjectOptions *options
 /* Room for `extra` objects after d->num_objects in every per-object array (object_meshes is
  * created on first use, NULL for the objects before). False: out of memory. */
 bool scene_desc_reserve_objects(SceneDesc *d, int extra);
-
-/* The materials and images of a loaded file (gltf_material_read.cc); the materials carry one more
- * entry, the glTF default material, used by primitives that name none. False: out of memory. */
-bool gltf_read_materials(const GltfFile *file, GltfMaterial **materials, int *count,
-                         GltfImage **images, int *num_images);
 
 #endif

@@ -1,14 +1,16 @@
 /* SPDX-License-Identifier: MIT */
-/* gltf_texture.h: glTF textureInfos (gltf_material.h GltfTextureRef) as the scene's TextureDescs:
- * the image (embedded bytes or a file), the sampler's wrap modes and filter, KHR_texture_transform
- * in pt's uv frame, and the channel and factor a material parameter reads. */
+/* gltf_texture.h: glTF textureInfos (io/gltf_material_read.h GltfTextureRef) as the scene's
+ * TextureDescs: the image (embedded bytes or a file), the sampler's wrap modes and filter,
+ * KHR_texture_transform in pt's uv frame, and the channel and factor a material parameter reads. */
 #ifndef PT_GLTF_TEXTURE_H
 #define PT_GLTF_TEXTURE_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "scene/gltf_material.h"
+#include "base/error.h"
+#include "io/gltf_material_read.h"
+#include "scene/texture_json.h"
 
 /* Where the TextureDescs go and what messages name. */
 typedef struct {

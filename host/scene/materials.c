@@ -175,7 +175,7 @@ static uint32_t find_named(const NamedMaterials *named, const char *name)
 }
 
 bool materials_append_obj(Material **materials, uint32_t *num_materials, TextureSet *textures,
-                          const ObjMesh *mesh, const char *obj_path, const NamedMaterials *named,
+                          const Mesh *mesh, const char *obj_path, const NamedMaterials *named,
                           uint32_t *mesh_to_scene, Error *err)
 {
     if (mesh->num_materials > (size_t)UINT32_MAX - 1 - *num_materials) {

@@ -9,7 +9,7 @@
 
 #include "base/error.h"
 #include "base/shared_types.h"
-#include "io/obj_loader.h"
+#include "io/mesh.h"
 #include "scene/texture.h"
 
 /* The JSON materials, which are the scene's materials 0..count-1 and replace MTL materials of the
@@ -43,7 +43,7 @@ Material material_default(void);
  * not loaded. A missing texture file is a warning (the material keeps its Kd); a corrupt one is an
  * error naming the material and obj_path. */
 bool materials_append_obj(Material **materials, uint32_t *num_materials, TextureSet *textures,
-                          const ObjMesh *mesh, const char *obj_path, const NamedMaterials *named,
+                          const Mesh *mesh, const char *obj_path, const NamedMaterials *named,
                           uint32_t *mesh_to_scene, Error *err);
 
 /* The MATERIAL_FEATURE_* mask (cl/shared.h) of what these materials use: the kernels are built

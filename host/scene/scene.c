@@ -13,8 +13,8 @@
 #include "io/input_file.h"
 #include "scene/camera.h"
 #include "scene/gltf_scene.h"
-#include "scene/instances.h"
 #include "scene/json.h"
+#include "scene/load_objects.h"
 #include "scene/scene_json.h"
 
 #define SCENE_FILE_LIMIT ((size_t)64 << 20) /* a scene description is small; refuse anything huge */

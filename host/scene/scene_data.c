@@ -89,7 +89,7 @@ static bool grow(void **array, size_t count, size_t element_size)
 }
 
 /* Checks one corner's indices against the mesh (obj_load already does; this guards the flattener). */
-static bool corner_valid(const ObjMesh *mesh, const int32_t c[3])
+static bool corner_valid(const Mesh *mesh, const int32_t c[3])
 {
     return c[0] >= 0 && (size_t)c[0] < mesh->num_positions && c[1] < (int64_t)mesh->num_texcoords &&
            c[2] < (int64_t)mesh->num_normals;
@@ -97,7 +97,7 @@ static bool corner_valid(const ObjMesh *mesh, const int32_t c[3])
 
 /* Whether every corner's texcoord and normal index is its position index (or every one absent),
  * as in glTF and PLY meshes: then the position alone keys a unified vertex. */
-static bool keyed_by_position(const ObjMesh *mesh)
+static bool keyed_by_position(const Mesh *mesh)
 {
     size_t corners = 3 * mesh->num_triangles;
     if (corners == 0)
@@ -116,7 +116,7 @@ static bool keyed_by_position(const ObjMesh *mesh)
  * for each new unified vertex, the corner that first used it. A mesh keyed by position uses an
  * array over positions instead of the hash map: the same vertices in the same order, 3x faster
  * on a 1M-triangle glTF. */
-static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+static bool unify_corners(SceneData *data, const Mesh *mesh, const char *mesh_path,
                           const uint32_t *mesh_to_scene, uint32_t object_material,
                           uint32_t *first_corner, uint32_t *num_new, Error *err)
 {
@@ -125,7 +125,7 @@ static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_
     uint32_t *by_position = direct ? calloc(mesh->num_positions ? mesh->num_positions : 1,
                                             sizeof *by_position) : NULL;
     if (direct ? !by_position : !corner_map_init(&map, 3 * mesh->num_triangles)) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         return false;
     }
     uint32_t base = data->num_vertices, count = 0;
@@ -136,8 +136,8 @@ static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_
             if (!corner_valid(mesh, key)) {
                 free(by_position);
                 free(map.slots);
-                error_set(err, ERR_OBJ_INDEX, obj_path, 0, "%s: triangle %zu has an index out of range",
-                          obj_path, tri);
+                error_set(err, ERR_OBJ_INDEX, mesh_path, 0, "%s: triangle %zu has an index out of range",
+                          mesh_path, tri);
                 return false;
             }
             uint32_t *vertex = direct ? &by_position[key[0]] : NULL;
@@ -174,7 +174,7 @@ static bool unify_corners(SceneData *data, const ObjMesh *mesh, const char *obj_
 /* Fills the new vertices' attributes from the corners that created them. Returns false (error set)
  * for a non-finite position. Normals that are non-finite or zero are stored as zero, and clear
  * *normals_ok so the caller drops TRIANGLE_HAS_NORMALS where they are used. */
-static bool fill_vertices(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+static bool fill_vertices(SceneData *data, const Mesh *mesh, const char *mesh_path,
                           const uint32_t *first_corner, uint32_t num_new, bool *normals_ok, Error *err)
 {
     *normals_ok = true;
@@ -182,7 +182,7 @@ static bool fill_vertices(SceneData *data, const ObjMesh *mesh, const char *obj_
         const int32_t *c = &mesh->corners[3 * (size_t)first_corner[i]];
         const float *p = &mesh->positions[3 * (size_t)c[0]];
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-            error_set(err, ERR_OBJ_NONFINITE, obj_path, 0, "%s: vertex %d is not finite", obj_path,
+            error_set(err, ERR_OBJ_NONFINITE, mesh_path, 0, "%s: vertex %d is not finite", mesh_path,
                       c[0] + 1);
             return false;
         }
@@ -223,16 +223,16 @@ static void drop_bad_normals(SceneData *data, uint32_t first_triangle)
 }
 
 /* Remembers why the first OBJ without triangles has none, for scene_data_finish's message. */
-static void note_faceless(SceneData *data, const ObjMesh *mesh, const char *obj_path)
+static void note_faceless(SceneData *data, const Mesh *mesh, const char *mesh_path)
 {
-    if (mesh->num_triangles > 0 || data->faceless_obj[0])
+    if (mesh->num_triangles > 0 || data->faceless_mesh[0])
         return;
     struct stat st;
-    snprintf(data->faceless_obj, sizeof data->faceless_obj, "%s", obj_path);
+    snprintf(data->faceless_mesh, sizeof data->faceless_mesh, "%s", mesh_path);
     if (mesh->num_faces > 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason,
                  "all %zu faces are degenerate", mesh->num_faces);
-    else if (stat(obj_path, &st) == 0 && st.st_size == 0)
+    else if (stat(mesh_path, &st) == 0 && st.st_size == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "the file is empty");
     else if (mesh->num_positions == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "no 'v' or 'f' records");
@@ -241,33 +241,33 @@ static void note_faceless(SceneData *data, const ObjMesh *mesh, const char *obj_
                  "'v' records but no 'f' records");
 }
 
-bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err)
+bool scene_data_append_mesh(SceneData *data, const Mesh *mesh, const char *mesh_path, Error *err)
 {
     ObjectOptions defaults = {.material = NO_MATERIAL};
-    return scene_data_append_object(data, mesh, obj_path, &defaults, NULL, err);
+    return scene_data_append_object(data, mesh, mesh_path, &defaults, NULL, err);
 }
 
-bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+bool scene_data_append_object(SceneData *data, const Mesh *mesh, const char *mesh_path,
                               const ObjectOptions *options, const NamedMaterials *named, Error *err)
 {
-    note_faceless(data, mesh, obj_path);
+    note_faceless(data, mesh, mesh_path);
     /* Every corner may become a vertex: both counts must stay below 2^32 - 1 for uint indices. */
     size_t max_new_vertices = 3 * mesh->num_triangles;
     if (mesh->num_triangles > UINT32_MAX - 1 - (size_t)data->num_triangles ||
         max_new_vertices > UINT32_MAX - 1 - (size_t)data->num_vertices) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: %zu triangles exceed the 2^32 limit",
-                  obj_path, mesh->num_triangles);
+        error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: %zu triangles exceed the 2^32 limit",
+                  mesh_path, mesh->num_triangles);
         return false;
     }
     /* An object given one material does not load its MTL materials (nor their textures). */
     uint32_t *mesh_to_scene = calloc(mesh->num_materials ? mesh->num_materials : 1, sizeof(uint32_t));
     if (!mesh_to_scene) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         return false;
     }
     if (options->material == NO_MATERIAL &&
         !materials_append_obj(&data->materials, &data->num_materials, &data->textures, mesh,
-                              obj_path, named, mesh_to_scene, err)) {
+                              mesh_path, named, mesh_to_scene, err)) {
         free(mesh_to_scene);
         return false;
     }
@@ -277,22 +277,22 @@ bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *
         !grow((void **)&data->material_ids, num_triangles, sizeof(uint32_t))) {
         free(first_corner);
         free(mesh_to_scene);
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         return false;
     }
     uint32_t num_new = 0;
     bool normals_ok = true;
-    bool ok = unify_corners(data, mesh, obj_path, mesh_to_scene, options->material, first_corner,
+    bool ok = unify_corners(data, mesh, mesh_path, mesh_to_scene, options->material, first_corner,
                             &num_new, err);
     free(mesh_to_scene);
     size_t num_vertices = (size_t)data->num_vertices + num_new;
     if (ok && !(grow((void **)&data->positions, num_vertices, sizeof(float4)) &&
                 grow((void **)&data->normals, num_vertices, sizeof(float4)) &&
                 grow((void **)&data->uvs, num_vertices, sizeof(float2)))) {
-        error_set(err, ERR_TOO_LARGE, obj_path, 0, "%s: out of memory", obj_path);
+        error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         ok = false;
     }
-    ok = ok && fill_vertices(data, mesh, obj_path, first_corner, num_new, &normals_ok, err);
+    ok = ok && fill_vertices(data, mesh, mesh_path, first_corner, num_new, &normals_ok, err);
     uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
     if (ok) {
         data->num_vertices = (uint32_t)num_vertices;
@@ -368,17 +368,17 @@ static bool build_emissive_table(SceneData *data, Error *err)
 bool scene_data_finish(SceneData *data, const char *scene_path, Error *err)
 {
     if (data->num_triangles == 0) {
-        if (!data->faceless_obj[0])
+        if (!data->faceless_mesh[0])
             error_set(err, ERR_NO_TRIANGLES, scene_path, 0, "%s: the scene has no triangles",
                       scene_path);
-        else if (strcmp(data->faceless_obj, scene_path) == 0)
+        else if (strcmp(data->faceless_mesh, scene_path) == 0)
             error_set(err, ERR_NO_TRIANGLES, scene_path, 0,
                       "%s: no faces (%s): the scene has no triangles", scene_path,
                       data->faceless_reason);
         else
             error_set(err, ERR_NO_TRIANGLES, scene_path, 0,
                       "%s: the scene has no triangles (%s: no faces, %s)", scene_path,
-                      data->faceless_obj, data->faceless_reason);
+                      data->faceless_mesh, data->faceless_reason);
         return false;
     }
     if (!resolve_default_material(data, err) || !build_emissive_table(data, err))

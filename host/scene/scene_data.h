@@ -10,7 +10,7 @@
 
 #include "base/error.h"
 #include "base/transform.h"
-#include "io/obj_loader.h"
+#include "io/mesh.h"
 #include "base/shared_types.h"
 #include "scene/environment.h"
 #include "scene/materials.h" /* material_from_obj, for the flattener's users and tests */
@@ -60,9 +60,9 @@ typedef struct {
     AnalyticLight *analytic_lights; /* the scene's "lights" (scene_load copies them in) */
     uint32_t num_analytic;
     Environment environment; /* width 0: none (scene_load loads it after scene_data_finish) */
-    /* The first OBJ that added no triangles and why, for the message when the whole scene has
+    /* The first mesh file that added no triangles and why, for the message when the whole scene has
      * none ("x.obj: no faces (the file is empty)"). */
-    char faceless_obj[512];
+    char faceless_mesh[512];
     char faceless_reason[128];
 } SceneData;
 
@@ -74,10 +74,10 @@ typedef struct {
 } ObjectOptions;
 
 void scene_data_init(SceneData *data);
-/* Appends one loaded OBJ: vertices, triangles (indices offset), materials (ids offset), textures. */
-bool scene_data_append_obj(SceneData *data, const ObjMesh *mesh, const char *obj_path, Error *err);
+/* Appends one loaded mesh: vertices, triangles (indices offset), materials (ids offset), textures. */
+bool scene_data_append_mesh(SceneData *data, const Mesh *mesh, const char *mesh_path, Error *err);
 /* The same with the object's options; `named` (NULL: none) are the JSON materials. */
-bool scene_data_append_object(SceneData *data, const ObjMesh *mesh, const char *obj_path,
+bool scene_data_append_object(SceneData *data, const Mesh *mesh, const char *mesh_path,
                               const ObjectOptions *options, const NamedMaterials *named, Error *err);
 /* Finishes: bounds, emissive table; ERR_NO_TRIANGLES for an empty scene (names scene_path, and the
  * first OBJ without faces and why). */
@@ -93,5 +93,10 @@ bool scene_data_add_instance(SceneData *data, const SceneInstance *instance, Err
  * bounds. scene_data_finish calls it (adding mesh 0 and one identity instance when no mesh was
  * added); call it again after changing instances. */
 void scene_data_finish_instances(SceneData *data);
+/* Applies m to the triangles and vertices appended since first_triangle / first_vertex: points by
+ * m, normals by its inverse transpose, and a mirroring m (det < 0) reverses each triangle's
+ * corners so that the front stays where the transformed normal points (DESIGN "Objects"). */
+void scene_data_bake_transform(SceneData *data, uint32_t first_triangle, uint32_t first_vertex,
+                               const Affine *m);
 
 #endif

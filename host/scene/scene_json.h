@@ -7,7 +7,7 @@
 #include <stdbool.h>
 
 #include "scene/json.h"
-#include "scene/scene.h"
+#include "scene/scene_types.h"
 
 /* Reads the parsed root of the scene file p->file over d; errors name the key path and line. */
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d);

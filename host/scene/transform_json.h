@@ -8,7 +8,7 @@
 
 #include "base/transform.h"
 #include "scene/json.h"
-#include "scene/scene.h"
+#include "scene/scene_types.h"
 
 /* The operation list at item (key names it in errors, e.g. "objects[2].transform") composed:
  * M = op_n ... op_2 op_1. Errors: not an array, an operation that is not an object with exactly

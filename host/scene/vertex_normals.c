@@ -25,13 +25,13 @@ static double angle_between(const double a[3], const double b[3])
 }
 
 /* The OBJ position index of unified vertex v. */
-static int32_t position_of(const ObjMesh *mesh, uint32_t v, uint32_t first_vertex,
+static int32_t position_of(const Mesh *mesh, uint32_t v, uint32_t first_vertex,
                            const uint32_t *first_corner)
 {
     return mesh->corners[3 * (size_t)first_corner[v - first_vertex]];
 }
 
-bool vertex_normals_smooth(const ObjMesh *mesh, const float4 *positions, float4 *normals,
+bool vertex_normals_smooth(const Mesh *mesh, const float4 *positions, float4 *normals,
                            Triangle *triangles, uint32_t first_triangle, uint32_t num_triangles,
                            uint32_t first_vertex, const uint32_t *first_corner, Error *err)
 {

@@ -10,13 +10,13 @@
 
 #include "base/error.h"
 #include "base/shared_types.h"
-#include "io/obj_loader.h"
+#include "io/mesh.h"
 
 /* For the triangles[first_triangle, num_triangles) without TRIANGLE_HAS_NORMALS: computes the
  * normals of their vertices (vertices[first_vertex + i] was created by mesh corner
  * first_corner[i]) and sets TRIANGLE_HAS_NORMALS where all three got one (a vertex whose
  * triangles all have zero area keeps none, and its triangles stay flat). */
-bool vertex_normals_smooth(const ObjMesh *mesh, const float4 *positions, float4 *normals,
+bool vertex_normals_smooth(const Mesh *mesh, const float4 *positions, float4 *normals,
                            Triangle *triangles, uint32_t first_triangle, uint32_t num_triangles,
                            uint32_t first_vertex, const uint32_t *first_corner, Error *err);
 

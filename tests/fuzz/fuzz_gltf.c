@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (gltf_load(path, &file, &err)) {
         /* Every index handed on must be inside its array. */
         for (int p = 0; p < file.num_primitives; p++) {
-            const ObjMesh *m = &file.primitives[p].mesh;
+            const Mesh *m = &file.primitives[p].mesh;
             for (size_t t = 0; t < 9 * m->num_triangles; t++) {
                 int32_t index = m->corners[t];
                 size_t count = t % 3 == 0 ? m->num_positions : t % 3 == 1 ? m->num_texcoords : m->num_normals;

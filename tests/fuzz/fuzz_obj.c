@@ -23,14 +23,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_write(obj, data, obj_size);
     size_t mtl_start = obj_size < size ? obj_size + sizeof separator - 1 : size;
     fuzz_write(mtl, data + mtl_start, size - mtl_start);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     if (obj_load(obj, &mesh, &err)) {
         /* Every index handed on must be inside its array. */
         for (size_t t = 0; t < 9 * mesh.num_triangles; t += 3)
             if (mesh.corners[t] < 0 || (size_t)mesh.corners[t] >= mesh.num_positions)
                 abort();
-        obj_free(&mesh);
+        mesh_free(&mesh);
     } else if (!err.message[0]) {
         abort();
     }

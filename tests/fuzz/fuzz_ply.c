@@ -11,7 +11,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     char path[128];
     snprintf(path, sizeof path, "%s", fuzz_path("x.ply"));
     fuzz_write(path, data, size);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     if (ply_load(path, &mesh, &err)) {
         /* Every index handed on must be inside its array. */
@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (index < -1 || (t % 3 == 0 && index < 0) || (index >= 0 && (size_t)index >= count))
                 abort();
         }
-        obj_free(&mesh);
+        mesh_free(&mesh);
     } else if (!err.message[0]) {
         abort();
     }

@@ -16,7 +16,7 @@
 
 typedef struct {
     const BvhLayout *layout;
-    const Mesh *mesh;
+    const TestMesh *mesh;
     uint32_t *tri_seen;   /* per original triangle: in how many leaves (padding lanes not counted) */
     uint8_t *node_seen;
     uint32_t max_stack;   /* the deepest stack a walk can fill, recomputed */
@@ -110,7 +110,7 @@ static void check_wide_node(WideCheck *c, uint32_t node, const float lo[3], cons
 }
 
 /* Every invariant of the wide layout of mesh's tree; returns its stack need. */
-static uint32_t check_wide_layout(const Mesh *mesh, int width, const char *name)
+static uint32_t check_wide_layout(const TestMesh *mesh, int width, const char *name)
 {
     Bvh bvh;
     bvh_build_for_width(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles, width);
@@ -144,7 +144,7 @@ static uint32_t check_wide_layout(const Mesh *mesh, int width, const char *name)
  * its coordinates, where quantised frames lose the most bits. */
 typedef struct {
     const char *name;
-    Mesh mesh;
+    TestMesh mesh;
 } NamedMesh;
 #define LAYOUT_MESHES 9
 static void layout_meshes(NamedMesh out[LAYOUT_MESHES])
@@ -155,7 +155,7 @@ static void layout_meshes(NamedMesh out[LAYOUT_MESHES])
         {"nine", mesh_soup(9, 3)},        {"copies", mesh_copies(5000)},
         {"empty", mesh_soup(0, 1)},       {"axis chains", mesh_axis_chains(1280)},
         {"far torus", mesh_torus(30000)}};
-    Mesh *far = &cases[8].mesh;
+    TestMesh *far = &cases[8].mesh;
     for (uint32_t v = 0; v < far->num_positions; v++)
         for (int k = 0; k < 3; k++)
             far->positions[v].s[k] = far->positions[v].s[k] * 1e-3f - 3.0e4f * (k + 1) * (k == 1 ? -1 : 1);
@@ -171,14 +171,14 @@ Test(bvh, wide_layout_invariants_hold)
             uint32_t stack = check_wide_layout(&cases[i].mesh, width, cases[i].name);
             cr_log_info("%s, %d-wide: stack need %u", cases[i].name, width, stack);
         }
-        mesh_free(&cases[i].mesh);
+        test_mesh_free(&cases[i].mesh);
     }
 }
 
 /* Every quantised child box holds its exact box with the margin the traversal relies on
  * (host/accel/bvh_quantized.c), is at most two steps looser per side, and keeps its reference; an empty
  * child is inverted on every axis with no triangles. */
-static void check_quantized(const Mesh *mesh, const char *name)
+static void check_quantized(const TestMesh *mesh, const char *name)
 {
     Bvh bvh;
     bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
@@ -221,7 +221,7 @@ Test(bvh, quantized_nodes_hold_their_children)
     layout_meshes(cases);
     for (size_t i = 0; i < LAYOUT_MESHES; i++) {
         check_quantized(&cases[i].mesh, cases[i].name);
-        mesh_free(&cases[i].mesh);
+        test_mesh_free(&cases[i].mesh);
     }
 }
 

@@ -5,7 +5,7 @@
  * rays into overlapping, mirrored, composed ("nested") and moving instances at random times; the
  * hits are the world-space truth (a double-precision host reference over transformed triangles);
  * and two identical instances in one place always report the lower index.
- * (test_instances_bvh_tlas.c: the TLAS's boxes in every layout.) */
+ * (test_accel_instances_bvh_tlas.c: the TLAS's boxes in every layout.) */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -258,7 +258,7 @@ static void check_scene(InstancedScene *s, uint32_t n, uint64_t seed, const char
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s->all);
+    test_mesh_free(&s->all);
 }
 
 Test(instances_bvh, overlapping_mirrored_and_composed_instances_match_brute_force, .timeout = 600)
@@ -329,7 +329,7 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s.all);
+    test_mesh_free(&s.all);
 }
 
 /* No instances at all (an empty scene is two-level with none): every ray misses, in every layout
@@ -355,5 +355,5 @@ Test(instances_bvh, empty_scene_misses_everything, .timeout = 600)
     free(tr.instance);
     free(rays);
     free(times);
-    mesh_free(&s.all);
+    test_mesh_free(&s.all);
 }

@@ -10,12 +10,12 @@
 #include "bvh_fixtures.h"
 #include "procedural_mesh.h"
 
-static int check_tree(const Bvh *bvh, const Mesh *mesh, const char *name)
+static int check_tree(const Bvh *bvh, const TestMesh *mesh, const char *name)
 {
     return check_tree_with_costs(bvh, mesh, name, BVH_COSTS_DEFAULT);
 }
 
-static int build_and_check(const Mesh *mesh, const char *name)
+static int build_and_check(const TestMesh *mesh, const char *name)
 {
     Bvh bvh;
     bvh_build(&bvh, mesh->positions, mesh->triangles, mesh->num_triangles);
@@ -28,29 +28,29 @@ Test(bvh, build_invariants_hold_on_procedural_meshes)
 {
     struct {
         const char *name;
-        Mesh mesh;
+        TestMesh mesh;
     } cases[] = {{"icosphere", mesh_icosphere(4)}, {"cube", mesh_cube_grid(9)},
                  {"torus", mesh_torus(30000)},   {"soup", mesh_soup(5000, 7)},
                  {"one", mesh_soup(1, 1)},       {"two", mesh_soup(2, 2)},
                  {"nine", mesh_soup(9, 3)},      {"copies", mesh_copies(5000)}};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         build_and_check(&cases[i].mesh, cases[i].name);
-        mesh_free(&cases[i].mesh);
+        test_mesh_free(&cases[i].mesh);
     }
 }
 
 Test(bvh, depth_stays_within_the_traversal_stack)
 {
-    Mesh mesh = mesh_axis_chains(1280);
+    TestMesh mesh = mesh_axis_chains(1280);
     int depth = build_and_check(&mesh, "axis chains");
     /* Deep enough that the depth limit had to act (a balanced tree would be 9 levels deep). */
     cr_expect_geq(depth, 48, "chains depth %d: too shallow to exercise the limit", depth);
-    mesh_free(&mesh);
+    test_mesh_free(&mesh);
 }
 
 Test(bvh, binned_sah_is_within_3_percent_of_full_sweep)
 {
-    Mesh meshes[] = {mesh_torus(20000), mesh_icosphere(5), mesh_soup(10000, 11)};
+    TestMesh meshes[] = {mesh_torus(20000), mesh_icosphere(5), mesh_soup(10000, 11)};
     const char *names[] = {"torus", "icosphere", "soup"};
     for (int i = 0; i < 3; i++) {
         Bvh binned, swept;
@@ -63,7 +63,7 @@ Test(bvh, binned_sah_is_within_3_percent_of_full_sweep)
                       names[i], binned.sah_cost, swept.sah_cost);
         bvh_free(&binned);
         bvh_free(&swept);
-        mesh_free(&meshes[i]);
+        test_mesh_free(&meshes[i]);
     }
 }
 

@@ -12,6 +12,7 @@
 #include <stb_image_write.h>
 
 #include "base/clock.h"
+#include "io/obj_loader.h"
 #include "scene/scene.h"
 #include "scene/scene_data.h"
 #include "support.h"
@@ -39,7 +40,7 @@ static int32_t tri_corners[] = {0, 0, 0, 1, 0, 0, 2, 0, 0, /* */ 0, 1, 0, 1, 0, 
                                 /* */ 1, -1, -1, 3, -1, -1, 2, -1, 0};
 static int32_t tri_materials[] = {0, 0, -1};
 
-static void make_meshes(ObjMesh *quad, ObjMesh *tri, ObjMaterial quad_mats[2], ObjMaterial *tri_mat,
+static void make_meshes(Mesh *quad, Mesh *tri, ObjMaterial quad_mats[2], ObjMaterial *tri_mat,
                         const char *texture1, const char *texture2)
 {
     quad_mats[0] = obj_material("red", 0.8f, 0.1f, 0.1f);
@@ -47,11 +48,11 @@ static void make_meshes(ObjMesh *quad, ObjMesh *tri, ObjMaterial quad_mats[2], O
     snprintf(quad_mats[1].map_kd, sizeof quad_mats[1].map_kd, "%s", texture1);
     *tri_mat = obj_material("blue", 0.1f, 0.1f, 0.9f);
     snprintf(tri_mat->map_kd, sizeof tri_mat->map_kd, "%s", texture2);
-    *quad = (ObjMesh){.positions = quad_positions, .num_positions = 4, .texcoords = quad_uvs,
+    *quad = (Mesh){.positions = quad_positions, .num_positions = 4, .texcoords = quad_uvs,
                       .num_texcoords = 4, .normals = quad_normals, .num_normals = 1,
                       .corners = quad_corners, .material_ids = quad_materials, .num_triangles = 2,
                       .num_faces = 1, .materials = quad_mats, .num_materials = 2};
-    *tri = (ObjMesh){.positions = tri_positions, .num_positions = 4, .texcoords = tri_uvs,
+    *tri = (Mesh){.positions = tri_positions, .num_positions = 4, .texcoords = tri_uvs,
                      .num_texcoords = 2, .normals = tri_normals, .num_normals = 1,
                      .corners = tri_corners, .material_ids = tri_materials, .num_triangles = 3,
                      .num_faces = 3, .materials = tri_mat, .num_materials = 1};
@@ -68,17 +69,17 @@ Test(flatten, two_meshes_land_at_their_offsets)
     const unsigned char px[12] = {0};
     cr_assert(stbi_write_png(tex1, 2, 2, 3, px, 6));
     cr_assert(stbi_write_png(tex2, 3, 1, 3, px, 9));
-    ObjMesh quad, tri;
+    Mesh quad, tri;
     ObjMaterial quad_mats[2], tri_mat;
     make_meshes(&quad, &tri, quad_mats, &tri_mat, tex1, tex2);
 
     SceneData d;
     scene_data_init(&d);
     Error err = {0};
-    cr_assert(scene_data_append_obj(&d, &quad, "quad.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &quad, "quad.obj", &err), "%s", err.message);
     uint32_t quad_vertices = d.num_vertices;
     cr_expect_eq(quad_vertices, 4, "the quad's diagonal corners are shared");
-    cr_assert(scene_data_append_obj(&d, &tri, "tri.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &tri, "tri.obj", &err), "%s", err.message);
     cr_assert(scene_data_finish(&d, "test", &err), "%s", err.message);
 
     /* Mesh 2: 3 corners, the corner with the other vt, and the 3 corners of the last triangle
@@ -147,13 +148,13 @@ Test(flatten, unusable_normals_make_the_triangle_flat)
     float normals[] = {0, 0, 0, NAN, 0, 1};
     int32_t corners[] = {0, -1, 0, 1, -1, 1, 2, -1, 1, /* */ 0, -1, 1, 1, -1, 1, 2, -1, 1};
     int32_t materials[] = {-1, -1};
-    ObjMesh mesh = {.positions = quad_positions, .num_positions = 4, .normals = normals,
+    Mesh mesh = {.positions = quad_positions, .num_positions = 4, .normals = normals,
                     .num_normals = 2, .corners = corners, .material_ids = materials,
                     .num_triangles = 2};
     SceneData d;
     scene_data_init(&d);
     Error err = {0};
-    cr_assert(scene_data_append_obj(&d, &mesh, "n.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &mesh, "n.obj", &err), "%s", err.message);
     cr_assert(scene_data_finish(&d, "n.obj", &err), "%s", err.message);
     cr_expect_eq(d.triangles[0].v.s[3], 0u, "zero normal: flat");
     cr_expect_eq(d.triangles[1].v.s[3], 0u, "NaN normal: flat");
@@ -168,13 +169,13 @@ Test(flatten, default_material_is_added_once_per_scene)
 {
     int32_t corners[] = {0, -1, -1, 1, -1, -1, 2, -1, -1};
     int32_t materials[] = {-1};
-    ObjMesh mesh = {.positions = quad_positions, .num_positions = 4, .corners = corners,
+    Mesh mesh = {.positions = quad_positions, .num_positions = 4, .corners = corners,
                     .material_ids = materials, .num_triangles = 1};
     SceneData d;
     scene_data_init(&d);
     Error err = {0};
-    cr_assert(scene_data_append_obj(&d, &mesh, "a.obj", &err), "%s", err.message);
-    cr_assert(scene_data_append_obj(&d, &mesh, "b.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &mesh, "a.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &mesh, "b.obj", &err), "%s", err.message);
     cr_assert(scene_data_finish(&d, "two.json", &err), "%s", err.message);
     cr_expect_eq(d.num_materials, 1);
     cr_expect_eq(d.material_ids[0], 0);
@@ -189,12 +190,12 @@ Test(flatten, non_finite_position_is_rejected)
     float positions[] = {0, 0, 0, INFINITY, 0, 0, 0, 1, 0};
     int32_t corners[] = {0, -1, -1, 1, -1, -1, 2, -1, -1};
     int32_t materials[] = {-1};
-    ObjMesh mesh = {.positions = positions, .num_positions = 3, .corners = corners,
+    Mesh mesh = {.positions = positions, .num_positions = 3, .corners = corners,
                     .material_ids = materials, .num_triangles = 1};
     SceneData d;
     scene_data_init(&d);
     Error err = {0};
-    cr_expect_not(scene_data_append_obj(&d, &mesh, "inf.obj", &err));
+    cr_expect_not(scene_data_append_mesh(&d, &mesh, "inf.obj", &err));
     cr_expect_eq(err.code, ERR_OBJ_NONFINITE, "%s", error_code_name(err.code));
     cr_expect(strstr(err.message, "inf.obj"), "%s", err.message);
     scene_data_free(&d);
@@ -363,13 +364,13 @@ Test(flatten, dragon_unifies_to_one_vertex_per_position)
 {
     REQUIRE_ASSETS();
     warnings_set_quiet(true);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_assert(obj_load(ASSETS_DIR "/stanford-dragon/dragon.obj", &mesh, &err), "%s", err.message);
     SceneData d;
     scene_data_init(&d);
     double start = seconds_now();
-    cr_assert(scene_data_append_obj(&d, &mesh, "dragon.obj", &err), "%s", err.message);
+    cr_assert(scene_data_append_mesh(&d, &mesh, "dragon.obj", &err), "%s", err.message);
     cr_assert(scene_data_finish(&d, "dragon.obj", &err), "%s", err.message);
     double seconds = seconds_now() - start;
     cr_log_info("dragon: %u triangles, %u vertices flattened in %.1f ms", d.num_triangles,
@@ -377,5 +378,5 @@ Test(flatten, dragon_unifies_to_one_vertex_per_position)
     cr_expect_eq(d.num_triangles, 100000);
     cr_expect_eq(d.num_vertices, 50000, "positions only: one vertex per position");
     scene_data_free(&d);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Objects as meshes and instances (host/scene/instances.c, shared/DESIGN.md "Objects"): the same
+/* Objects as meshes and instances (host/scene/load_objects.c, shared/DESIGN.md "Objects"): the same
  * file named twice is loaded once; objects without a transform and with a file of their own are
  * merged into one world-space mesh (one level); --instancing always / never; baking applies the
  * transform (mirrors keep their front); moving objects get a swept box that holds both ends. */
@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene/instances.h"
+#include "scene/load_objects.h"
 #include "scene/scene.h"
 #include "support.h"
 

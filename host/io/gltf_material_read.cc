@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 /* gltf_material_read.cc: a glTF's materials and images, from the model that io/gltf_loader.cc
- * parsed, as the plain records of scene/gltf_material.h (factors, textureInfos with their
+ * parsed, as the plain records of io/gltf_material_read.h (factors, textureInfos with their
  * samplers and KHR_texture_transform, the KHR_materials_* extensions pt reads). Values are copied
- * as the file states them; gltf_material.c checks their ranges and maps them. */
+ * as the file states them; scene/gltf_material.c checks their ranges and maps them. */
 #include "io/gltf_primitives.h" /* tinygltf, the C++ spellings of base/'s C11 */
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,12 +14,21 @@
 #define _Noreturn [[noreturn]]
 #define _Static_assert static_assert
 extern "C" {
-#include "scene/gltf_scene.h"
+#include "io/gltf_material_read.h"
 }
 #undef _Static_assert
 #undef _Noreturn
 
 namespace {
+
+void texture_ref_default(GltfTextureRef *t)
+{
+    memset(t, 0, sizeof *t);
+    t->image = -1;
+    t->wrap_s = t->wrap_t = GLTF_WRAP_REPEAT;
+    t->scale[0] = t->scale[1] = 1.0f;
+    t->amount = 1.0f;
+}
 
 float number(const tinygltf::Value &obj, const char *key, float def)
 {
@@ -160,6 +170,27 @@ std::string url_decode(const std::string &s)
 }
 
 } // namespace
+
+extern "C" void gltf_material_default(GltfMaterial *m)
+{
+    memset(m, 0, sizeof *m);
+    for (int c = 0; c < 4; c++)
+        m->base_color[c] = 1.0f;
+    m->metallic = m->roughness = 1.0f;
+    m->emissive_strength = 1.0f;
+    m->alpha_cutoff = 0.5f;
+    m->specular = 1.0f;
+    m->ior = 1.5f;
+    m->attenuation_distance = INFINITY;
+    for (int c = 0; c < 3; c++)
+        m->specular_color[c] = m->attenuation_color[c] = 1.0f;
+    GltfTextureRef *refs[] = {&m->base_color_texture, &m->metallic_roughness_texture,
+                              &m->normal_texture, &m->occlusion_texture, &m->emissive_texture,
+                              &m->specular_texture, &m->specular_color_texture,
+                              &m->transmission_texture};
+    for (size_t i = 0; i < sizeof refs / sizeof refs[0]; i++)
+        texture_ref_default(refs[i]);
+}
 
 extern "C" bool gltf_read_materials(const GltfFile *file, GltfMaterial **materials, int *count,
                                     GltfImage **images, int *num_images)

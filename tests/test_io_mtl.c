@@ -21,7 +21,7 @@
 #define TRIANGLE_V "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
 
 /* Loads quietly; fails the test with the error message if it does not load. */
-static void load_ok(const char *path, ObjMesh *mesh)
+static void load_ok(const char *path, Mesh *mesh)
 {
     Error err = {0};
     warnings_set_quiet(true);
@@ -31,7 +31,7 @@ static void load_ok(const char *path, ObjMesh *mesh)
 Test(obj_assets, mtl_fields_and_texture_paths)
 {
     REQUIRE_ASSETS();
-    ObjMesh mesh;
+    Mesh mesh;
     load_ok(ASSETS_DIR "/cornell-box/CornellBox-Original.obj", &mesh);
     int light = -1;
     for (size_t m = 0; m < mesh.num_materials; m++)
@@ -46,7 +46,7 @@ Test(obj_assets, mtl_fields_and_texture_paths)
     for (size_t t = 0; t < mesh.num_triangles; t++)
         light_triangles += mesh.material_ids[t] == light;
     cr_expect_eq(light_triangles, 2, "the light quad gives 2 triangles");
-    obj_free(&mesh);
+    mesh_free(&mesh);
 
     load_ok(ASSETS_DIR "/scrub-pine/scrubPine.obj", &mesh);
     cr_assert_eq(mesh.num_materials, 2);
@@ -59,7 +59,7 @@ Test(obj_assets, mtl_fields_and_texture_paths)
         cr_expect(strncmp(mesh.materials[m].map_kd, folder, strlen(folder)) == 0, "%s",
                   mesh.materials[m].map_kd);
     }
-    obj_free(&mesh);
+    mesh_free(&mesh);
 
     /* holodeck: map_Ke carries "-mm 0 0.4"; its map_Kd still resolves. */
     load_ok(ASSETS_DIR "/holodeck/holodeck.obj", &mesh);
@@ -70,7 +70,7 @@ Test(obj_assets, mtl_fields_and_texture_paths)
             cr_expect_str_eq(mesh.materials[m].map_kd, ASSETS_DIR "/holodeck/wall.png");
     }
     cr_expect(screens);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 Test(obj_details, mtl_values_defaults_and_warnings)
@@ -84,7 +84,7 @@ Test(obj_details, mtl_values_defaults_and_warnings)
                                        "mtllib m.mtl\n" TRIANGLE_V "usemtl glass\nf 1 2 3\n"
                                        "usemtl plain\nf 1 2 3\nusemtl nosuch\nf 1 2 3\n");
     int before = warning_count();
-    ObjMesh mesh;
+    Mesh mesh;
     load_ok(path, &mesh);
     cr_expect_eq(warning_count(), before + 2, "two warnings: usemtl nosuch, map_Kd's -mm");
     cr_assert_eq(mesh.num_materials, 2);
@@ -102,7 +102,7 @@ Test(obj_details, mtl_values_defaults_and_warnings)
     cr_expect_eq(mesh.material_ids[0], 0);
     cr_expect_eq(mesh.material_ids[1], 1);
     cr_expect_eq(mesh.material_ids[2], -1);
-    obj_free(&mesh);
+    mesh_free(&mesh);
     remove(path);
     remove(test_write_file(dir, "m.mtl", ""));
     rmdir(dir);
@@ -123,7 +123,7 @@ Test(obj_details, missing_mtl_is_a_warning_naming_it)
     dup2(fileno(log), fileno(stderr));
     warnings_set_quiet(false);
     int before = warning_count();
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     bool loaded = obj_load(path, &mesh, &err);
     fflush(stderr);
@@ -141,7 +141,7 @@ Test(obj_details, missing_mtl_is_a_warning_naming_it)
     free(printed);
     cr_expect_eq(mesh.num_materials, 0);
     cr_expect_eq(mesh.material_ids[0], -1);
-    obj_free(&mesh);
+    mesh_free(&mesh);
     remove(path);
     remove(log_path);
     rmdir(dir);
@@ -321,7 +321,7 @@ static char *unused_warnings(const char *mtl)
     cr_assert(log && saved >= 0);
     dup2(fileno(log), fileno(stderr));
     warnings_set_quiet(false);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     bool loaded = obj_load(obj, &mesh, &err);
     fflush(stderr);
@@ -329,7 +329,7 @@ static char *unused_warnings(const char *mtl)
     close(saved);
     fclose(log);
     cr_assert(loaded, "%s", err.message);
-    obj_free(&mesh);
+    mesh_free(&mesh);
     return test_read_file(log_path, NULL);
 }
 

@@ -22,10 +22,10 @@
 /* The grid of unit squares (0..GRID)^2 at z = PLANE_Z, each split along a diagonal (alternating
  * between the two), every triangle COPIES times with its corners rotated and its winding flipped,
  * all in a shuffled order: the tree's leaf order has nothing to do with the indices. */
-static Mesh tie_mesh(uint64_t seed)
+static TestMesh tie_mesh(uint64_t seed)
 {
     uint32_t n = GRID * GRID * 2 * COPIES;
-    Mesh mesh = mesh_alloc((GRID + 1) * (GRID + 1), n);
+    TestMesh mesh = mesh_alloc((GRID + 1) * (GRID + 1), n);
     for (int y = 0; y <= GRID; y++)
         for (int x = 0; x <= GRID; x++)
             mesh.positions[y * (GRID + 1) + x] = mesh_point((float)x, (float)y, PLANE_Z);
@@ -57,7 +57,7 @@ static Mesh tie_mesh(uint64_t seed)
 
 /* Whether triangle t of the mesh (in the plane z = PLANE_Z) contains (x, y), edges and corners
  * included; exact: every coordinate is a small multiple of 1 / STEPS_PER_UNIT. */
-static bool triangle_contains(const Mesh *mesh, uint32_t t, double x, double y)
+static bool triangle_contains(const TestMesh *mesh, uint32_t t, double x, double y)
 {
     const float4 *p[3];
     for (int c = 0; c < 3; c++)
@@ -77,7 +77,7 @@ typedef struct {
 } Ray;
 
 /* Traces rays with bvh_test_trace_closest on the layout the test device was built for. */
-static float4 *trace_closest_hits(Device *dev, const Mesh *mesh, const Ray *rays, uint32_t n)
+static float4 *trace_closest_hits(Device *dev, const TestMesh *mesh, const Ray *rays, uint32_t n)
 {
     Error err = {0};
     Bvh bvh;
@@ -119,7 +119,7 @@ static float4 *trace_closest_hits(Device *dev, const Mesh *mesh, const Ray *rays
 static void check_ties(uint64_t seed)
 {
     Device *dev = test_device();
-    Mesh mesh = tie_mesh(seed);
+    TestMesh mesh = tie_mesh(seed);
     const int side = GRID * STEPS_PER_UNIT + 1;
     uint32_t n = 2u * side * side;
     Ray *rays = malloc(n * sizeof *rays);
@@ -154,7 +154,7 @@ static void check_ties(uint64_t seed)
     free(hits);
     free(rays);
     free(expected);
-    mesh_free(&mesh);
+    test_mesh_free(&mesh);
     test_device_release(dev);
 }
 

@@ -20,7 +20,7 @@
 
 #define RAYS_PER_MESH 10000
 
-static void check_mesh_against_brute_force(Mesh mesh, const char *name, uint64_t seed)
+static void check_mesh_against_brute_force(TestMesh mesh, const char *name, uint64_t seed)
 {
     Device *dev = test_device();
     TraceScene scene = trace_scene_create(dev, mesh);
@@ -85,12 +85,12 @@ static void check_asset_against_brute_force(const char *relative_path, uint64_t 
     REQUIRE_ASSETS();
     char path[512];
     snprintf(path, sizeof path, "%s/%s", ASSETS_DIR, relative_path);
-    ObjMesh obj;
+    Mesh obj;
     Error err = {0};
     warnings_set_quiet(true);
     cr_assert(obj_load(path, &obj, &err), "%s", err.message);
-    Mesh mesh = mesh_from_obj(&obj);
-    obj_free(&obj);
+    TestMesh mesh = mesh_from_obj(&obj);
+    mesh_free(&obj);
     check_mesh_against_brute_force(mesh, relative_path, seed);
 }
 
@@ -103,7 +103,7 @@ Test(bvh, matches_brute_force_on_cornell_sphere) { check_asset_against_brute_for
 /* Rays aimed exactly at every vertex and edge midpoint of a closed mesh around the origin: from
  * outside (from the side the point faces) and from inside (near the centre). Every one must hit,
  * in the BVH and in the reference; a test with a rounding gap at shared edges leaks some. */
-static void check_watertight(Mesh mesh, const char *name)
+static void check_watertight(TestMesh mesh, const char *name)
 {
     Device *dev = test_device();
     TraceScene scene = trace_scene_create(dev, mesh);
@@ -205,7 +205,7 @@ Test(bvh, axis_parallel_rays_through_grid_lines_hit_at_the_exact_distance)
 }
 
 /* Scales the mesh about the origin, then moves it. */
-static Mesh mesh_transformed(Mesh mesh, float scale, float dx, float dy, float dz)
+static TestMesh mesh_transformed(TestMesh mesh, float scale, float dx, float dy, float dz)
 {
     for (uint32_t i = 0; i < mesh.num_positions; i++) {
         mesh.positions[i].s[0] = mesh.positions[i].s[0] * scale + dx;
@@ -219,7 +219,7 @@ static Mesh mesh_transformed(Mesh mesh, float scale, float dx, float dy, float d
  * (bvh_test_bounce_rays: interpolated hit point, offset_ray_origin, tmin = 0), to the side the ray
  * came from and through the surface. None may hit the triangle it starts on. On a convex mesh,
  * reflected rays must escape and transmitted rays must reach another triangle. */
-static void check_offset_rays(Mesh mesh, const char *name, bool convex)
+static void check_offset_rays(TestMesh mesh, const char *name, bool convex)
 {
     Device *dev = test_device();
     TraceScene scene = trace_scene_create(dev, mesh);

@@ -2,7 +2,7 @@
 /* trace_packet (cl/geometry/bvh_traverse_packet.cl): eight rays walked together through the 8-wide
  * layout report, lane by lane, what trace_bvh reports for each ray alone, bit for bit (closest hit
  * with its t, barycentrics and triangle; any-hit answer), and so what the brute-force loop reports
- * (test_bvh_traverse.c). Rays come as packets of eight: the renderer's mix of awkward rays (tmin >
+ * (test_accel_bvh_traverse.c). Rays come as packets of eight: the renderer's mix of awkward rays (tmin >
  * 0, finite tmax, axis-parallel with signed zeros) one per lane, bundles of nearly parallel rays
  * from nearly one point (which walk together deep into the tree), identical lanes, and two bundles
  * interleaved (which part at the root); the count is no multiple of eight, so the last packet has
@@ -67,7 +67,7 @@ static Ray *packet_rays(const TraceScene *scene, uint64_t seed)
     return rays;
 }
 
-static void check_packets_equal_single_rays(Mesh mesh, const char *name, uint64_t seed)
+static void check_packets_equal_single_rays(TestMesh mesh, const char *name, uint64_t seed)
 {
     setenv("PT_BVH_WIDTH", "8", 1);
     Device *dev = test_device();
@@ -114,11 +114,11 @@ Test(bvh_packets, equal_single_rays_on_one_triangle) { check_packets_equal_singl
 Test(bvh_packets, equal_single_rays_on_dragon)
 {
     REQUIRE_ASSETS();
-    ObjMesh obj;
+    Mesh obj;
     Error err = {0};
     warnings_set_quiet(true);
     cr_assert(obj_load(ASSETS_DIR "/stanford-dragon/dragon.obj", &obj, &err), "%s", err.message);
-    Mesh mesh = mesh_from_obj(&obj);
-    obj_free(&obj);
+    TestMesh mesh = mesh_from_obj(&obj);
+    mesh_free(&obj);
     check_packets_equal_single_rays(mesh, "dragon", 12);
 }

@@ -124,13 +124,13 @@ static const char *write_binary(const char *dir, bool big)
     return path;
 }
 
-static void load_ply_ok(const char *path, ObjMesh *mesh)
+static void load_ply_ok(const char *path, Mesh *mesh)
 {
     Error err = {0};
     cr_assert(ply_load(path, mesh, &err), "%s: %s", path, err.message);
 }
 
-static void expect_same_mesh(const ObjMesh *a, const ObjMesh *b, const char *what)
+static void expect_same_mesh(const Mesh *a, const Mesh *b, const char *what)
 {
     cr_assert_eq(a->num_positions, b->num_positions, "%s", what);
     cr_assert_eq(a->num_normals, b->num_normals, "%s", what);
@@ -150,7 +150,7 @@ Test(ply, every_format_loads_like_the_obj)
 {
     const char *dir = test_temp_dir();
     Error err = {0};
-    ObjMesh obj;
+    Mesh obj;
     cr_assert(obj_load(write_obj(dir), &obj, &err), "%s", err.message);
     cr_assert_eq(obj.num_triangles, 2u + 3u + 1u); /* quad, pentagon, triangle */
     const char *paths[] = {write_ascii(dir), NULL, NULL};
@@ -159,18 +159,18 @@ Test(ply, every_format_loads_like_the_obj)
     snprintf(big, sizeof big, "%s", write_binary(dir, true));
     paths[1] = little, paths[2] = big;
     for (int i = 0; i < 3; i++) {
-        ObjMesh ply;
+        Mesh ply;
         load_ply_ok(paths[i], &ply);
         expect_same_mesh(&obj, &ply, paths[i]);
-        obj_free(&ply);
+        mesh_free(&ply);
     }
-    obj_free(&obj);
+    mesh_free(&obj);
 }
 
 /* Loading must fail with this code and a message holding `mentions` (and the file's name). */
 static void expect_error_file(const char *path, ErrorCode code, const char *mentions)
 {
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_assert(!ply_load(path, &mesh, &err), "%s loaded; expected: %s", path, mentions);
     cr_assert_eq(err.code, code, "%s: code %s, expected %s (%s)", path, error_code_name(err.code),
@@ -258,7 +258,7 @@ Test(ply, short_faces_are_skipped_with_a_warning)
                                        "2 0 1\n3 0 1 2\n0\n");
     int before = warning_count();
     warnings_set_quiet(true);
-    ObjMesh mesh;
+    Mesh mesh;
     load_ply_ok(path, &mesh);
     cr_assert_eq(warning_count(), before + 1);
     cr_assert_eq(mesh.num_triangles, 1u);
@@ -266,7 +266,7 @@ Test(ply, short_faces_are_skipped_with_a_warning)
     cr_assert_null(mesh.normals);
     cr_assert_eq(mesh.corners[1], -1);
     cr_assert_eq(mesh.corners[2], -1);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 /* Random byte changes to the binary files: each loads or fails with a message, within bounds. */
@@ -289,13 +289,13 @@ Test(ply, mutated_files_load_or_fail_cleanly)
         FILE *f = fopen(path, "wb");
         fwrite(copy, 1, length, f);
         fclose(f);
-        ObjMesh mesh;
+        Mesh mesh;
         Error err = {0};
         warnings_set_quiet(true);
         if (ply_load(path, &mesh, &err)) {
             for (size_t c = 0; c < 9 * mesh.num_triangles; c += 3)
                 cr_assert(mesh.corners[c] >= 0 && (size_t)mesh.corners[c] < mesh.num_positions);
-            obj_free(&mesh);
+            mesh_free(&mesh);
         } else {
             cr_assert(err.message[0], "round %d failed without a message", round);
         }

@@ -118,7 +118,7 @@ static bool triangle_in_face(const LineCounts *c, const LineFace *face, const in
 }
 
 /* Loads quietly; fails the test with the error message if it does not load. */
-static void load_ok(const char *path, ObjMesh *mesh)
+static void load_ok(const char *path, Mesh *mesh)
 {
     Error err = {0};
     warnings_set_quiet(true);
@@ -156,7 +156,7 @@ static size_t list_asset_objs(char paths[][768], size_t max)
 
 /* Indices in range, and the triangle's material is the file's usemtl for its face (or the
  * default when no material of that name exists). */
-static void expect_triangle_ok(const ObjMesh *mesh, size_t triangle, const char *usemtl,
+static void expect_triangle_ok(const Mesh *mesh, size_t triangle, const char *usemtl,
                                const char *path)
 {
     const int32_t *c = mesh->corners + 9 * triangle;
@@ -184,7 +184,7 @@ Test(obj_assets, every_obj_matches_an_independent_line_count)
     size_t count = list_asset_objs(paths, 64);
     cr_assert_geq(count, 15, "found only %zu OBJ files", count);
     for (size_t i = 0; i < count; i++) {
-        ObjMesh mesh;
+        Mesh mesh;
         load_ok(paths[i], &mesh);
         LineCounts lines = count_lines(paths[i]);
         cr_expect_eq(mesh.num_positions, lines.v, "%s: v", paths[i]);
@@ -211,7 +211,7 @@ Test(obj_assets, every_obj_matches_an_independent_line_count)
         }
         cr_expect_eq(mesh.num_triangles, expected_triangles, "%s: triangles", paths[i]);
         free_counts(&lines);
-        obj_free(&mesh);
+        mesh_free(&mesh);
     }
 }
 
@@ -229,11 +229,11 @@ Test(obj_assets, known_triangle_counts)
         {ASSETS_DIR "/spot/spot_control_mesh.obj", 372},
     };
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++) {
-        ObjMesh mesh;
+        Mesh mesh;
         load_ok(known[i].path, &mesh);
         cr_expect_eq(mesh.num_triangles, known[i].triangles, "%s: %zu triangles", known[i].path,
                      mesh.num_triangles);
-        obj_free(&mesh);
+        mesh_free(&mesh);
     }
 }
 
@@ -241,13 +241,13 @@ Test(obj_assets, dragon_without_its_mtl_warns_and_uses_the_default_material)
 {
     REQUIRE_ASSETS();
     int before = warning_count();
-    ObjMesh mesh;
+    Mesh mesh;
     load_ok(ASSETS_DIR "/stanford-dragon/dragon.obj", &mesh);
     cr_expect_gt(warning_count(), before, "no warning for the missing dragon.mtl");
     cr_expect_eq(mesh.num_materials, 0);
     for (size_t t = 0; t < mesh.num_triangles; t++)
         cr_assert_eq(mesh.material_ids[t], -1, "triangle %zu", t);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 /* Vector area (cross product / 2) of a polygon's triangles vs its Newell vector / 2: equal for
@@ -256,7 +256,7 @@ Test(obj_assets, spot_control_mesh_faces_keep_their_newell_area)
 {
     REQUIRE_ASSETS();
     const char *path = ASSETS_DIR "/spot/spot_control_mesh.obj";
-    ObjMesh mesh;
+    Mesh mesh;
     load_ok(path, &mesh);
     FILE *file = fopen(path, "r");
     cr_assert(file);
@@ -314,5 +314,5 @@ Test(obj_assets, spot_control_mesh_faces_keep_their_newell_area)
     cr_expect_eq(face, mesh.num_faces);
     cr_expect_eq(triangle, mesh.num_triangles);
     cr_expect_eq(pentagons, 16, "the control mesh has 16 pentagons");
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }

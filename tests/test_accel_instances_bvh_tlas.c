@@ -120,7 +120,7 @@ static void check_node(TlasCheck *c, uint32_t node, double ulo[3], double uhi[3]
 
 static void check_layout(int width, bool quantized)
 {
-    Mesh mesh = mesh_icosphere(1);
+    TestMesh mesh = mesh_icosphere(1);
     BvhMesh meshes[1] = {{0, mesh.num_triangles}};
     BvhInstance *instances = malloc(NUM_INSTANCES * sizeof *instances);
     uint64_t rng = 5;
@@ -149,7 +149,7 @@ static void check_layout(int width, bool quantized)
     free(c.seen);
     scene_bvh_free(&bvh);
     free(instances);
-    mesh_free(&mesh);
+    test_mesh_free(&mesh);
 }
 
 Test(instances_bvh, tlas_boxes_hold_every_instance_box_2_wide) { check_layout(2, false); }

@@ -15,7 +15,7 @@
 #include "support.h"
 
 /* Loads quietly; fails the test with the error message if it does not load. */
-static void load_ok(const char *path, ObjMesh *mesh)
+static void load_ok(const char *path, Mesh *mesh)
 {
     Error err = {0};
     warnings_set_quiet(true);
@@ -27,7 +27,7 @@ static void expect_error(const char *text, ErrorCode code, int line, const char 
 {
     const char *dir = test_temp_dir();
     const char *path = test_write_file(dir, "bad.obj", text);
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     warnings_set_quiet(true);
     bool loaded = obj_load(path, &mesh, &err);
@@ -55,7 +55,7 @@ static void expect_error(const char *text, ErrorCode code, int line, const char 
 
 Test(obj_errors, missing_file)
 {
-    ObjMesh mesh;
+    Mesh mesh;
     Error err = {0};
     cr_assert_not(obj_load("/nonexistent/folder/bad.obj", &mesh, &err));
     cr_expect_eq(err.code, ERR_FILE_MISSING);
@@ -116,7 +116,7 @@ Test(obj_errors, face_with_too_many_corners)
 
 /* ---- accepted quirks and details ---------------------------------------------------------- */
 
-static void load_text(const char *text, ObjMesh *mesh, const char **path_out)
+static void load_text(const char *text, Mesh *mesh, const char **path_out)
 {
     const char *dir = test_temp_dir();
     const char *path = test_write_file(dir, "ok.obj", text);
@@ -129,7 +129,7 @@ static void load_text(const char *text, ObjMesh *mesh, const char **path_out)
 
 Test(obj_details, corners_carry_position_texcoord_normal_or_minus_one)
 {
-    ObjMesh mesh;
+    Mesh mesh;
     load_text(TRIANGLE_V "vt 0 0\nvt 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 3/2 2/1 1/2\nf -3 -2 -1\n",
               &mesh, NULL);
     cr_assert_eq(mesh.num_triangles, 3);
@@ -139,13 +139,13 @@ Test(obj_details, corners_carry_position_texcoord_normal_or_minus_one)
     for (int t = 0; t < 3; t++)
         for (int k = 0; k < 9; k++)
             cr_expect_eq(mesh.corners[9 * t + k], expected[t][k], "triangle %d value %d", t, k);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 Test(obj_details, concave_ngon_face_is_ear_clipped)
 {
     /* An L-shaped hexagon, reflex corner last: a fan from corner 0 would flip a triangle. */
-    ObjMesh mesh;
+    Mesh mesh;
     load_text("v 0 3 0\nv 0 0 0\nv 3 0 0\nv 3 1 0\nv 1 1 0\nv 1 3 0\nf 1 2 3 4 5 6\n", &mesh, NULL);
     cr_assert_eq(mesh.num_faces, 1);
     cr_assert_eq(mesh.num_triangles, 4);
@@ -160,27 +160,27 @@ Test(obj_details, concave_ngon_face_is_ear_clipped)
         total += z / 2;
     }
     cr_expect_float_eq(total, 5.0, 1e-6, "L-shape area 5, got %g", total);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 Test(obj_details, positive_indices_may_refer_forward)
 {
     /* tinyobjloader resolves positive indices after the whole file is read. */
-    ObjMesh mesh;
+    Mesh mesh;
     load_text("f 1 2 3\n" TRIANGLE_V, &mesh, NULL);
     cr_expect_eq(mesh.num_triangles, 1);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 Test(obj_details, short_face_is_skipped_with_a_warning)
 {
     int before = warning_count();
-    ObjMesh mesh;
+    Mesh mesh;
     load_text(TRIANGLE_V "f 1 2\nf 1 2 3\n", &mesh, NULL);
     cr_expect_gt(warning_count(), before);
     cr_expect_eq(mesh.num_faces, 1);
     cr_expect_eq(mesh.num_triangles, 1);
-    obj_free(&mesh);
+    mesh_free(&mesh);
 }
 
 Test(obj_lines, find_record_counts_like_tinyobjloader)
@@ -219,7 +219,7 @@ Test(obj_errors, mutated_files_load_or_fail_cleanly)
             text[at] = alphabet[(state >> 8) % (sizeof alphabet - 1)];
         }
         const char *path = test_write_file(dir, "mutant.obj", text);
-        ObjMesh mesh;
+        Mesh mesh;
         Error err = {0};
         if (!obj_load(path, &mesh, &err)) {
             cr_expect_neq(err.code, ERR_NONE);
@@ -236,7 +236,7 @@ Test(obj_errors, mutated_files_load_or_fail_cleanly)
                 cr_assert(c[1] >= -1 && c[1] < (int32_t)mesh.num_texcoords, "trial %d", trial);
                 cr_assert(c[2] >= -1 && c[2] < (int32_t)mesh.num_normals, "trial %d", trial);
             }
-        obj_free(&mesh);
+        mesh_free(&mesh);
     }
     remove(test_write_file(dir, "mutant.obj", ""));
     rmdir(dir);
