@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "dist/mpi_link.h"
-#include "app/render_ranks.h"
+#include "dist/render_ranks.h"
 #include "base/fs.h"
 #include "dist/checkpoint.h"
 #include "render/film.h"

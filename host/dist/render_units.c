@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: MIT
-/* render_units.c: the unit render (app/render_units.h). The main thread starts one worker thread
+/* render_units.c: the unit render (dist/render_units.h). The main thread starts one worker thread
  * per device, then only waits: for the workers (a run finished: progress), for the next checkpoint
  * and for the time limit. Workers take runs from the scheduler, render each into their device's
  * film as one block (wavefront_render_block), and move their film into the host's on request (a
  * checkpoint) and at the end. */
-#include "app/render_units.h"
+#include "dist/render_units.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/render_ranks.h"
+#include "dist/render_ranks.h"
 #include "app/stop_signals.h"
 #include "base/clock.h"
 #include "dist/checkpoint.h"
@@ -71,7 +71,7 @@ static bool flush(Worker *k)
     return ok;
 }
 
-/* ---- MPI (app/render_ranks.h): on ranks other than 0, runs come from rank 0 ---- */
+/* ---- MPI (dist/render_ranks.h): on ranks other than 0, runs come from rank 0 ---- */
 
 static bool take_run(Worker *k, UnitRun *run)
 {
@@ -175,7 +175,7 @@ static bool all_flushed(const Worker *workers, int n, uint64_t request)
     return true;
 }
 
-/* MPI (app/render_ranks.h): the main thread, between its waits: rank 0 answers the other ranks;
+/* MPI (dist/render_ranks.h): the main thread, between its waits: rank 0 answers the other ranks;
  * another rank relays its threads' requests, and sends its film when rank 0 asks for it
  * (*asked: the generation, until sent). Called and returns with sh->lock held. */
 static bool serve_ranks(Shared *sh, Worker *workers, int n, uint64_t *asked, Error *err)

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-/* render_ranks_root.c: rank 0's side of the link (app/render_ranks.h): it answers the other
+/* render_ranks_root.c: rank 0's side of the link (dist/render_ranks.h): it answers the other
  * ranks' requests from its scheduler and adds their films to its own. */
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "base/clock.h"
 #include "render/film.h"
 

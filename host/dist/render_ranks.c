@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* render_ranks.c: the link's opening (every rank checks that all render the same image), its
- * end, and the test point PT_TEST_KILL_RANK (app/render_ranks.h). MPI errors are fatal
+ * end, and the test point PT_TEST_KILL_RANK (dist/render_ranks.h). MPI errors are fatal
  * (MPI_ERRORS_ARE_FATAL, the default): a failed call ends the job through mpirun, so the return
  * codes of MPI calls are not checked in render_ranks*.c. */
-#include "app/render_ranks.h"
+#include "dist/render_ranks.h"
 
 #include <mpi.h>
 #include <signal.h>
@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "dist/mpi_link.h"
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "base/version.h"
 #include "render/film.h"
 

@@ -17,7 +17,7 @@
 #include "dist/unit_film.h"
 #include "render/wavefront.h"
 
-/* An MPI job's link between ranks (app/render_ranks.h). */
+/* An MPI job's link between ranks (dist/render_ranks.h). */
 typedef struct RankLink RankLink;
 
 /* The devices a unit render uses: the session's own, then the extra ones. */

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-/* render_ranks_relay.c: the other ranks' side of the link (app/render_ranks.h): the main thread
+/* render_ranks_relay.c: the other ranks' side of the link (dist/render_ranks.h): the main thread
  * relays its device threads' requests to rank 0 and their answers back, and sends the rank's
  * film. */
 #include <limits.h>
 #include <mpi.h>
 #include <string.h>
 
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "render/film.h"
 
 void rank_link_ask(RankLink *l, int worker, uint32_t max_units)
