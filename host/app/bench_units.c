@@ -19,7 +19,7 @@ static void run_units(Session *s, SessionDevice *extra, int num_extra, const Uni
                       RenderSettings settings, RenderStats *stats, UnitRenderReport *report)
 {
     UnitDevices devices = {.session = s, .extra = extra, .num_extra = num_extra};
-    UnitRenderDesc desc = {.settings = settings, .grid = *grid, .progress = PROGRESS_NONE};
+    UnitRenderDesc desc = {.settings = settings, .grid = *grid}; /* no hooks: no progress */
     UnitFilm film;
     RenderStop stop;
     Error err = {0};

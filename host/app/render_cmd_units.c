@@ -6,10 +6,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "dist/mpi_link.h"
-#include "dist/render_ranks.h"
+#include "app/render_loop.h"
+#include "app/stop_signals.h"
 #include "base/fs.h"
 #include "dist/checkpoint.h"
+#include "dist/mpi_link.h"
+#include "dist/render_ranks.h"
 #include "render/film.h"
 
 bool render_cmd_wants_units(const Options *o)
@@ -49,6 +51,32 @@ static bool check_supported(const Options *o, const RenderSettings *s, Error *er
     return true;
 }
 
+/* The unit render's hooks (dist/render_units.h): pt render's stop signals, test points and
+ * progress lines, the same as its one-device loop's. */
+static void print_progress(void *style, int spp_done, int spp, uint64_t done, uint64_t total,
+                           double elapsed)
+{
+    render_loop_print_progress(*(const ProgressStyle *)style, spp_done, spp, done, total, elapsed);
+}
+
+static void end_progress(void *style)
+{
+    if (*(const ProgressStyle *)style == PROGRESS_TERMINAL)
+        fputc('\n', stderr); /* below the line rewritten in place */
+}
+
+static UnitRenderHooks unit_hooks(ProgressStyle *style)
+{
+    bool shown = *style != PROGRESS_NONE;
+    return (UnitRenderHooks){.stop_requested = stop_signal_received,
+                             .stop_name = stop_signal_name,
+                             .progress = shown ? print_progress : NULL,
+                             .progress_end = end_progress,
+                             .progress_context = style,
+                             .progress_interval = render_loop_update_interval(*style),
+                             .test_point = stop_signals_test_point};
+}
+
 bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecList *list,
                           const RenderSettings *settings, const char *checkpoint_base,
                           RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err)
@@ -58,9 +86,9 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
     /* MPI: rank 0 alone reports, keeps the checkpoint and watches the time; the others render. */
     bool mpi = mpi_link_size() > 1, root = mpi_link_rank() == 0, quiet = o->quiet || !root;
     const SceneDesc *desc = &session->scene.desc;
+    ProgressStyle progress = render_loop_progress_style(quiet, o->progress, isatty(STDERR_FILENO));
     UnitRenderDesc ud = {.settings = *settings,
-                         .progress = render_loop_progress_style(quiet, o->progress,
-                                                                isatty(STDERR_FILENO)),
+                         .hooks = unit_hooks(&progress),
                          .time_limit = root ? o->time_limit : 0.0,
                          .checkpoint_seconds = root ? o->checkpoint_seconds : 0.0,
                          .resume = o->resume && root,
