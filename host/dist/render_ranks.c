@@ -69,7 +69,7 @@ static bool parse_kill(RankLink *l, Error *err)
         return true;
     char tail;
     if (sscanf(spec, "%d@%u%c", &l->kill_rank, &l->kill_units, &tail) != 2 || l->kill_rank < 0) {
-        error_set(err, ERR_USAGE, NULL, 0, "PT_TEST_KILL_RANK=%s: expected RANK@UNITS, e.g. 1@2",
+        error_set(err, ERR_SETTINGS, NULL, 0, "PT_TEST_KILL_RANK=%s: expected RANK@UNITS, e.g. 1@2",
                   spec);
         return false;
     }
@@ -98,7 +98,7 @@ RankLink *rank_link_open(const UnitGrid *g, const RenderSettings *s, uint64_t id
     free(all);
     MPI_Bcast(verdict, sizeof verdict, MPI_CHAR, 0, MPI_COMM_WORLD);
     if (verdict[0]) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s", verdict);
+        error_set(err, ERR_MPI, NULL, 0, "%s", verdict);
         return NULL;
     }
     RankLink *l = calloc(1, sizeof *l);

@@ -81,7 +81,7 @@ bool rank_link_pump(RankLink *l, uint64_t *flush_request, Error *err)
         }
         pthread_mutex_unlock(&l->lock);
         if (!ok) {
-            error_set(err, ERR_USAGE, NULL, 0, "an unexpected message from rank 0 (tag %d)",
+            error_set(err, ERR_MPI, NULL, 0, "an unexpected message from rank 0 (tag %d)",
                       status.MPI_TAG);
             return false;
         }
