@@ -171,7 +171,7 @@ Test(bloom, bad_values_are_refused)
     float rgb[3] = {5, 5, 5};
     Error err = {0};
     cr_expect_not(bloom_apply(dev, rgb, 1, 1, 1.5f, 3.0f, &err));
-    cr_expect(err.code == ERR_USAGE && strstr(err.message, "strength"), "%s", err.message);
+    cr_expect(err.code == ERR_SETTINGS && strstr(err.message, "strength"), "%s", err.message);
     err = (Error){0}; /* error_set keeps the first error */
     cr_expect_not(bloom_apply(dev, rgb, 1, 1, NAN, 3.0f, &err));
     err = (Error){0};

@@ -106,7 +106,7 @@ Test(device, bvh_width_comes_from_the_device_type_or_pt_bvh_width)
     device_close(&dev);
     setenv("PT_BVH_WIDTH", "3", 1);
     cr_expect_not(device_open(&dev, "cpu", &err));
-    cr_expect_eq(err.code, ERR_USAGE);
+    cr_expect_eq(err.code, ERR_SETTINGS);
     cr_expect(strstr(err.message, "PT_BVH_WIDTH=3") != NULL, "%s", err.message);
     setenv("PT_BVH_WIDTH", "2", 1);
     setenv("PT_BVH_QUANTIZED", "1", 1);

@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # check-layers.sh [ROOT]: refuses includes that go against the layering of shared/DESIGN.md
-# ("Layout"). host/ folders may include only the folders below them; cl/ sources are assembled in
+# ("Layout"), and OpenCL calls outside host/device/. host/ folders may include only the folders below them; cl/ sources are assembled in
 # CL_SOURCES order, which must list the folders in their dependency order. Prints each offence as
 # file:line and exits 1 when there is one.
 set -u
@@ -63,6 +63,17 @@ for f in host/*.c host/*.h; do
     [ "$f" = host/main.c ] || echo "$f: only main.c lives at the top of host/" >>/tmp/check-layers.$$
 done
 
+# OpenCL: only device/ calls the API (shared/DESIGN.md, Layout), so that every call is checked in
+# one place (CL_CHECK) and the other folders go through device/'s helpers (device_fill,
+# device_run, device_release_buffer, ...). Comments are left out before looking.
+grep -rnE '\bcl[A-Z][A-Za-z0-9_]*[[:space:]]*\(' host --include='*.c' --include='*.h' --include='*.cc' |
+    grep -v '^host/device/' | while IFS= read -r line; do
+        code=$(echo "$line" | cut -d: -f3- | sed -e 's#//.*##' -e 's#/\*.*##' -e 's#^[[:space:]]*\*.*##')
+        call=$(echo "$code" | grep -oE '\bcl[A-Z][A-Za-z0-9_]*[[:space:]]*\(' | head -n 1 | tr -d ' (')
+        [ -n "$call" ] &&
+            echo "$(echo "$line" | cut -d: -f1-2): calls $call outside host/device/ (use a device/ helper)"
+    done >>/tmp/check-layers.$$
+
 # cl/: the assembled order must follow shared.h and its parts (cl/shared/) -> core -> geometry ->
 # material -> light -> lensing -> stages; parallel/ and post/ may come anywhere after core/.
 rank() {
@@ -88,8 +99,8 @@ done
 
 if [ -s /tmp/check-layers.$$ ]; then
     cat /tmp/check-layers.$$; rm -f /tmp/check-layers.$$
-    echo "check-layers: the includes above go against the layering (shared/DESIGN.md, Layout)"
+    echo "check-layers: the lines above go against the layering (shared/DESIGN.md, Layout)"
     exit 1
 fi
 rm -f /tmp/check-layers.$$
-echo "check-layers: every include follows the layering"
+echo "check-layers: every include follows the layering; OpenCL calls only in host/device/"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /* pt bench's unit modes (app/bench.h): the render `pt render` does with --device all, a device
- * list or --unit-spp/--unit-rows (app/render_units.h: a host thread per device taking runs of work
+ * list or --unit-spp/--unit-rows (dist/render_units.h: a host thread per device taking runs of work
  * units from one scheduler, one host film), timed like the other modes. "units" is the session's
  * device alone through the scheduler, alternated with the "default" mode's plain render of the
  * same settings and the best of a few of each kept (a shared machine's load changes from one
@@ -13,13 +13,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/render_units.h"
+#include "dist/render_units.h"
 
 static void run_units(Session *s, SessionDevice *extra, int num_extra, const UnitGrid *grid,
                       RenderSettings settings, RenderStats *stats, UnitRenderReport *report)
 {
     UnitDevices devices = {.session = s, .extra = extra, .num_extra = num_extra};
-    UnitRenderDesc desc = {.settings = settings, .grid = *grid, .progress = PROGRESS_NONE};
+    UnitRenderDesc desc = {.settings = settings, .grid = *grid}; /* no hooks: no progress */
     UnitFilm film;
     RenderStop stop;
     Error err = {0};

@@ -6,10 +6,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "dist/mpi_link.h"
-#include "app/render_ranks.h"
+#include "app/render_loop.h"
+#include "app/stop_signals.h"
 #include "base/fs.h"
 #include "dist/checkpoint.h"
+#include "dist/mpi_link.h"
+#include "dist/render_ranks.h"
 #include "render/film.h"
 
 bool render_cmd_wants_units(const Options *o)
@@ -49,6 +51,76 @@ static bool check_supported(const Options *o, const RenderSettings *s, Error *er
     return true;
 }
 
+/* The unit render's hooks (dist/render_units.h): pt render's stop signals, test points and
+ * progress lines, the same as its one-device loop's. */
+static void print_progress(void *style, int spp_done, int spp, uint64_t done, uint64_t total,
+                           double elapsed)
+{
+    render_loop_print_progress(*(const ProgressStyle *)style, spp_done, spp, done, total, elapsed);
+}
+
+static void end_progress(void *style)
+{
+    if (*(const ProgressStyle *)style == PROGRESS_TERMINAL)
+        fputc('\n', stderr); /* below the line rewritten in place */
+}
+
+static UnitRenderHooks unit_hooks(ProgressStyle *style)
+{
+    bool shown = *style != PROGRESS_NONE;
+    return (UnitRenderHooks){.stop_requested = stop_signal_received,
+                             .stop_name = stop_signal_name,
+                             .progress = shown ? print_progress : NULL,
+                             .progress_end = end_progress,
+                             .progress_context = style,
+                             .progress_interval = render_loop_update_interval(*style),
+                             .test_point = stop_signals_test_point};
+}
+
+/* The end of a unit render, on stderr: the units, each device's share and speed, the merge. */
+static void print_report(const UnitRenderDesc *ud, const UnitRenderReport *report,
+                         const char *checkpoint)
+{
+    fprintf(stderr, "pt: %u work units (%u tiles x %u sample blocks of %u spp)%s\n",
+            ud->grid.count, ud->grid.tiles, ud->grid.blocks, ud->grid.unit_spp,
+            report->units_resumed ? ", some from the checkpoint" : "");
+    for (int i = 0; i < report->num_devices; i++) {
+        const UnitDeviceReport *r = &report->device[i];
+        fprintf(stderr, "pt: device %s %s: %u units in %u runs, %.2f Mpaths/s busy\n", r->spec,
+                r->name, r->units, r->runs,
+                r->busy_seconds > 0 ? r->paths / r->busy_seconds * 1e-6 : 0.0);
+    }
+    fprintf(stderr, "pt: device films merged into the host's in %.1f ms\n",
+            report->merge_seconds * 1e3);
+    if (ud->ranks)
+        rank_link_print_report(ud->ranks, stderr);
+    if (report->checkpoints)
+        fprintf(stderr, "pt: %u checkpoints written to %s\n", report->checkpoints, checkpoint);
+}
+
+/* The list's devices after the first (the session's own); *num_extra: those opened, which the
+ * caller closes whether *ok or not. */
+static SessionDevice *open_extra_devices(const Options *o, Session *session,
+                                         const DeviceSpecList *list, bool quiet, int *num_extra,
+                                         bool *ok, Error *err)
+{
+    SessionDevice *extra = list->count > 1 ? calloc((size_t)list->count - 1, sizeof *extra) : NULL;
+    *ok = list->count <= 1 || extra;
+    if (!*ok)
+        error_set(err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for %d devices", list->count);
+    for (int i = 1; i < list->count && *ok; i++) {
+        *ok = session_device_open(&extra[i - 1], &session->scene, list->spec[i], o->no_cache, err);
+        if (*ok) {
+            (*num_extra)++;
+            if (!quiet)
+                fprintf(stderr, "pt: device %s %s (%s, driver %s)\n", list->spec[i],
+                        extra[i - 1].dev.name, extra[i - 1].dev.platform_name,
+                        extra[i - 1].dev.driver_version);
+        }
+    }
+    return extra;
+}
+
 bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecList *list,
                           const RenderSettings *settings, const char *checkpoint_base,
                           RenderImages *images, RenderStats *stats, RenderStop *stop, Error *err)
@@ -58,9 +130,9 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
     /* MPI: rank 0 alone reports, keeps the checkpoint and watches the time; the others render. */
     bool mpi = mpi_link_size() > 1, root = mpi_link_rank() == 0, quiet = o->quiet || !root;
     const SceneDesc *desc = &session->scene.desc;
+    ProgressStyle progress = render_loop_progress_style(quiet, o->progress, isatty(STDERR_FILENO));
     UnitRenderDesc ud = {.settings = *settings,
-                         .progress = render_loop_progress_style(quiet, o->progress,
-                                                                isatty(STDERR_FILENO)),
+                         .hooks = unit_hooks(&progress),
                          .time_limit = root ? o->time_limit : 0.0,
                          .checkpoint_seconds = root ? o->checkpoint_seconds : 0.0,
                          .resume = o->resume && root,
@@ -93,19 +165,9 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
         fprintf(stderr, "pt: resuming %s: %u of %u work units done\n", checkpoint, film.units_done,
                 ud.grid.count);
 
-    SessionDevice *extra = list->count > 1 ? calloc((size_t)list->count - 1, sizeof *extra) : NULL;
     int num_extra = 0;
-    bool ok = list->count <= 1 || extra;
-    for (int i = 1; i < list->count && ok; i++) {
-        ok = session_device_open(&extra[i - 1], &session->scene, list->spec[i], o->no_cache, err);
-        if (ok) {
-            num_extra++;
-            if (!quiet)
-                fprintf(stderr, "pt: device %s %s (%s, driver %s)\n", list->spec[i],
-                        extra[i - 1].dev.name, extra[i - 1].dev.platform_name,
-                        extra[i - 1].dev.driver_version);
-        }
-    }
+    bool ok;
+    SessionDevice *extra = open_extra_devices(o, session, list, quiet, &num_extra, &ok, err);
     UnitRenderReport report;
     UnitDevices devices = {.session = session, .extra = extra, .num_extra = num_extra};
     if (ok && mpi) {
@@ -121,23 +183,8 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
         if (images->layer[AOV_LAYER_SPP])
             for (size_t i = 0; i < film.num_pixels; i++)
                 images->layer[AOV_LAYER_SPP][i] = (float)film.sums[FILM_WORDS * i + 3];
-        if (!quiet) {
-            fprintf(stderr, "pt: %u work units (%u tiles x %u sample blocks of %u spp)%s\n",
-                    ud.grid.count, ud.grid.tiles, ud.grid.blocks, ud.grid.unit_spp,
-                    report.units_resumed ? ", some from the checkpoint" : "");
-            for (int i = 0; i < report.num_devices; i++) {
-                const UnitDeviceReport *r = &report.device[i];
-                fprintf(stderr, "pt: device %s %s: %u units in %u runs, %.2f Mpaths/s busy\n",
-                        r->spec, r->name, r->units, r->runs,
-                        r->busy_seconds > 0 ? r->paths / r->busy_seconds * 1e-6 : 0.0);
-            }
-            fprintf(stderr, "pt: device films merged into the host's in %.1f ms\n",
-                    report.merge_seconds * 1e3);
-            if (ud.ranks)
-                rank_link_print_report(ud.ranks, stderr);
-            if (report.checkpoints)
-                fprintf(stderr, "pt: %u checkpoints written to %s\n", report.checkpoints, checkpoint);
-        }
+        if (!quiet)
+            print_report(&ud, &report, checkpoint);
     }
     rank_link_close(ud.ranks);
     for (int i = 0; i < num_extra; i++)

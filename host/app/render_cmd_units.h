@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* render_cmd_units.h: the part of `pt render` that renders through work units
- * (app/render_units.h): when it is taken, what it refuses, the extra devices, the checkpoint beside
+ * (dist/render_units.h): when it is taken, what it refuses, the extra devices, the checkpoint beside
  * the output, and the image from the host's film. */
 #ifndef PT_RENDER_CMD_UNITS_H
 #define PT_RENDER_CMD_UNITS_H
@@ -9,7 +9,7 @@
 
 #include "app/cli.h"
 #include "app/render_output.h"
-#include "app/render_units.h"
+#include "dist/render_units.h"
 
 /* Whether the command line asks for the unit render: several devices, checkpoints, a unit size. */
 bool render_cmd_wants_units(const Options *o);

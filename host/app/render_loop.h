@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "app/render_output.h"
+#include "render/render_stop.h"
 #include "render/session.h"
 #include "render/wavefront.h"
 
@@ -36,14 +37,6 @@ typedef struct {
     double time_limit; /* --time-limit: seconds of rendering (loading and the kernel build not
                         * counted) after which the loop stops at the next whole sample; 0 = none */
 } RenderLoopDesc;
-
-/* Why the loop ended. Anything but RENDER_COMPLETE leaves a partial image (fewer spp than asked)
- * that the EXR header marks partial. */
-typedef enum {
-    RENDER_COMPLETE,            /* every sample asked for */
-    RENDER_STOPPED_BY_SIGNAL,   /* SIGINT, SIGTERM or SIGHUP (stop_signal_received says which) */
-    RENDER_STOPPED_BY_TIME_LIMIT, /* --time-limit passed; the image holds whole samples */
-} RenderStop;
 
 /* Renders into images->rgb (the mean of the samples so far per pixel) and the film's layers
  * (render_images_read_film); stats->spp_done says how many and *stop why the loop ended. */

@@ -24,7 +24,7 @@ bool env_int(const char *name, long min, long max, long fallback, long *out, Err
     errno = 0;
     long v = strtol(value, &end, 10);
     if (errno || end == value || *end || v < min || v > max) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "environment variable %s=%s: expected an integer from %ld to %ld", name, value,
                   min, max);
         return false;
@@ -41,7 +41,7 @@ bool env_flag(const char *name, bool fallback, bool *out, Error *err)
         return true;
     }
     if (strcmp(value, "0") && strcmp(value, "1")) {
-        error_set(err, ERR_USAGE, NULL, 0, "environment variable %s=%s: expected 0 or 1", name,
+        error_set(err, ERR_SETTINGS, NULL, 0, "environment variable %s=%s: expected 0 or 1", name,
                   value);
         return false;
     }
@@ -60,14 +60,14 @@ bool env_text(const char *name, size_t max_length, const char *fallback, const c
     size_t length = strlen(value);
     for (size_t i = 0; i < length; i++) {
         if (!isprint((unsigned char)value[i])) {
-            error_set(err, ERR_USAGE, NULL, 0,
+            error_set(err, ERR_SETTINGS, NULL, 0,
                       "environment variable %s: character %zu (code %d) is not printable", name,
                       i + 1, (unsigned char)value[i]);
             return false;
         }
     }
     if (length >= max_length) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "environment variable %s is %zu characters long, at most %zu allowed", name,
                   length, max_length - 1);
         return false;

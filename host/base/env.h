@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* env.h: the PT_* environment variables, read and checked in one way. An unset or empty variable
- * takes its default; anything else must be valid, or the read fails with ERR_USAGE and one line
+ * takes its default; anything else must be valid, or the read fails with ERR_SETTINGS and one line
  * naming the variable, its value and what is allowed (the user set it on purpose: a typo must not
  * silently fall back to the default). */
 #ifndef PT_ENV_H

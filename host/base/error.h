@@ -25,7 +25,11 @@
     X(ERR_ALLOC_TOO_LARGE, "allocation larger than the device allows")                             \
     X(ERR_KERNEL_BUILD, "kernel build failed")                                                     \
     X(ERR_OUTPUT, "output not writable")                                                           \
-    X(ERR_TOO_LARGE, "input too large")
+    X(ERR_TOO_LARGE, "input too large")                                                            \
+    X(ERR_SETTINGS, "invalid setting")                                                             \
+    X(ERR_OUT_OF_MEMORY, "out of memory")                                                          \
+    X(ERR_SYSTEM, "operating system failure")                                                      \
+    X(ERR_MPI, "MPI job failure")
 
 typedef enum {
 #define X(code, text) code,

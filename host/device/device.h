@@ -86,6 +86,21 @@ void device_pinned_free(Device *dev, cl_mem buffer, void *p);
 void device_read(Device *dev, cl_mem buf, size_t offset, size_t size, void *dst);
 void device_write(Device *dev, cl_mem buf, size_t offset, size_t size, const void *src);
 
+/* Fills size bytes of buf from offset with copies of pattern (pattern_size bytes: 1, 2, 4, ...,
+ * 128; offset and size multiples of it), enqueued without waiting, like a launch. profile_ms as
+ * device_run's. */
+void device_fill(Device *dev, cl_mem buf, const void *pattern, size_t pattern_size, size_t offset,
+                 size_t size, double *profile_ms);
+/* Waits for everything enqueued on the device's queue. */
+void device_finish(Device *dev);
+
+/* Releases what device_buffer, device_kernel or device_kernel_if_built returned. */
+void device_release_buffer(cl_mem buf);
+void device_release_kernel(cl_kernel kernel);
+/* CL_KERNEL_WORK_GROUP_SIZE: the largest work-group the kernel allows on the device (registers,
+ * local memory). */
+size_t device_kernel_work_group_size(const Device *dev, cl_kernel kernel);
+
 /* Sets one kernel argument from an lvalue: KERNEL_ARG(k, 0, buffer); */
 #define KERNEL_ARG(kernel, index, value) \
     CL_CHECK(clSetKernelArg((kernel), (index), sizeof(value), &(value)))

@@ -13,7 +13,7 @@
 #define DEFAULT_LOCAL_SIZE 64
 
 /* Sets dev->bvh_width, dev->bvh_quantized and dev->build_options for the device device_open
- * found (its type and vendor are known); false with ERR_USAGE on a bad PT_BVH_WIDTH,
+ * found (its type and vendor are known); false with ERR_SETTINGS on a bad PT_BVH_WIDTH,
  * PT_BVH_QUANTIZED or PT_CL_OPTIONS. */
 bool device_choose_program_options(Device *dev, Error *err);
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-/* launch.c: what runs on an open device: buffers and blocking transfers, kernel arguments, 1-D
- * launches sized to the kernel's work-group limit, and their profiled times. */
+/* launch.c: what runs on an open device: buffers, fills and blocking transfers, kernel arguments,
+ * 1-D launches sized to the kernel's work-group limit, and their profiled times. Code outside
+ * device/ makes no OpenCL call of its own (tools/check-layers.sh). */
 #include "device/device_internal.h"
 
 cl_uint kernel_set_args(cl_kernel kernel, cl_uint first, size_t n, const KernelArg *args)
@@ -71,6 +72,39 @@ void device_write(Device *dev, cl_mem buf, size_t offset, size_t size, const voi
 {
     if (size)
         CL_CHECK(clEnqueueWriteBuffer(dev->queue, buf, CL_TRUE, offset, size, src, 0, NULL, NULL));
+}
+
+void device_fill(Device *dev, cl_mem buf, const void *pattern, size_t pattern_size, size_t offset,
+                 size_t size, double *profile_ms)
+{
+    cl_event event;
+    CL_CHECK(clEnqueueFillBuffer(dev->queue, buf, pattern, pattern_size, offset, size, 0, NULL,
+                                 profile_ms ? &event : NULL));
+    if (profile_ms)
+        *profile_ms = device_event_ms(event);
+}
+
+void device_finish(Device *dev)
+{
+    CL_CHECK(clFinish(dev->queue));
+}
+
+void device_release_buffer(cl_mem buf)
+{
+    CL_CHECK(clReleaseMemObject(buf));
+}
+
+void device_release_kernel(cl_kernel kernel)
+{
+    CL_CHECK(clReleaseKernel(kernel));
+}
+
+size_t device_kernel_work_group_size(const Device *dev, cl_kernel kernel)
+{
+    size_t size = 0;
+    CL_CHECK(clGetKernelWorkGroupInfo(kernel, dev->device, CL_KERNEL_WORK_GROUP_SIZE, sizeof size,
+                                      &size, NULL));
+    return size;
 }
 
 void device_run(Device *dev, cl_kernel kernel, size_t n, size_t local, double *profile_ms)

@@ -50,7 +50,7 @@ static bool choose_bvh_width(Device *dev, Error *err)
     if (!env_int("PT_BVH_WIDTH", 2, 8, (dev->type & CL_DEVICE_TYPE_CPU) ? 8 : 2, &width, err))
         return false;
     if (width != 2 && width != 4 && width != 8) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "environment variable PT_BVH_WIDTH=%ld: the BVH layouts are 2, 4 and 8 wide",
                   width);
         return false;
@@ -59,7 +59,7 @@ static bool choose_bvh_width(Device *dev, Error *err)
     if (!env_flag("PT_BVH_QUANTIZED", false, &dev->bvh_quantized, err))
         return false;
     if (dev->bvh_quantized && dev->bvh_width != 2) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "environment variable PT_BVH_QUANTIZED=1: quantised nodes are a 2-wide layout, "
                   "and this device walks the %d-wide one (PT_BVH_WIDTH=2 selects it)",
                   dev->bvh_width);

@@ -331,7 +331,7 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
     char difference[256];
     describe_difference(&h.id, want, difference, sizeof difference);
     if (difference[0]) {
-        error_set(err, ERR_USAGE, path, 0, "%s: %s: resume with the same scene and settings, or "
+        error_set(err, ERR_SETTINGS, path, 0, "%s: %s: resume with the same scene and settings, or "
                   "remove it to start over", path, difference);
         return false;
     }

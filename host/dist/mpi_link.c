@@ -33,7 +33,7 @@ bool mpi_link_init(int *argc, char ***argv, Error *err)
         return true;
     int provided = MPI_THREAD_SINGLE;
     if (MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
-        error_set(err, ERR_USAGE, NULL, 0, "MPI_Init_thread failed (started by mpirun?)");
+        error_set(err, ERR_MPI, NULL, 0, "MPI_Init_thread failed (started by mpirun?)");
         return false;
     }
     g_mpi.started = true;
@@ -41,7 +41,7 @@ bool mpi_link_init(int *argc, char ***argv, Error *err)
     MPI_Comm_rank(MPI_COMM_WORLD, &g_mpi.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &g_mpi.size);
     if (provided < MPI_THREAD_FUNNELED) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_MPI, NULL, 0,
                   "the MPI library gives thread level %d; pt needs MPI_THREAD_FUNNELED (%d)",
                   provided, MPI_THREAD_FUNNELED);
         return false;

@@ -4,7 +4,7 @@
  * never needs an MPI daemon; `mpirun -n 1` is one process that happens to call MPI_Init.
  *
  * Thread level: MPI_THREAD_FUNNELED. Only the main thread calls MPI: it relays the device
- * threads' requests (app/render_ranks.h) and polls with MPI_Iprobe between short sleeps, because
+ * threads' requests (dist/render_ranks.h) and polls with MPI_Iprobe between short sleeps, because
  * OpenMPI's blocking calls spin a core while they wait, which a 2-core machine cannot spare, and
  * a request per run of units is too rare for the relay's latency (about a millisecond) to
  * matter. */

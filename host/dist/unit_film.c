@@ -16,7 +16,7 @@ bool unit_film_init(UnitFilm *f, const UnitGrid *g, Error *err)
     if (!f->sums || !f->done) {
         free(f->sums);
         free(f->done);
-        error_set(err, ERR_USAGE, NULL, 0, "out of memory for a %ux%u film", g->width, g->height);
+        error_set(err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for a %ux%u film", g->width, g->height);
         return false;
     }
     pthread_mutex_init(&f->lock, NULL);
@@ -41,7 +41,7 @@ bool unit_film_merge(UnitFilm *f, const uint64_t *sums, const uint8_t *done, Err
             continue;
         if (unit_bitmap_get(f->done, u)) {
             pthread_mutex_unlock(&f->lock);
-            error_set(err, ERR_USAGE, NULL, 0,
+            error_set(err, ERR_MPI, NULL, 0,
                       "work unit %u (tile %u, samples from %u) was rendered twice: refusing to "
                       "count it twice", u, u / f->grid.blocks, u % f->grid.blocks * f->grid.unit_spp);
             return false;

@@ -9,7 +9,7 @@ bool unit_grid_init(UnitGrid *g, uint32_t width, uint32_t height, uint32_t spp, 
 {
     memset(g, 0, sizeof *g);
     if (width == 0 || height == 0 || spp == 0) {
-        error_set(err, ERR_USAGE, NULL, 0, "work units: an empty render (%ux%u, %u spp)", width,
+        error_set(err, ERR_SETTINGS, NULL, 0, "work units: an empty render (%ux%u, %u spp)", width,
                   height, spp);
         return false;
     }
@@ -31,7 +31,7 @@ bool unit_grid_init(UnitGrid *g, uint32_t width, uint32_t height, uint32_t spp, 
     g->blocks = (spp + g->unit_spp - 1) / g->unit_spp;
     uint64_t count = (uint64_t)g->tiles * g->blocks;
     if (count > UINT32_MAX / 2) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "work units: %llu units (%u tiles x %u sample blocks) are too many: raise "
                   "--unit-spp or --unit-rows", (unsigned long long)count, g->tiles, g->blocks);
         return false;
@@ -76,7 +76,7 @@ bool unit_scheduler_init(UnitScheduler *s, const UnitGrid *g, uint32_t takers, c
     s->takers = takers ? takers : 1;
     s->state = calloc(g->count, 1);
     if (!s->state) {
-        error_set(err, ERR_USAGE, NULL, 0, "out of memory for %u work units", g->count);
+        error_set(err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for %u work units", g->count);
         return false;
     }
     for (uint32_t u = 0; u < g->count; u++)

@@ -56,7 +56,7 @@ bool image_write_png(const char *path, const float *rgb, int width, int height,
     if (!image_check_args(path, rgb, width, height, err))
         return false;
     if (!isfinite(display.exposure)) {
-        error_set(err, ERR_USAGE, path, 0, "%s: exposure %g is not finite", path,
+        error_set(err, ERR_SETTINGS, path, 0, "%s: exposure %g is not finite", path,
                   display.exposure);
         return false;
     }

@@ -135,8 +135,7 @@ void compactor_enqueue(Compactor *c, cl_mem flags, cl_mem indices, cl_mem count_
     c->last_n = n;
     if (n == 0) {
         cl_uint zero = 0;
-        CL_CHECK(clEnqueueFillBuffer(c->dev->queue, count_buf, &zero, sizeof zero, 0, sizeof zero,
-                                     0, NULL, NULL));
+        device_fill(c->dev, count_buf, &zero, sizeof zero, 0, sizeof zero, NULL);
         return;
     }
     size_t tiles = flag_tiles(c, n);
@@ -186,11 +185,11 @@ void compactor_destroy(Compactor *c)
     cl_kernel kernels[] = {c->count_flags, c->scatter_indices};
     for (size_t i = 0; i < sizeof kernels / sizeof kernels[0]; i++)
         if (kernels[i])
-            CL_CHECK(clReleaseKernel(kernels[i]));
+            device_release_kernel(kernels[i]);
     cl_mem buffers[] = {c->mask, c->tile_sums, c->count};
     for (size_t i = 0; i < sizeof buffers / sizeof buffers[0]; i++)
         if (buffers[i])
-            CL_CHECK(clReleaseMemObject(buffers[i]));
+            device_release_buffer(buffers[i]);
     exclusive_scan_destroy(c->scan);
     free(c);
 }

@@ -30,9 +30,7 @@ size_t pow2_group_size(Device *dev, const cl_kernel *kernels, size_t num_kernels
 {
     size_t limit = dev->max_work_group < request ? dev->max_work_group : request;
     for (size_t i = 0; i < num_kernels; i++) {
-        size_t kernel_limit = 0;
-        CL_CHECK(clGetKernelWorkGroupInfo(kernels[i], dev->device, CL_KERNEL_WORK_GROUP_SIZE,
-                                          sizeof kernel_limit, &kernel_limit, NULL));
+        size_t kernel_limit = device_kernel_work_group_size(dev, kernels[i]);
         if (kernel_limit < limit)
             limit = kernel_limit;
     }
@@ -178,13 +176,13 @@ void exclusive_scan_destroy(ExclusiveScan *s)
     cl_kernel kernels[] = {s->reduce_values, s->exclusive_values};
     for (size_t i = 0; i < sizeof kernels / sizeof kernels[0]; i++)
         if (kernels[i])
-            CL_CHECK(clReleaseKernel(kernels[i]));
+            device_release_kernel(kernels[i]);
     cl_mem buffers[] = {s->zero, s->total};
     for (size_t i = 0; i < sizeof buffers / sizeof buffers[0]; i++)
         if (buffers[i])
-            CL_CHECK(clReleaseMemObject(buffers[i]));
+            device_release_buffer(buffers[i]);
     for (int k = 1; k < MAX_LEVELS; k++)
         if (s->levels[k])
-            CL_CHECK(clReleaseMemObject(s->levels[k]));
+            device_release_buffer(s->levels[k]);
     free(s);
 }

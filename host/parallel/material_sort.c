@@ -131,11 +131,10 @@ static void count_keys(MaterialSorter *s, cl_mem hit, cl_mem material_ids, cl_me
     if (!s->local_histogram) {
         cl_uint zero = 0;
         size_t bytes = ((size_t)s->num_materials + 1) * tiles * sizeof zero;
-        cl_event event;
-        CL_CHECK(clEnqueueFillBuffer(s->dev->queue, s->counts, &zero, sizeof zero, 0, bytes, 0,
-                                     NULL, s->profile_ms ? &event : NULL));
+        double ms = 0.0;
+        device_fill(s->dev, s->counts, &zero, sizeof zero, 0, bytes, s->profile_ms ? &ms : NULL);
         if (s->profile_ms)
-            *s->profile_ms += device_event_ms(event);
+            *s->profile_ms += ms;
     }
     cl_uint n_arg = n, num_materials = s->num_materials;
     cl_kernel kernel = s->local_histogram ? s->count_local : s->count_global;
@@ -198,11 +197,11 @@ void material_sorter_destroy(MaterialSorter *s)
     cl_kernel kernels[] = {s->count_local, s->count_global, s->scatter};
     for (size_t i = 0; i < sizeof kernels / sizeof kernels[0]; i++)
         if (kernels[i])
-            CL_CHECK(clReleaseKernel(kernels[i]));
+            device_release_kernel(kernels[i]);
     cl_mem buffers[] = {s->keys, s->counts};
     for (size_t i = 0; i < sizeof buffers / sizeof buffers[0]; i++)
         if (buffers[i])
-            CL_CHECK(clReleaseMemObject(buffers[i]));
+            device_release_buffer(buffers[i]);
     exclusive_scan_destroy(s->scan);
     free(s);
 }

@@ -22,16 +22,16 @@ bool adaptive_configure(Wavefront *w, const Scene *scene, RenderSettings *s, Err
     Adaptive *a = &w->adaptive;
     const SceneDesc *d = &scene->desc;
     if (s->noise_threshold != 0.0f && !(s->noise_threshold > 0.0f && isfinite(s->noise_threshold))) {
-        error_set(err, ERR_USAGE, NULL, 0, "--noise-threshold %g: must be a finite number > 0",
+        error_set(err, ERR_SETTINGS, NULL, 0, "--noise-threshold %g: must be a finite number > 0",
                   s->noise_threshold);
         return false;
     }
     if (s->min_spp < 0) {
-        error_set(err, ERR_USAGE, NULL, 0, "--min-spp %d: must be at least 1", s->min_spp);
+        error_set(err, ERR_SETTINGS, NULL, 0, "--min-spp %d: must be at least 1", s->min_spp);
         return false;
     }
     if (s->min_spp > s->spp) {
-        error_set(err, ERR_USAGE, NULL, 0, "--min-spp %d: more than the spp (%d)", s->min_spp, s->spp);
+        error_set(err, ERR_SETTINGS, NULL, 0, "--min-spp %d: more than the spp (%d)", s->min_spp, s->spp);
         return false;
     }
     if (!s->min_spp && d->min_spp > s->spp) {
@@ -47,7 +47,7 @@ bool adaptive_configure(Wavefront *w, const Scene *scene, RenderSettings *s, Err
                               : adaptive_default_min_spp((uint32_t)s->spp);
     a->step = ADAPTIVE_STEP(a->min_spp);
     if (a->on && s->first_sample != 0) {
-        error_set(err, ERR_USAGE, NULL, 0,
+        error_set(err, ERR_SETTINGS, NULL, 0,
                   "adaptive sampling decides from the whole film: it cannot render a block of "
                   "samples (first_sample %u)", s->first_sample);
         return false;
@@ -107,8 +107,8 @@ void adaptive_reset(Wavefront *w)
     if (!a->on)
         return;
     cl_uint one = 1;
-    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, a->pixel_flags, &one, sizeof one, 0,
-                                 (size_t)w->num_pixels * sizeof one, 0, NULL, NULL));
+    device_fill(w->dev, a->pixel_flags, &one, sizeof one, 0, (size_t)w->num_pixels * sizeof one,
+                NULL);
 }
 
 uint32_t adaptive_window_end(const Wavefront *w, uint32_t max_spp)
@@ -151,13 +151,13 @@ void adaptive_release(Wavefront *w)
 {
     Adaptive *a = &w->adaptive;
     if (a->film_variance)
-        CL_CHECK(clReleaseKernel(a->film_variance));
+        device_release_kernel(a->film_variance);
     if (a->select)
-        CL_CHECK(clReleaseKernel(a->select));
+        device_release_kernel(a->select);
     if (a->compactor)
         compactor_destroy(a->compactor);
     cl_mem all[] = {a->variance, a->pixel_flags, w->active_pixels};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (all[i])
-            CL_CHECK(clReleaseMemObject(all[i]));
+            device_release_buffer(all[i]);
 }

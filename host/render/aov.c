@@ -50,7 +50,7 @@ bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buff
         device_run(dev, kernel, num_pixels, 0, NULL);
         device_read(dev, albedo_buf, 0, num_pixels * sizeof *albedo, albedo);
         device_read(dev, normal_buf, 0, num_pixels * sizeof *normal, normal);
-        CL_CHECK(clReleaseKernel(kernel));
+        device_release_kernel(kernel);
         for (size_t p = 0; p < num_pixels; p++) {
             for (int c = 0; c < 3; c++) {
                 if (out->albedo)
@@ -70,7 +70,7 @@ bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buff
     cl_mem buffers_made[] = {params_buf, albedo_buf, normal_buf};
     for (int b = 0; b < 3; b++)
         if (buffers_made[b])
-            CL_CHECK(clReleaseMemObject(buffers_made[b]));
+            device_release_buffer(buffers_made[b]);
     return ok;
 }
 

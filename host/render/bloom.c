@@ -36,16 +36,16 @@ static bool check_args(const float *rgb, int width, int height, float strength, 
 {
     if (!rgb || width < 1 || height < 1 ||
         (size_t)width * (size_t)height > INT_MAX / RGB_CHANNELS) {
-        error_set(err, ERR_USAGE, NULL, 0, "bloom: a %dx%d image is not one it can work on", width,
+        error_set(err, ERR_SETTINGS, NULL, 0, "bloom: a %dx%d image is not one it can work on", width,
                   height);
         return false;
     }
     if (!(strength >= 0.0f && strength <= 1.0f)) {
-        error_set(err, ERR_USAGE, NULL, 0, "bloom: strength %g is not in [0, 1]", strength);
+        error_set(err, ERR_SETTINGS, NULL, 0, "bloom: strength %g is not in [0, 1]", strength);
         return false;
     }
     if (!(radius == 0.0f || (radius >= 0.5f && radius <= BLOOM_MAX_RADIUS))) {
-        error_set(err, ERR_USAGE, NULL, 0, "bloom: radius %g is not in [0.5, %g] pixels", radius,
+        error_set(err, ERR_SETTINGS, NULL, 0, "bloom: radius %g is not in [0.5, %g] pixels", radius,
                   BLOOM_MAX_RADIUS);
         return false;
     }
@@ -56,7 +56,7 @@ static void release_buffers(cl_mem *buffers, int count)
 {
     for (int i = 0; i < count; i++)
         if (buffers[i])
-            CL_CHECK(clReleaseMemObject(buffers[i]));
+            device_release_buffer(buffers[i]);
 }
 
 bool bloom_apply_profiled(Device *dev, float *rgb, int width, int height, float strength,
@@ -103,9 +103,9 @@ bool bloom_apply_profiled(Device *dev, float *rgb, int width, int height, float 
     device_read(dev, image, 0, bytes, rgb);
     if (kernel_ms)
         *kernel_ms += ms[0] + ms[1] + ms[2];
-    CL_CHECK(clReleaseKernel(bright));
-    CL_CHECK(clReleaseKernel(rows));
-    CL_CHECK(clReleaseKernel(columns));
+    device_release_kernel(bright);
+    device_release_kernel(rows);
+    device_release_kernel(columns);
     release_buffers(buffers, 4);
     return true;
 }

@@ -31,7 +31,7 @@ int bloom_weights(float radius, float *weights, int max_taps);
 
 /* Applies bloom to rgb (width x height RGB floats, in place) on dev, whose program holds
  * cl/post/bloom.cl (every pt program does). strength in [0, 1]: 0 returns at once with rgb
- * untouched; radius in pixels, 0 = bloom_default_radius. ERR_USAGE for values out of range,
+ * untouched; radius in pixels, 0 = bloom_default_radius. ERR_SETTINGS for values out of range,
  * ERR_ALLOC_TOO_LARGE when the buffers do not fit the device. */
 bool bloom_apply(Device *dev, float *rgb, int width, int height, float strength, float radius,
                  Error *err);

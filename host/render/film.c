@@ -29,21 +29,20 @@ bool film_add_moments(Film *film, Error *err)
 void film_release(Film *film)
 {
     if (film->sums)
-        CL_CHECK(clReleaseMemObject(film->sums));
+        device_release_buffer(film->sums);
     if (film->moments)
-        CL_CHECK(clReleaseMemObject(film->moments));
+        device_release_buffer(film->moments);
     film->sums = film->moments = NULL;
 }
 
 void film_clear(Film *film)
 {
     cl_ulong zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(film->dev->queue, film->sums, &zero, sizeof zero, 0,
-                                 (size_t)film->num_pixels * FILM_BYTES_PER_PIXEL, 0, NULL, NULL));
+    device_fill(film->dev, film->sums, &zero, sizeof zero, 0,
+                (size_t)film->num_pixels * FILM_BYTES_PER_PIXEL, NULL);
     if (film->moments)
-        CL_CHECK(clEnqueueFillBuffer(film->dev->queue, film->moments, &zero, sizeof zero, 0,
-                                     (size_t)film->num_pixels * MOMENT_BYTES_PER_PIXEL, 0, NULL,
-                                     NULL));
+        device_fill(film->dev, film->moments, &zero, sizeof zero, 0,
+                    (size_t)film->num_pixels * MOMENT_BYTES_PER_PIXEL, NULL);
 }
 
 void film_read_sums(const Film *film, uint64_t *sums)

@@ -151,7 +151,7 @@ void scene_buffers_release(SceneBuffers *b)
 {
 #define RELEASE(type, name)                                                                        \
     if (b->name)                                                                                   \
-        CL_CHECK(clReleaseMemObject(b->name));
+        device_release_buffer(b->name);
     SCENE_BUFFERS(RELEASE)
 #undef RELEASE
     memset(b, 0, sizeof *b);

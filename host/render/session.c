@@ -24,7 +24,7 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
     if (o->max_depth) d->max_depth = o->max_depth;
     /* Pixel indices are 32-bit in the kernels. */
     if ((uint64_t)d->width * (uint64_t)d->height > (1ull << 31)) {
-        error_set(err, ERR_USAGE, NULL, 0, "film %dx%d is too large (at most 2^31 pixels)", d->width,
+        error_set(err, ERR_TOO_LARGE, NULL, 0, "film %dx%d is too large (at most 2^31 pixels)", d->width,
                   d->height);
         return false;
     }

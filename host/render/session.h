@@ -33,7 +33,7 @@ typedef struct {
 /* Loads desc->scene, applies the overrides (film, spp, depth), opens desc->device. */
 bool session_open(Session *s, const RenderDesc *desc, Error *err);
 void session_print_summary(const Session *s);
-/* One more device for a render on several (app/render_units.c): like the session's own, its
+/* One more device for a render on several (dist/render_units.c): like the session's own, its
  * program built for the scene's features, the BVH in its layout and the scene's buffers on it. */
 typedef struct {
     Device dev;

@@ -64,8 +64,7 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
     }
     if (!w->settings.shadow_flags) {
         uint32_t zero = 0;
-        CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->shadow_count, &zero, sizeof zero, 0,
-                                     sizeof zero, 0, NULL, NULL));
+        device_fill(w->dev, w->shadow_count, &zero, sizeof zero, 0, sizeof zero, NULL);
     }
     run_over_active(w, STAGE_SHADE, n_active);
     run_over_active(w, STAGE_CONNECT, n_active);
@@ -154,7 +153,7 @@ uint64_t wavefront_advance(Wavefront *w, uint64_t min_paths, int max_spp)
     uint64_t done = 0;
     while (done < min_paths && wavefront_spp_done(w) < max_spp && !w->adaptive.done)
         done += render_next_window(w, (uint32_t)max_spp);
-    CL_CHECK(clFinish(w->dev->queue));
+    device_finish(w->dev);
     w->stats->seconds += seconds_now() - start;
     return done;
 }
@@ -170,7 +169,7 @@ void wavefront_render_block(Wavefront *w, const PixelBlock *b)
     w->next_sample = w->next_pixel = 0;
     while (w->next_sample < b->num_samples)
         render_next_window(w, b->num_samples);
-    CL_CHECK(clFinish(w->dev->queue));
+    device_finish(w->dev);
     w->params.pixel_offset = 0;
     w->params.window_pixels = w->num_pixels;
     w->block_first_sample = 0;

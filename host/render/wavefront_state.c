@@ -101,7 +101,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->dev = dev, w->scene = buffers, w->settings = *asked, w->stats = stats;
     const RenderSettings *s = &w->settings;
     if (!(s->clamp_indirect >= 0.0f && isfinite(s->clamp_indirect))) {
-        error_set(err, ERR_USAGE, NULL, 0, "--clamp %g: must be a finite number > 0", s->clamp_indirect);
+        error_set(err, ERR_SETTINGS, NULL, 0, "--clamp %g: must be a finite number > 0", s->clamp_indirect);
         return false;
     }
     if (!adaptive_configure(w, scene, &w->settings, err))
@@ -156,8 +156,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         return false;
     /* Every slot starts free: compaction reads the flags of the whole pool. */
     uint32_t zero = 0;
-    CL_CHECK(clEnqueueFillBuffer(dev->queue, w->path_depth, &zero, sizeof zero, 0,
-                                 pool * sizeof(uint32_t), 0, NULL, NULL));
+    device_fill(dev, w->path_depth, &zero, sizeof zero, 0, pool * sizeof(uint32_t), NULL);
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
@@ -187,11 +186,10 @@ void wavefront_reset(Wavefront *w)
 {
     uint32_t zero = 0;
     film_clear(&w->film);
-    CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->counters, &zero, sizeof zero, 0,
-                                 COUNTER_COUNT * sizeof(uint32_t), 0, NULL, NULL));
+    device_fill(w->dev, w->counters, &zero, sizeof zero, 0, COUNTER_COUNT * sizeof(uint32_t), NULL);
     if (w->geodesic_stats)
-        CL_CHECK(clEnqueueFillBuffer(w->dev->queue, w->geodesic_stats, &zero, sizeof zero, 0,
-                                     GEODESIC_STAT_WORDS * sizeof(uint32_t), 0, NULL, NULL));
+        device_fill(w->dev, w->geodesic_stats, &zero, sizeof zero, 0,
+                    GEODESIC_STAT_WORDS * sizeof(uint32_t), NULL);
     RenderStats sizes = *w->stats;
     memset(w->stats, 0, sizeof *w->stats);
     w->stats->pool_size = sizes.pool_size;
@@ -333,7 +331,7 @@ static void wavefront_release(Wavefront *w)
     adaptive_release(w);
     for (int k = 0; k < STAGE_COUNT; k++)
         if (w->kernels[k])
-            CL_CHECK(clReleaseKernel(w->kernels[k]));
+            device_release_kernel(w->kernels[k]);
     if (w->compactor)
         compactor_destroy(w->compactor);
     if (w->sorter)
@@ -347,7 +345,7 @@ static void wavefront_release(Wavefront *w)
     };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (all[i])
-            CL_CHECK(clReleaseMemObject(all[i]));
+            device_release_buffer(all[i]);
 }
 
 Wavefront *wavefront_create(Device *dev, const Scene *scene, const SceneBuffers *buffers,

@@ -63,7 +63,7 @@ static GLuint compile_shader(GLenum type, GLsizei count, const char *const *sour
         char log[512] = "";
         glGetShaderInfoLog(shader, sizeof log, NULL, log);
         log[strcspn(log, "\n")] = '\0';
-        error_set(err, ERR_USAGE, NULL, 0, "OpenGL %s: the display shader does not compile: %s",
+        error_set(err, ERR_SYSTEM, NULL, 0, "OpenGL %s: the display shader does not compile: %s",
                   (const char *)glGetString(GL_VERSION), log);
         glDeleteShader(shader);
         return 0;
@@ -94,7 +94,7 @@ static bool link_program(ViewerDisplay *d, Error *err)
     GLint ok = GL_FALSE;
     glGetProgramiv(d->program, GL_LINK_STATUS, &ok);
     if (!ok) {
-        error_set(err, ERR_USAGE, NULL, 0, "OpenGL %s: the display shader does not link",
+        error_set(err, ERR_SYSTEM, NULL, 0, "OpenGL %s: the display shader does not link",
                   (const char *)glGetString(GL_VERSION));
         return false;
     }
@@ -111,7 +111,7 @@ bool viewer_display_create(ViewerDisplay *d, int width, int height, Error *err)
     const char *version = (const char *)glGetString(GL_VERSION);
     int major = version ? atoi(version) : 0;
     if (major < 2) {
-        error_set(err, ERR_USAGE, NULL, 0, "OpenGL %s is too old for 'pt view' (2.1 needed)",
+        error_set(err, ERR_SYSTEM, NULL, 0, "OpenGL %s is too old for 'pt view' (2.1 needed)",
                   version ? version : "(none)");
         return false;
     }
@@ -129,7 +129,7 @@ bool viewer_display_create(ViewerDisplay *d, int width, int height, Error *err)
     }
     viewer_display_resize(d, width, height);
     if (glGetError() != GL_NO_ERROR) {
-        error_set(err, ERR_USAGE, NULL, 0, "OpenGL %s has no float textures (GL_RGB32F)", version);
+        error_set(err, ERR_SYSTEM, NULL, 0, "OpenGL %s has no float textures (GL_RGB32F)", version);
         return false;
     }
     return true;

@@ -17,7 +17,7 @@ typedef struct {
     int width, height; /* the texture's size: the film's */
 } ViewerDisplay;
 
-/* Compiles the shader and allocates a width x height texture; ERR_USAGE if the GL lacks shaders
+/* Compiles the shader and allocates a width x height texture; ERR_SYSTEM if the GL lacks shaders
  * or float textures. */
 bool viewer_display_create(ViewerDisplay *d, int width, int height, Error *err);
 void viewer_display_resize(ViewerDisplay *d, int width, int height);

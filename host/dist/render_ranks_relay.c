@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-/* render_ranks_relay.c: the other ranks' side of the link (app/render_ranks.h): the main thread
+/* render_ranks_relay.c: the other ranks' side of the link (dist/render_ranks.h): the main thread
  * relays its device threads' requests to rank 0 and their answers back, and sends the rank's
  * film. */
 #include <limits.h>
 #include <mpi.h>
 #include <string.h>
 
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "render/film.h"
 
 void rank_link_ask(RankLink *l, int worker, uint32_t max_units)
@@ -81,7 +81,7 @@ bool rank_link_pump(RankLink *l, uint64_t *flush_request, Error *err)
         }
         pthread_mutex_unlock(&l->lock);
         if (!ok) {
-            error_set(err, ERR_USAGE, NULL, 0, "an unexpected message from rank 0 (tag %d)",
+            error_set(err, ERR_MPI, NULL, 0, "an unexpected message from rank 0 (tag %d)",
                       status.MPI_TAG);
             return false;
         }

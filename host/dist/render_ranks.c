@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* render_ranks.c: the link's opening (every rank checks that all render the same image), its
- * end, and the test point PT_TEST_KILL_RANK (app/render_ranks.h). MPI errors are fatal
+ * end, and the test point PT_TEST_KILL_RANK (dist/render_ranks.h). MPI errors are fatal
  * (MPI_ERRORS_ARE_FATAL, the default): a failed call ends the job through mpirun, so the return
  * codes of MPI calls are not checked in render_ranks*.c. */
-#include "app/render_ranks.h"
+#include "dist/render_ranks.h"
 
 #include <mpi.h>
 #include <signal.h>
@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "dist/mpi_link.h"
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "base/version.h"
 #include "render/film.h"
 
@@ -69,7 +69,7 @@ static bool parse_kill(RankLink *l, Error *err)
         return true;
     char tail;
     if (sscanf(spec, "%d@%u%c", &l->kill_rank, &l->kill_units, &tail) != 2 || l->kill_rank < 0) {
-        error_set(err, ERR_USAGE, NULL, 0, "PT_TEST_KILL_RANK=%s: expected RANK@UNITS, e.g. 1@2",
+        error_set(err, ERR_SETTINGS, NULL, 0, "PT_TEST_KILL_RANK=%s: expected RANK@UNITS, e.g. 1@2",
                   spec);
         return false;
     }
@@ -98,7 +98,7 @@ RankLink *rank_link_open(const UnitGrid *g, const RenderSettings *s, uint64_t id
     free(all);
     MPI_Bcast(verdict, sizeof verdict, MPI_CHAR, 0, MPI_COMM_WORLD);
     if (verdict[0]) {
-        error_set(err, ERR_USAGE, NULL, 0, "%s", verdict);
+        error_set(err, ERR_MPI, NULL, 0, "%s", verdict);
         return NULL;
     }
     RankLink *l = calloc(1, sizeof *l);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-/* render_ranks_root.c: rank 0's side of the link (app/render_ranks.h): it answers the other
+/* render_ranks_root.c: rank 0's side of the link (dist/render_ranks.h): it answers the other
  * ranks' requests from its scheduler and adds their films to its own. */
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/render_ranks_wire.h"
+#include "dist/render_ranks_wire.h"
 #include "base/clock.h"
 #include "render/film.h"
 
@@ -20,7 +20,7 @@ static bool receive_film(RankLink *l, int from, UnitFilm *film, Error *err)
     FilmHeader *h = (FilmHeader *)l->message;
     if ((size_t)got != expected || h->num_pixels > film->num_pixels ||
         h->first_pixel > film->num_pixels - h->num_pixels || h->num_devices > DEVICE_LIST_MAX + 1) {
-        error_set(err, ERR_USAGE, NULL, 0, "rank %d sent a malformed film (%d bytes)", from, got);
+        error_set(err, ERR_MPI, NULL, 0, "rank %d sent a malformed film (%d bytes)", from, got);
         return false;
     }
     uint64_t *rows = l->scratch + (size_t)h->first_pixel * FILM_WORDS;
@@ -32,7 +32,7 @@ static bool receive_film(RankLink *l, int from, UnitFilm *film, Error *err)
     bool ok = unit_film_merge(film, l->scratch, done, &merge);
     memset(rows, 0, words * sizeof *rows);
     if (!ok) {
-        error_set(err, ERR_USAGE, NULL, 0, "rank %d's film: %s", from, merge.message);
+        error_set(err, ERR_MPI, NULL, 0, "rank %d's film: %s", from, merge.message);
         return false;
     }
     for (size_t i = 0; i < bitmap; i++)
@@ -54,7 +54,7 @@ static bool answer_take(RankLink *l, int from, UnitScheduler *sched, bool stop, 
     MPI_Recv(&m, sizeof m, MPI_BYTE, from, TAG_TAKE, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (m.worker > DEVICE_LIST_MAX || m.done_first > l->grid.count ||
         m.done_count > l->grid.count - m.done_first) {
-        error_set(err, ERR_USAGE, NULL, 0, "rank %d sent a malformed request", from);
+        error_set(err, ERR_MPI, NULL, 0, "rank %d sent a malformed request", from);
         return false;
     }
     if (m.done_count) {
@@ -82,7 +82,7 @@ bool rank_link_serve(RankLink *l, UnitScheduler *sched, UnitFilm *film, bool sto
                   : status.MPI_TAG == TAG_FILM ? receive_film(l, from, film, err)
                                                : false;
         if (!ok && !error_is_set(err))
-            error_set(err, ERR_USAGE, NULL, 0, "rank %d sent an unexpected message (tag %d)", from,
+            error_set(err, ERR_MPI, NULL, 0, "rank %d sent an unexpected message (tag %d)", from,
                       status.MPI_TAG);
         if (!ok)
             return false;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* render_ranks_wire.h (private to app/render_ranks*.c): the messages between rank 0 and the other
+/* render_ranks_wire.h (private to dist/render_ranks*.c): the messages between rank 0 and the other
  * ranks, as the same build sends and reads them (MPI_BYTE: every rank runs the same pt, which
  * rank_link_open checks), and the link's state. */
 #ifndef PT_RENDER_RANKS_WIRE_H
@@ -7,7 +7,7 @@
 
 #include <pthread.h>
 
-#include "app/render_ranks.h"
+#include "dist/render_ranks.h"
 
 enum { TAG_TAKE = 1, TAG_RUN, TAG_FLUSH, TAG_FILM, TAG_SUMS };
 

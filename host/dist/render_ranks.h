@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* render_ranks.h: a unit render (app/render_units.h) spread over the ranks of an MPI job
+/* render_ranks.h: a unit render (dist/render_units.h) spread over the ranks of an MPI job
  * (dist/mpi_link.h). Every rank loads the scene and renders on its own devices; rank 0 owns the
  * scheduler and hands runs of units to the other ranks' device threads as they ask (so a faster
  * node takes more), and those ranks send back the film of their finished units: when rank 0 asks
@@ -23,7 +23,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "app/render_units.h"
+#include "dist/render_units.h"
 
 #define RANK_POLL_SECONDS 0.001
 
