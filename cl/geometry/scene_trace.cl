@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* scene_trace.cl: the ray queries every stage calls, over the scene's whole acceleration structure
- * (host/accel/scene_bvh.h): one level (without PT_FEATURE(INSTANCES): the one world-space mesh's BVH, v1's
- * walk) or two (a TLAS over instances, each instance's BLAS walked in its object space:
+ * (host/accel/scene_bvh.h): one level (without PT_FEATURE(INSTANCES): the one world-space mesh's
+ * BVH, v1's walk) or two (a TLAS over instances, each instance's BLAS walked in its object space:
  * trace_scene_bvh of bvh_traverse.cl or bvh_traverse_wide.cl). `time` is the path's shutter
  * fraction (path_time), which moving instances are placed at. Hits are reported for
  * tmin <= t < tmax with the instance and the (global) triangle index; ties go to the lower

@@ -125,7 +125,8 @@ typedef BvhTriangle TraversalPrim;
  * bvh_nodes (root 0) and its leaves name instances. Objects without a transform whose mesh is
  * used once are merged into one mesh in world space (instance 0, the identity); a scene that has
  * nothing else is built one-level (without FEATURE_INSTANCES, shared/features.h: bvh_nodes is
- * that mesh's BVH, as in v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into triangles[]. */
+ * that mesh's BVH, as in v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into
+ * triangles[]. */
 #define INSTANCE_STATIC 0xffffffffu /* Instance.motion of an instance that does not move */
 typedef struct {
     float4 to_world[3];  /* rows of the 3x4 object-to-world matrix M (p' = M p); a moving

@@ -5,7 +5,8 @@
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
  * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
- * ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction, camera_time), active[n_live + j].
+ * ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction, camera_time),
+ * active[n_live + j].
  * Next: intersect_closest. */
 
 /* Starts window sample k's camera path in slot (shared with megakernel.cl). */
