@@ -86,3 +86,24 @@ Test(program_features, options_and_summary_follow_the_list)
     cr_expect_lt(strlen(summary) + 1, PROGRAM_FEATURE_SUMMARY_SIZE, "%s", summary);
     cr_expect_eq(MATERIAL_FEATURE_ALL, 0x3ffu, "material features keep the low bits");
 }
+
+/* The features are part of the kernel cache's key: a program built for another set is compiled,
+ * not loaded from the entry of the first. */
+Test(program_features, kernel_cache_keys_on_the_features, .timeout = 480)
+{
+    setenv("XDG_CACHE_HOME", test_temp_dir(), 1);
+    unsetenv("PT_NO_CACHE");
+    const char *spec = getenv("PT_TEST_DEVICE") ? getenv("PT_TEST_DEVICE") : "cpu";
+    ProgramFeatures sets[3] = {PROGRAM_FEATURES_ALL, PROGRAM_FEATURES_ALL & ~(ProgramFeatures)FEATURE_ENV,
+                               PROGRAM_FEATURES_ALL};
+    bool expect_hit[3] = {false, false, true};
+    for (int i = 0; i < 3; i++) {
+        Device dev;
+        Error err = {0};
+        cr_assert(device_open(&dev, spec, &err) && device_build(&dev, sets[i], NULL, NULL, &err),
+                  "%s", err.message);
+        cr_expect_eq(dev.cache_hit, expect_hit[i], "build %d: cache_hit %d", i, dev.cache_hit);
+        cr_expect_eq(dev.features, sets[i]);
+        device_close(&dev);
+    }
+}
