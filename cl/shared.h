@@ -21,6 +21,7 @@ typedef cl_uint uint;
 /* The structs by concern, in dependency order (cl/shared/). The kernels' program lists them right
  * after this file instead (an OpenCL program is one text: Makefile CL_SOURCES). */
 #ifndef __OPENCL_C_VERSION__
+#include "shared/features.h"
 #include "shared/geometry.h"
 #include "shared/material.h"
 #include "shared/render.h"

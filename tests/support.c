@@ -82,19 +82,16 @@ static char *test_kernel_source(void)
     return source;
 }
 
-Device *test_device(void) { return test_device_built_with(""); }
+Device *test_device(void) { return test_device_built_for(PROGRAM_FEATURES_ALL); }
 
-Device *test_device_built_with(const char *options)
+Device *test_device_built_for(ProgramFeatures features)
 {
     Device *dev = calloc(1, sizeof *dev);
     Error err = {0};
     const char *spec = getenv("PT_TEST_DEVICE");
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
-    size_t used = strlen(dev->build_options);
-    cr_assert(used + strlen(options) < sizeof dev->build_options, "build options too long: %s", options);
-    memcpy(dev->build_options + used, options, strlen(options) + 1);
     char *source = test_kernel_source();
-    bool built = device_build(dev, source, "tests", &err);
+    bool built = device_build(dev, features, source, "tests", &err);
     free(source);
     cr_assert(built, "device_build: %s", err.message);
     return dev;
@@ -156,8 +153,9 @@ void render_fixture_open_with(RenderFixture *f, const char *scene_path, int widt
 
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
 {
-    render_fixture_load(f, test_device_built_with(" -DPT_FEATURE_INSTANCES=0 -DPT_FEATURE_CUTOUT=0"),
-                        scene_path, width, height, INSTANCING_AUTO, false);
+    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT);
+    render_fixture_load(f, test_device_built_for(one_level), scene_path, width, height,
+                        INSTANCING_AUTO, false);
     cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
 }
 

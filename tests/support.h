@@ -27,8 +27,8 @@ bool assets_available(void);
  * embedded cl/ sources plus every tests/cl/NAME.cl in name order, so all tests share one build (and
  * PoCL's kernel cache). Fails the test with the error on failure. */
 Device *test_device(void);
-/* The same with options appended to the program's build options. */
-Device *test_device_built_with(const char *options);
+/* The same built for a set of FEATURE_* bits (cl/shared/features.h), as pt builds it for a scene. */
+Device *test_device_built_for(ProgramFeatures features);
 void test_device_release(Device *dev);
 
 /* The absolute path of the pt binary the tests run: PT_BIN (the Makefile sets it), else
@@ -44,9 +44,9 @@ const char *test_temp_dir(void);
  * valid for the next 7 calls. */
 const char *test_write_file(const char *dir, const char *name, const char *text);
 
-/* The tests' program is built without feature options, so its traversal is two-level exactly
- * when PT_FEATURE_INSTANCES defaults to it (cl/shared.h); fixtures build the matching layout. */
-#define PT_TESTS_TWO_LEVEL PT_FEATURE_INSTANCES_DEFAULT
+/* The tests' program has every feature (test_device), so its traversal is two-level;
+ * fixtures build the matching layout. */
+#define PT_TESTS_TWO_LEVEL ((PROGRAM_FEATURES_ALL & FEATURE_INSTANCES) != 0)
 
 /* A scene loaded onto the test device, ready to render many times. */
 typedef struct {
@@ -62,8 +62,8 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
 void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
                               InstancingMode instancing);
 /* The same on a program built as pt builds it for scenes of one mesh level without cut-out
- * materials (-DPT_FEATURE_INSTANCES=0 -DPT_FEATURE_CUTOUT=0, the one-level BVH): the kernels that
- * only such programs have (trace_paths_packets). */
+ * materials (every feature but FEATURE_INSTANCES and FEATURE_CUTOUT, the one-level BVH): the
+ * kernels that only such programs have (trace_paths_packets). */
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height);
 void render_fixture_close(RenderFixture *f);
 /* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */

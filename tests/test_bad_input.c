@@ -107,7 +107,8 @@ Test(bad_input, unwritable_kernel_cache_is_a_warning, .timeout = 120)
     Error err = {0};
     cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
     cr_expect_gt(warning_count(), warnings, "the unwritable cache is warned about");
-    cr_assert(device_build(&dev, "kernel void probe(global int *x) { x[0] = 1; }", "probe.cl", &err),
+    cr_assert(device_build(&dev, PROGRAM_FEATURES_ALL,
+                           "kernel void probe(global int *x) { x[0] = 1; }", "probe.cl", &err),
               "%s", err.message);
     device_close(&dev);
 }

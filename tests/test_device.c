@@ -145,7 +145,8 @@ Test(device, broken_kernel_reports_a_build_failure)
     Device dev;
     Error err = {0};
     cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
-    cr_expect_not(device_build(&dev, "kernel void broken(global int *x) { x[0] = undefined_name; }",
+    cr_expect_not(device_build(&dev, PROGRAM_FEATURES_ALL,
+                               "kernel void broken(global int *x) { x[0] = undefined_name; }",
                                "broken.cl", &err));
     cr_expect_eq(err.code, ERR_KERNEL_BUILD);
     device_close(&dev);
@@ -162,9 +163,10 @@ Test(device, kernel_cache_hit_and_corrupt_entry_rebuild, .timeout = 120)
     Error err = {0};
     Device a, b, c, d;
     cr_assert(device_open(&a, "cpu", &err), "%s", err.message);
-    cr_assert(device_build(&a, extra, "probe.cl", &err), "%s", err.message);
+    cr_assert(device_build(&a, PROGRAM_FEATURES_ALL, extra, "probe.cl", &err), "%s", err.message);
     cr_expect_not(a.cache_hit, "first build cannot come from an empty cache");
-    cr_assert(device_open(&b, "cpu", &err) && device_build(&b, extra, "probe.cl", &err));
+    cr_assert(device_open(&b, "cpu", &err) && device_build(&b, PROGRAM_FEATURES_ALL, extra, "probe.cl",
+                                                             &err));
     cr_expect(b.cache_hit, "second build should load the cached binary");
 
     /* The cached program works. */
@@ -182,9 +184,12 @@ Test(device, kernel_cache_hit_and_corrupt_entry_rebuild, .timeout = 120)
     char command[600];
     snprintf(command, sizeof command, "for f in %s/pt/*.bin; do echo garbage > $f; done", dir);
     cr_assert_eq(system(command), 0);
-    cr_assert(device_open(&c, "cpu", &err) && device_build(&c, extra, "probe.cl", &err), "%s", err.message);
+    cr_assert(device_open(&c, "cpu", &err) && device_build(&c, PROGRAM_FEATURES_ALL, extra, "probe.cl",
+                                                             &err),
+              "%s", err.message);
     cr_expect_not(c.cache_hit, "a corrupt entry must not be used");
-    cr_assert(device_open(&d, "cpu", &err) && device_build(&d, extra, "probe.cl", &err));
+    cr_assert(device_open(&d, "cpu", &err) && device_build(&d, PROGRAM_FEATURES_ALL, extra, "probe.cl",
+                                                             &err));
     cr_expect(d.cache_hit, "the rebuilt binary replaced the corrupt entry");
     device_close(&a), device_close(&b), device_close(&c), device_close(&d);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/* Shading with instances (kernels built with -DPT_FEATURE_INSTANCES=1 -DPT_FEATURE_MOTION=1):
+/* Shading with instances (kernels built with FEATURE_INSTANCES and FEATURE_MOTION):
  * surface_at puts a hit on a transformed, a mirrored and a moving instance where the host's
  * double-precision maths does, with normals through the inverse transpose (a mirrored instance's
  * front is where those point, DESIGN "Objects"); light samples of instanced emitters land on the
@@ -25,13 +25,10 @@ static Device *instance_device(void)
     Error err = {0};
     const char *spec = getenv("PT_TEST_DEVICE");
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
-    const char *features = " -DPT_FEATURE_INSTANCES=1 -DPT_FEATURE_MOTION=1";
-    size_t used = strlen(dev->build_options);
-    cr_assert(used + strlen(features) < sizeof dev->build_options);
-    memcpy(dev->build_options + used, features, strlen(features) + 1);
     char *source = test_read_file("tests/cl/instance_shading_test.cl", NULL);
     cr_assert(source, "tests/cl/instance_shading_test.cl: run the tests from the repository root");
-    bool built = device_build(dev, source, "tests/cl/instance_shading_test.cl", &err);
+    bool built = device_build(dev, PROGRAM_FEATURES_ALL, source, "tests/cl/instance_shading_test.cl",
+                              &err);
     free(source);
     cr_assert(built, "device_build: %s", err.message);
     return dev;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-/* pt builds its kernels for the scene's light types and materials (render/session.c: -DPT_FEATURE_ENV=0 and
- * -DPT_FEATURE_ANALYTIC=0 for a scene with neither); the tests' program keeps every feature. Both
- * must render a scene without those lights to the same bits: the options only remove branches
- * that such a scene never takes. */
+/* pt builds its kernels for the features the scene uses (cl/shared/features.h; render/session.c:
+ * no FEATURE_ENV nor FEATURE_ANALYTIC for a scene with neither); the tests' program keeps every
+ * feature. Both must render a scene without those lights to the same bits: the options only remove
+ * branches that such a scene never takes. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,7 +31,9 @@ static void expect_same_bits(const char *scene)
 
     RenderFixture f;
     render_fixture_open(&f, scene, 48, 48);
-    cr_assert(!strstr(f.dev->build_options, "PT_FEATURE"), "the tests' program has every feature");
+    char summary[PROGRAM_FEATURE_SUMMARY_SIZE];
+    program_features_summary(f.dev->features, summary);
+    cr_assert_str_eq(summary, "all", "the tests' program has every feature");
     float *full = render_fixture_render(&f, (RenderSettings){.spp = 4, .max_depth = f.scene.desc.max_depth, .seed = 3}, NULL);
     size_t n = (size_t)w * h * 3, differ = 0;
     for (size_t i = 0; i < n; i++)
@@ -52,7 +54,7 @@ Test(program_features, specialised_kernels_render_the_same_bits, .timeout = 240)
     expect_same_bits("scenes/cornell-box");
 }
 
-/* Material features (-DPT_MATERIAL_FEATURES, host/scene/materials.c material_features): a mix of a
+/* Material features (FEATURE_MIX and the others, host/scene/materials.c material_features): a mix of a
  * diffuse and a rough conductor with eta/k beside a Fresnel-1 mirror; rough glass with absorption;
  * anisotropic copper (surface detail: the uv tangent frame). Under-reporting any of them changes
  * the bits. */
@@ -61,4 +63,47 @@ Test(program_features, material_specialised_kernels_render_the_same_bits, .timeo
     expect_same_bits("tests/scenes/mix");
     expect_same_bits("tests/scenes/glass");
     expect_same_bits("tests/scenes/conductors");
+}
+
+/* The list's one expansion into options names every feature, on or off (features.h PT_FEATURE
+ * refuses a misspelt name only then); the summary names the set's features in the list's order. */
+Test(program_features, options_and_summary_follow_the_list)
+{
+    char options[PROGRAM_FEATURE_OPTIONS_SIZE], summary[PROGRAM_FEATURE_SUMMARY_SIZE];
+    program_features_options(FEATURE_ENV | FEATURE_MIX, options);
+    cr_expect(strstr(options, " -DPT_FEATURES_GIVEN") == options, "%s", options);
+    cr_expect(strstr(options, " -DPT_FEATURE_ENV=1") && strstr(options, " -DPT_FEATURE_MIX=1") &&
+                  strstr(options, " -DPT_FEATURE_INSTANCES=0") &&
+                  strstr(options, " -DPT_FEATURE_ROUGH_CONDUCTOR=0"),
+              "%s", options);
+    program_features_options(PROGRAM_FEATURES_ALL, options);
+    cr_expect_eq(strlen(options) + 1, PROGRAM_FEATURE_OPTIONS_SIZE, "%s", options);
+    program_features_summary(FEATURE_MIX | FEATURE_ENV | FEATURE_INSTANCES, summary);
+    cr_expect_str_eq(summary, "mix, env, instances");
+    program_features_summary(0u, summary);
+    cr_expect_str_eq(summary, "none");
+    program_features_summary(PROGRAM_FEATURES_ALL & ~(ProgramFeatures)FEATURE_ENV, summary);
+    cr_expect_lt(strlen(summary) + 1, PROGRAM_FEATURE_SUMMARY_SIZE, "%s", summary);
+    cr_expect_eq(MATERIAL_FEATURE_ALL, 0x3ffu, "material features keep the low bits");
+}
+
+/* The features are part of the kernel cache's key: a program built for another set is compiled,
+ * not loaded from the entry of the first. */
+Test(program_features, kernel_cache_keys_on_the_features, .timeout = 480)
+{
+    setenv("XDG_CACHE_HOME", test_temp_dir(), 1);
+    unsetenv("PT_NO_CACHE");
+    const char *spec = getenv("PT_TEST_DEVICE") ? getenv("PT_TEST_DEVICE") : "cpu";
+    ProgramFeatures sets[3] = {PROGRAM_FEATURES_ALL, PROGRAM_FEATURES_ALL & ~(ProgramFeatures)FEATURE_ENV,
+                               PROGRAM_FEATURES_ALL};
+    bool expect_hit[3] = {false, false, true};
+    for (int i = 0; i < 3; i++) {
+        Device dev;
+        Error err = {0};
+        cr_assert(device_open(&dev, spec, &err) && device_build(&dev, sets[i], NULL, NULL, &err),
+                  "%s", err.message);
+        cr_expect_eq(dev.cache_hit, expect_hit[i], "build %d: cache_hit %d", i, dev.cache_hit);
+        cr_expect_eq(dev.features, sets[i]);
+        device_close(&dev);
+    }
 }

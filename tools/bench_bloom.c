@@ -43,7 +43,8 @@ int main(int argc, char **argv)
         usage();
     Device dev;
     Error err = {0};
-    if (!device_open(&dev, device, &err) || !device_build(&dev, NULL, NULL, &err))
+    if (!device_open(&dev, device, &err) ||
+        !device_build(&dev, PROGRAM_FEATURES_ALL, NULL, NULL, &err))
         die("%s", err.message);
     size_t values = (size_t)WIDTH * HEIGHT * 3;
     float *film = malloc(values * sizeof(float)), *work = malloc(values * sizeof(float));

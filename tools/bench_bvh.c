@@ -141,7 +141,7 @@ int main(int argc, char **argv)
         size_t used = strlen(dev.build_options);
         snprintf(dev.build_options + used, sizeof dev.build_options - used, " -DBVH_COUNT_STEPS");
     }
-    if (!device_build(&dev, source, KERNEL_FILE, &err))
+    if (!device_build(&dev, PROGRAM_FEATURES_ALL, source, KERNEL_FILE, &err))
         die("%s", err.message);
     free(source);
     char device_folder[256], folder[1024];

@@ -96,7 +96,8 @@ int main(int argc, char **argv)
     Options o = parse_options(argc, argv);
     Device dev;
     Error err = {0};
-    if (!device_open(&dev, o.device, &err) || !device_build(&dev, NULL, NULL, &err))
+    if (!device_open(&dev, o.device, &err) ||
+        !device_build(&dev, PROGRAM_FEATURES_ALL, NULL, NULL, &err))
         die("%s", err.message);
     size_t max_n = (size_t)1 << o.max_log2;
     Compactor *c = compactor_create_sized(&dev, max_n, o.group_size, &err);

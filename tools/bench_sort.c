@@ -162,7 +162,8 @@ int main(int argc, char **argv)
     Options o = parse_options(argc, argv);
     Device dev;
     Error err = {0};
-    if (!device_open(&dev, o.device, &err) || !device_build(&dev, NULL, NULL, &err))
+    if (!device_open(&dev, o.device, &err) ||
+        !device_build(&dev, PROGRAM_FEATURES_ALL, NULL, NULL, &err))
         die("%s", err.message);
     uint32_t n = o.n, max_materials = 1;
     for (int m = 0; m < o.num_materials; m++)

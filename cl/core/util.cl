@@ -12,25 +12,6 @@
 #define PT_INLINE inline __attribute__((always_inline))
 #endif
 
-/* Scene features the program is built for (render/session.c passes -DPT_FEATURE_*=0 for what the
- * scene lacks, so their code leaves the kernels: measured on the H200, the analytic-light and
- * environment branches cost 4-8% of shade_surface on scenes that have neither). Without the
- * options (tests, tools) every feature is in. */
-#ifndef PT_FEATURE_ENV
-#define PT_FEATURE_ENV 1
-#endif
-#ifndef PT_FEATURE_ANALYTIC
-#define PT_FEATURE_ANALYTIC 1
-#endif
-#ifndef PT_FEATURE_BLACK_HOLES /* cl/stages/integrate_geodesic.cl */
-#define PT_FEATURE_BLACK_HOLES 1
-#endif
-/* The same for materials: a mask of MATERIAL_FEATURE_* (shared.h). */
-#ifndef PT_MATERIAL_FEATURES
-#define PT_MATERIAL_FEATURES MATERIAL_FEATURE_ALL
-#endif
-#define PT_HAS_MATERIAL_FEATURE(name) ((PT_MATERIAL_FEATURES & MATERIAL_FEATURE_##name) != 0u)
-
 inline float3 xyz(float4 v) { return (float3)(v.x, v.y, v.z); }
 
 inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }

@@ -177,7 +177,7 @@ inline void test_children(const global BvhNode *node, BoxRay ray, float tmin, fl
  * which the trees present triangles. One level: every instance is 0. */
 inline bool hit_wins(Hit hit, float t, uint instance, uint prim)
 {
-    if (!PT_FEATURE_INSTANCES)
+    if (!PT_FEATURE(INSTANCES))
         return t < hit.t || prim < hit.prim;
     return t < hit.t || instance < hit.instance || (instance == hit.instance && prim < hit.prim);
 }
@@ -326,7 +326,6 @@ inline Hit trace_bvh(const global TraversalNode *nodes, const global BvhTriangle
     return tr.walk.hit;
 }
 
-#if PT_FEATURE_INSTANCES
 /* Two levels (host/accel/tlas.c): the TLAS from node 0, whose leaves name instances. One loop,
  * not a walk inside a walk, so that a GPU's lanes in different levels still step together: a
  * TLAS leaf is visited like an inner node, and visiting it moves the ray into the instance's
@@ -393,7 +392,6 @@ inline Hit trace_scene_brute_force(const global BvhTriangle *tris, const global 
     }
     return hit;
 }
-#endif
 
 /* Every triangle, no BVH: the baseline of the brute-force ablation (the *_brute_force stages). */
 inline Hit trace_brute_force(const global BvhTriangle *tris, uint num_tris, float3 origin,

@@ -173,7 +173,7 @@ PT_INLINE bool intersect_pack(const global TraversalPrim *pack, PackRay ray, flo
      * hit_wins); before any hit nothing ties, hit->t being the ray's tmax. */
     uintW prims = pack->prim;
     uint tie_below = hit->prim == HIT_NONE ? 0u : hit->prim;
-    if (PT_FEATURE_INSTANCES && hit->prim != HIT_NONE && instance != hit->instance)
+    if (PT_FEATURE(INSTANCES) && hit->prim != HIT_NONE && instance != hit->instance)
         tie_below = instance < hit->instance ? HIT_NONE : 0u;
     intW closer = (t < hit->t) | ((t == hit->t) & (prims < (uintW)(tie_below)));
     uint bits = lane_bits(e.inside & (t >= tmin) & closer);
@@ -315,7 +315,6 @@ inline Hit trace_brute_force(const global TraversalPrim *packs, uint num_packs, 
     return hit;
 }
 
-#if PT_FEATURE_INSTANCES
 /* Two levels (host/accel/tlas.c): trace_bvh's walk from the TLAS at node 0, whose leaves
  * (~instance) are visited like inner nodes: visiting one moves the ray into the instance's object
  * space (direction not normalised: t means the same in both spaces) and goes on at its BLAS root
@@ -400,7 +399,6 @@ inline Hit trace_scene_brute_force(const global TraversalPrim *packs,
     }
     return hit;
 }
-#endif
 
 #endif /* BVH_WIDTH != 2 */
 

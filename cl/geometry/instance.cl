@@ -4,16 +4,6 @@
  * instance's matrices come from the host as they are; a moving one's are recomposed from
  * T(s) R(s) S(s) at s = (time - open) / (close - open), as the host's trs_interpolate does. */
 
-/* Scenes with instances other than the merged static mesh are built with
- * -DPT_FEATURE_INSTANCES=1 (two-level traversal), scenes with moving instances with
- * -DPT_FEATURE_MOTION=1 (render/session.c). Tests and tools keep every feature. */
-#ifndef PT_FEATURE_INSTANCES
-#define PT_FEATURE_INSTANCES PT_FEATURE_INSTANCES_DEFAULT
-#endif
-#ifndef PT_FEATURE_MOTION
-#define PT_FEATURE_MOTION 1
-#endif
-
 /* Rows of a 3x4 affine matrix: p' = (dot(r0.xyz, p) + r0.w, ...). */
 typedef struct {
     float4 r0, r1, r2;
@@ -79,13 +69,13 @@ inline void motion_at(const global InstanceMotion *motion, float s, Affine *to_w
 }
 
 /* Instance i's matrices at shutter fraction s (the path's path_time: time = open + s (close -
- * open)): the stored ones for a static instance (or without PT_FEATURE_MOTION), else the
+ * open)): the stored ones for a static instance (or without PT_FEATURE(MOTION)), else the
  * motion's at s. */
 inline void instance_at(const global Instance *instances, const global InstanceMotion *motions,
                         uint i, float s, Affine *to_world, Affine *to_object)
 {
     const global Instance *inst = &instances[i];
-    if (PT_FEATURE_MOTION && inst->motion != INSTANCE_STATIC) {
+    if (PT_FEATURE(MOTION) && inst->motion != INSTANCE_STATIC) {
         motion_at(&motions[inst->motion], s, to_world, to_object);
         return;
     }
@@ -103,7 +93,7 @@ inline Affine instance_to_object(const global Instance *instances,
 {
     Affine to_world, to_object;
     const global Instance *inst = &instances[i];
-    if (PT_FEATURE_MOTION && inst->motion != INSTANCE_STATIC) {
+    if (PT_FEATURE(MOTION) && inst->motion != INSTANCE_STATIC) {
         motion_at(&motions[inst->motion], s, &to_world, &to_object);
         return to_object;
     }

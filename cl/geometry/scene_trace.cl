@@ -1,30 +1,23 @@
 /* SPDX-License-Identifier: MIT */
 /* scene_trace.cl: the ray queries every stage calls, over the scene's whole acceleration structure
- * (host/accel/scene_bvh.h): one level (PT_FEATURE_INSTANCES=0: the one world-space mesh's BVH, v1's
- * walk) or two (a TLAS over instances, each instance's BLAS walked in its object space:
+ * (host/accel/scene_bvh.h): one level (without PT_FEATURE(INSTANCES): the one world-space mesh's
+ * BVH, v1's walk) or two (a TLAS over instances, each instance's BLAS walked in its object space:
  * trace_scene_bvh of bvh_traverse.cl or bvh_traverse_wide.cl). `time` is the path's shutter
  * fraction (path_time), which moving instances are placed at. Hits are reported for
  * tmin <= t < tmax with the instance and the (global) triangle index; ties go to the lower
  * (instance, triangle). brute_count is for the brute-force ablation only: the entries of bvh_tris
  * (one level) or of instances (two levels), SCENE_BRUTE_FORCE_COUNT(p) of the RenderParams. */
 
-#if PT_FEATURE_INSTANCES
-#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->num_instances)
-#else
-#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->num_bvh_prims)
-#endif
+#define SCENE_BRUTE_FORCE_COUNT(p) (PT_FEATURE(INSTANCES) ? (p)->num_instances : (p)->num_bvh_prims)
 
 /* The closest hit, or with any_hit the first one found. */
 inline Hit scene_trace(const SceneView *scene, float3 o, float3 d, float tmin, float tmax,
                        float time, bool any_hit)
 {
-#if PT_FEATURE_INSTANCES
-    return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
-                           scene->instance_motion, o, d, tmin, tmax, time, any_hit);
-#else
-    (void)time;
+    if (PT_FEATURE(INSTANCES))
+        return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
+                               scene->instance_motion, o, d, tmin, tmax, time, any_hit);
     return trace_bvh(scene->bvh_nodes, scene->bvh_tris, o, d, tmin, tmax, any_hit);
-#endif
 }
 
 inline Hit scene_closest(const SceneView *scene, uint brute_count, float3 o, float3 d, float tmin,
@@ -52,11 +45,8 @@ inline bool scene_occluded(const SceneView *scene, uint brute_count, float3 o, f
 inline Hit scene_brute_force(const SceneView *scene, uint brute_count, float3 o, float3 d,
                              float tmin, float tmax, bool any_hit, float time)
 {
-#if PT_FEATURE_INSTANCES
-    return trace_scene_brute_force(scene->bvh_tris, scene->instances, scene->instance_motion,
-                                   brute_count, o, d, tmin, tmax, time, any_hit);
-#else
-    (void)time;
+    if (PT_FEATURE(INSTANCES))
+        return trace_scene_brute_force(scene->bvh_tris, scene->instances, scene->instance_motion,
+                                       brute_count, o, d, tmin, tmax, time, any_hit);
     return trace_brute_force(scene->bvh_tris, brute_count, o, d, tmin, tmax, any_hit);
-#endif
 }

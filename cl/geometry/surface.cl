@@ -3,7 +3,7 @@
  * triangle's uv parameterisation (dp/du, dp/dv) for the materials that need a tangent frame.
  *
  * Vertex data are in the instance's object space (cl/shared.h "Instances"); with
- * PT_FEATURE_INSTANCES the hit is taken to world space through its instance at the path's time:
+ * PT_FEATURE(INSTANCES) the hit is taken to world space through its instance at the path's time:
  * points and dp/du, dp/dv by to_world, normals by the inverse transpose (to_object transposed),
  * never flipped by det: the front of a mirrored instance is the side its inverse-transposed
  * normal points to (shared/DESIGN.md "Objects"), so its emitters shine and its glass refracts as
@@ -18,9 +18,9 @@ typedef struct {
     float3 shading_normal;   /* unit, world; interpolated vertex normals when the mesh has them */
     float2 uv;
     uint material;
-#if PT_FEATURE_INSTANCES
-    Affine to_world; /* the hit's instance at the path's time (surface_uv_derivatives, MIS) */
-#endif
+    Affine to_world; /* the hit's instance at the path's time (surface_uv_derivatives, MIS); set
+                        only with PT_FEATURE(INSTANCES), a private struct's field costing nothing
+                        when unread, so that code reads it behind if rather than #if */
 } SurfaceHit;
 
 /* time: the path's shutter fraction, where a moving instance is (path_time). */
@@ -34,23 +34,21 @@ PT_INLINE SurfaceHit surface_at(const SceneView *scene, Hit hit, float time)
     float w0 = 1.0f - hit.u - hit.v;
     s.object_position = w0 * p0 + hit.u * p1 + hit.v * p2;
     float3 ng = cross(p1 - p0, p2 - p0);
-#if PT_FEATURE_INSTANCES
     Affine to_object;
-    instance_at(scene->instances, scene->instance_motion, hit.instance, time, &s.to_world,
-                &to_object);
-    s.position = affine_point(s.to_world, s.object_position);
-    ng = affine_normal(to_object, ng);
-#else
-    (void)time;
-    s.position = s.object_position;
-#endif
+    if (PT_FEATURE(INSTANCES)) {
+        instance_at(scene->instances, scene->instance_motion, hit.instance, time, &s.to_world,
+                    &to_object);
+        s.position = affine_point(s.to_world, s.object_position);
+        ng = affine_normal(to_object, ng);
+    } else {
+        s.position = s.object_position;
+    }
     s.geometric_normal = normalize(ng);
     s.shading_normal = s.geometric_normal;
     if (tri.w & TRIANGLE_HAS_NORMALS) {
         float3 n = w0 * xyz(normals[tri.x]) + hit.u * xyz(normals[tri.y]) + hit.v * xyz(normals[tri.z]);
-#if PT_FEATURE_INSTANCES
-        n = affine_normal(to_object, n);
-#endif
+        if (PT_FEATURE(INSTANCES))
+            n = affine_normal(to_object, n);
         float len = length(n);
         if (len > 0.0f && isfinite(len))
             s.shading_normal = n / len;
@@ -101,21 +99,17 @@ inline void surface_uv_derivatives(const SceneView *scene, uint prim, const Surf
     float det = d1.x * d2.y - d1.y * d2.x;
     float inv = 1.0f / det;
     if (!(fabs(det) > 1e-20f) || !isfinite(inv)) {
-#if PT_FEATURE_INSTANCES
-        make_basis(normalize(cross(e1, e2)), object_dpdu, object_dpdv);
-#else
-        make_basis(surf->geometric_normal, object_dpdu, object_dpdv);
-#endif
+        float3 n = PT_FEATURE(INSTANCES) ? normalize(cross(e1, e2)) : surf->geometric_normal;
+        make_basis(n, object_dpdu, object_dpdv);
     } else {
         *object_dpdu = (d2.y * e1 - d1.y * e2) * inv;
         *object_dpdv = (d1.x * e2 - d2.x * e1) * inv;
     }
-#if PT_FEATURE_INSTANCES
-    *dpdu = affine_vector(surf->to_world, *object_dpdu);
-    *dpdv = affine_vector(surf->to_world, *object_dpdv);
-#else
-    (void)surf;
-    *dpdu = *object_dpdu;
-    *dpdv = *object_dpdv;
-#endif
+    if (PT_FEATURE(INSTANCES)) {
+        *dpdu = affine_vector(surf->to_world, *object_dpdu);
+        *dpdv = affine_vector(surf->to_world, *object_dpdv);
+    } else {
+        *dpdu = *object_dpdu;
+        *dpdv = *object_dpdv;
+    }
 }

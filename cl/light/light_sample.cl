@@ -4,7 +4,7 @@
  * chosen through the power-proportional
  * alias table.
  *
- * With instances (PT_FEATURE_INSTANCES) a table entry is an (instance, triangle) pair: the
+ * With instances (PT_FEATURE(INSTANCES)) a table entry is an (instance, triangle) pair: the
  * triangle's object-space point goes to world through the instance at the path's time, its normal
  * through the inverse transpose (a mirrored instance's emitters shine where its normals point,
  * surface.cl), and the density per unit world area is entry.pdf / (its world area at that time).
@@ -23,7 +23,6 @@ inline LightEntry light_pick(const global LightEntry *lights, uint num_lights, u
     return u_coin < entry.prob ? entry : lights[entry.alias];
 }
 
-#if PT_FEATURE_INSTANCES
 /* Twice the world area of object-space edges e1, e2 under the linear part of m. */
 inline float affine_double_area(Affine m, float3 e1, float3 e2)
 {
@@ -37,7 +36,7 @@ inline float affine_double_area(Affine m, float3 e1, float3 e2)
 inline float emitter_area_ratio(const SceneView *scene, uint prim, uint instance, Affine to_world)
 {
     const global Instance *inst = &scene->instances[instance];
-    if (!PT_FEATURE_MOTION || inst->motion == INSTANCE_STATIC)
+    if (!PT_FEATURE(MOTION) || inst->motion == INSTANCE_STATIC)
         return 1.0f;
     uint4 tri = scene->triangles[prim].v;
     float3 p0 = xyz(scene->positions[tri.x]);
@@ -46,7 +45,6 @@ inline float emitter_area_ratio(const SceneView *scene, uint prim, uint instance
     float now = affine_double_area(to_world, e1, e2);
     return now > 0.0f ? affine_double_area(open, e1, e2) / now : 1.0f;
 }
-#endif
 
 /* pick_bits, u_coin choose the light; env_pick_bits, env_coin the environment map's texel when it
  * is chosen (independent numbers: the light's are spent on the light); u1, u2 the point on it.
@@ -62,7 +60,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     const global Material *materials = scene->materials;
     LightSample ls;
     LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
-    if (PT_FEATURE_ENV && entry.triangle == LIGHT_ENVIRONMENT) {
+    if (PT_FEATURE(ENV) && entry.triangle == LIGHT_ENVIRONMENT) {
         EnvSample es = env_sample(env, env_pick_bits, env_coin, u1, u2);
         ls.position = from;
         ls.normal = -es.direction;
@@ -73,7 +71,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
         ls.pdf_w = entry.pdf * es.pdf_w;
         return ls;
     }
-    if (PT_FEATURE_ANALYTIC && entry.triangle >= LIGHT_ANALYTIC_BASE)
+    if (PT_FEATURE(ANALYTIC) && entry.triangle >= LIGHT_ANALYTIC_BASE)
         return analytic_light_sample(scene->analytic_lights[entry.triangle - LIGHT_ANALYTIC_BASE],
                                      entry.pdf, from, u1, u2);
     ls.at_infinity = 0u;
@@ -83,19 +81,20 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     float2 b = sample_triangle_uniform(u1, u2);
     float3 object_position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
     float3 cross_n = cross(p1 - p0, p2 - p0);
-#if PT_FEATURE_INSTANCES
-    Affine to_world, to_object;
-    instance_at(scene->instances, scene->instance_motion, entry.instance, time, &to_world,
-                &to_object);
-    ls.position = affine_point(to_world, object_position);
-    float double_area = affine_double_area(to_world, p1 - p0, p2 - p0);
-    float3 n_light = normalize(affine_normal(to_object, cross_n));
-#else
-    (void)time;
-    ls.position = object_position;
-    float double_area = length(cross_n);
-    float3 n_light = cross_n / double_area;
-#endif
+    float double_area;
+    float3 n_light;
+    if (PT_FEATURE(INSTANCES)) {
+        Affine to_world, to_object;
+        instance_at(scene->instances, scene->instance_motion, entry.instance, time, &to_world,
+                    &to_object);
+        ls.position = affine_point(to_world, object_position);
+        double_area = affine_double_area(to_world, p1 - p0, p2 - p0);
+        n_light = normalize(affine_normal(to_object, cross_n));
+    } else {
+        ls.position = object_position;
+        double_area = length(cross_n);
+        n_light = cross_n / double_area;
+    }
     ls.normal = n_light;
     float3 to_light = ls.position - from;
     float dist2 = dot(to_light, to_light);
@@ -108,8 +107,8 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     }
     Material m = materials[material_ids[entry.triangle]];
     ls.radiance = xyz(m.emission);
-    bool textured = PT_HAS_MATERIAL_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE;
-    bool cutout = PT_FEATURE_CUTOUT && (m.flags & MATERIAL_FLAG_CUTOUT);
+    bool textured = PT_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE;
+    bool cutout = PT_FEATURE(CUTOUT) && (m.flags & MATERIAL_FLAG_CUTOUT);
     if (textured || cutout) {
         float2 uv = (float2)(b.x, b.y);
         if (tri.w & TRIANGLE_HAS_UVS)

@@ -23,7 +23,7 @@ inline uint material_resolve_mix(const SceneView *scene, uint index, float2 uv, 
         const global Material *m = &scene->materials[index];
         if (m->type != MATERIAL_MIX)
             break;
-        float w = PT_HAS_MATERIAL_FEATURE(TEXTURED_SCALARS)
+        float w = PT_FEATURE(TEXTURED_SCALARS)
                       ? material_scalar(scene, m->tex[MATERIAL_TEX_WEIGHT], m->weight, uv, position)
                       : m->weight;
         w = clamp(w, 0.0f, 1.0f);
@@ -55,9 +55,9 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv, float3 positi
     b.metallic = m.metallic;
     b.specular = m.specular;
     float r = m.roughness, aniso = m.anisotropy;
-    if (PT_HAS_MATERIAL_FEATURE(TEXTURED_SCALARS) && m.tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
+    if (PT_FEATURE(TEXTURED_SCALARS) && m.tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
         r = clamp(texture_eval(scene, m.tex[MATERIAL_TEX_ROUGHNESS], uv, position).x, 0.0f, 1.0f);
-    if (PT_HAS_MATERIAL_FEATURE(TEXTURED_SCALARS) && m.tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE)
+    if (PT_FEATURE(TEXTURED_SCALARS) && m.tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE)
         b.metallic = clamp(texture_eval(scene, m.tex[MATERIAL_TEX_METALLIC], uv, position).x, 0.0f, 1.0f);
     /* DESIGN: alpha = r^2; anisotropy a stretches it along u and shrinks it along v. */
     float alpha = r * r, stretch = aniso > 0.0f ? sqrt(1.0f - 0.9f * aniso) : 1.0f;
@@ -85,7 +85,7 @@ inline float3 bsdf_eval(const Bsdf *b, float3 wo, float3 wi, bool front, float *
     case MATERIAL_DIELECTRIC:
         return dielectric_eval(b, wo, wi, front, pdf_w);
     case MATERIAL_PRINCIPLED:
-        if (PT_HAS_MATERIAL_FEATURE(PRINCIPLED))
+        if (PT_FEATURE(PRINCIPLED))
             return principled_eval(b, wo, wi, pdf_w);
         return diffuse_eval(b, wo, wi, pdf_w);
     default:
@@ -101,7 +101,7 @@ inline BsdfSample bsdf_sample(const Bsdf *b, float3 wo, bool front, float u1, fl
     case MATERIAL_DIELECTRIC:
         return dielectric_sample(b, wo, front, u1, u2, u3);
     case MATERIAL_PRINCIPLED:
-        if (PT_HAS_MATERIAL_FEATURE(PRINCIPLED))
+        if (PT_FEATURE(PRINCIPLED))
             return principled_sample(b, wo, u1, u2, u3);
         return diffuse_sample(b, wo, u1, u2);
     default:

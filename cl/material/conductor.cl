@@ -43,7 +43,7 @@ inline float fresnel_complex(float cos_i, float eta, float k)
  * material gave neither (MATERIAL_FLAG_FRESNEL_ONE). */
 inline float3 conductor_fresnel(const Bsdf *b, float cos_i)
 {
-    if (!PT_HAS_MATERIAL_FEATURE(CONDUCTOR_FRESNEL) || (b->flags & MATERIAL_FLAG_FRESNEL_ONE))
+    if (!PT_FEATURE(CONDUCTOR_FRESNEL) || (b->flags & MATERIAL_FLAG_FRESNEL_ONE))
         return (float3)(1.0f);
     return (float3)(fresnel_complex(cos_i, b->eta.x, b->k.x), fresnel_complex(cos_i, b->eta.y, b->k.y),
                     fresnel_complex(cos_i, b->eta.z, b->k.z));
@@ -53,7 +53,7 @@ inline float3 conductor_fresnel(const Bsdf *b, float cos_i)
  * conductors. */
 inline bool conductor_is_smooth(const Bsdf *b)
 {
-    return !PT_HAS_MATERIAL_FEATURE(ROUGH_CONDUCTOR) || microfacet_smooth(b->alpha_x, b->alpha_y);
+    return !PT_FEATURE(ROUGH_CONDUCTOR) || microfacet_smooth(b->alpha_x, b->alpha_y);
 }
 
 /* f cos_i = base F(wo.m) D(m) G1(wo) G1(wi) / (4 cos_o), m the half vector; pdf = D_wo(m) / (4 wo.m)

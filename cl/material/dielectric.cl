@@ -12,7 +12,7 @@ inline float dielectric_eta(const Bsdf *b, bool front) { return front ? b->ior :
  * vector cannot describe (wo + wi = 0 for the only transmitted direction); pbrt-v4 does the same. */
 inline bool dielectric_is_smooth(const Bsdf *b)
 {
-    return !PT_HAS_MATERIAL_FEATURE(ROUGH_DIELECTRIC) || b->ior == 1.0f ||
+    return !PT_FEATURE(ROUGH_DIELECTRIC) || b->ior == 1.0f ||
            microfacet_smooth(b->alpha_x, b->alpha_y);
 }
 

@@ -3,13 +3,6 @@
  * the tangent frame (DESIGN "Conventions"), normal and bump maps (DESIGN "Materials"), and alpha
  * cut-outs (the stochastic pass-through that intersect_closest and intersect_shadow apply). */
 
-/* Scenes without cut-out materials are built with -DPT_FEATURE_CUTOUT=0 (host/render/session.c):
- * the intersect stages then keep their plain traversal. Tests and tools keep every feature. */
-#ifndef PT_FEATURE_CUTOUT
-#define PT_FEATURE_CUTOUT 1
-#endif
-
-
 /* A ray passes through at most this many cut-out layers; the next one stops it (a bound for the
  * GPU's sake: foliage has a few dozen layers at most). */
 #define CUTOUT_MAX_LAYERS 64u
@@ -20,7 +13,7 @@
  * anisotropic leaf. Everything else keeps frame_from_normal (no triangle reads). */
 inline bool surface_needs_tangents(Material m, Material leaf)
 {
-    return PT_HAS_MATERIAL_FEATURE(SURFACE_DETAIL) &&
+    return PT_FEATURE(SURFACE_DETAIL) &&
            (m.tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE || m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE ||
             leaf.anisotropy != 0.0f);
 }

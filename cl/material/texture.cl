@@ -190,7 +190,7 @@ inline float4 texture_noise(const global uint *texels, TextureInfo info, float3 
 inline float4 texture_eval(const SceneView *scene, uint index, float2 uv, float3 position)
 {
     TextureInfo info = scene->textures[index];
-    if (PT_HAS_MATERIAL_FEATURE(NOISE_TEXTURE) && info.format == TEXTURE_NOISE)
+    if (PT_FEATURE(NOISE_TEXTURE) && info.format == TEXTURE_NOISE)
         return texture_noise(scene->texels, info, position);
     return texture_sample(scene, index, uv);
 }

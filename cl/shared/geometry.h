@@ -56,7 +56,7 @@ typedef struct {
 /* Entries of the traversal's private stack; host/accel/bvh_build.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
-/* Two levels (PT_FEATURE_INSTANCES): a TLAS walk's entries, then one BLAS's, each bounded as one
+/* Two levels (FEATURE_INSTANCES): a TLAS walk's entries, then one BLAS's, each bounded as one
  * tree's. */
 #define BVH_SCENE_STACK_SIZE (2 * BVH_STACK_SIZE)
 
@@ -124,11 +124,9 @@ typedef BvhTriangle TraversalPrim;
  * bvh_nodes/bvh_tris; a top-level BVH (TLAS) over the instances' world boxes comes first in
  * bvh_nodes (root 0) and its leaves name instances. Objects without a transform whose mesh is
  * used once are merged into one mesh in world space (instance 0, the identity); a scene that has
- * nothing else is built one-level (-DPT_FEATURE_INSTANCES=0: bvh_nodes is that mesh's BVH, as in
- * v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into triangles[]. */
-/* What the kernels assume without -DPT_FEATURE_INSTANCES (tests and tools build so), and so the
- * layout the tests' scenes are built with (tests/support.h PT_TESTS_TWO_LEVEL). */
-#define PT_FEATURE_INSTANCES_DEFAULT 1
+ * nothing else is built one-level (without FEATURE_INSTANCES, shared/features.h: bvh_nodes is
+ * that mesh's BVH, as in v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into
+ * triangles[]. */
 #define INSTANCE_STATIC 0xffffffffu /* Instance.motion of an instance that does not move */
 typedef struct {
     float4 to_world[3];  /* rows of the 3x4 object-to-world matrix M (p' = M p); a moving

@@ -39,21 +39,7 @@ enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
                                          glTF's alphaMode MASK */
 
 #define NO_TEXTURE 0xffffffffu
-/* Material features a scene may use. The kernels are built with -DPT_MATERIAL_FEATURES=mask of the
- * scene's (host/scene/materials.c material_features; cl/core/util.cl defaults to all): the code of
- * the others leaves shade_surface, whose registers it would cost plain scenes (measured on the
- * H200: every lobe inlined made a diffuse-only box's shading 50% slower). */
-#define MATERIAL_FEATURE_ROUGH_CONDUCTOR 1u   /* a conductor that is not a perfect mirror */
-#define MATERIAL_FEATURE_CONDUCTOR_FRESNEL 2u /* a conductor with eta/k (not Fresnel 1) */
-#define MATERIAL_FEATURE_ROUGH_DIELECTRIC 4u  /* a dielectric that is not smooth */
-#define MATERIAL_FEATURE_PRINCIPLED 8u
-#define MATERIAL_FEATURE_MIX 16u
-#define MATERIAL_FEATURE_SURFACE_DETAIL 32u   /* normal or bump map, or anisotropy */
-#define MATERIAL_FEATURE_TEXTURED_SCALARS 64u /* roughness, metallic or mix weight from a texture */
-#define MATERIAL_FEATURE_ABSORPTION 128u      /* a dielectric with Beer-Lambert absorption */
-#define MATERIAL_FEATURE_NOISE_TEXTURE 256u   /* a procedural texture (fBm, inlined at every lookup) */
-#define MATERIAL_FEATURE_EMISSION_TEXTURE 512u
-#define MATERIAL_FEATURE_ALL 0x3ffu
+/* Material features a scene may use (MATERIAL_FEATURE_*): shared/features.h. */
 
 /* Mixes nest at most this deep (the host refuses deeper ones and cycles). */
 #define MATERIAL_MIX_DEPTH_LIMIT 8u

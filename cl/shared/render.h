@@ -38,7 +38,7 @@ typedef struct {
     float env_pick_pdf;  /* probability that the light table picks the environment */
     uint num_analytic;   /* entries of analytic_lights (escaped rays look for suns there) */
     float shutter_open;  /* camera.shutter: each camera path draws its time uniformly in */
-    float shutter_close; /* [open, close] (PT_FEATURE_MOTION); equal: no motion blur */
+    float shutter_close; /* [open, close] (PT_FEATURE(MOTION)); equal: no motion blur */
     uint num_instances;  /* entries of instances */
     /* Film and outputs (issue 19): adaptive sampling and the indirect clamp. */
     uint window_pixels;  /* pixels a window's samples cycle over (see PATH_STATE_FIELDS): width *
@@ -184,8 +184,8 @@ typedef struct {
     X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
     X(float4, shadow_direction)    /* xyz; w unused */                                             \
     X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
-    X(uint, hit_instance)          /* the instance hit (PT_FEATURE_INSTANCES; else unused) */     \
-    X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE_MOTION, else 0) */ \
+    X(uint, hit_instance)          /* the instance hit (PT_FEATURE(INSTANCES); else unused) */     \
+    X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE(MOTION), else 0) */ \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
     X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \

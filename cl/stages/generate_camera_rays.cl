@@ -5,7 +5,8 @@
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
  * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
- * ray), path_time (PT_FEATURE_MOTION: the path's shutter fraction, camera_time), active[n_live + j].
+ * ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction, camera_time),
+ * active[n_live + j].
  * Next: intersect_closest. */
 
 /* Starts window sample k's camera path in slot (shared with megakernel.cl). */
@@ -21,7 +22,7 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     sample_id[slot] = k;
     path_depth[slot] = 1u;
     /* Unread without moving instances (intersect_*, shade_surface take 0): no store. */
-    if (PT_FEATURE_MOTION)
+    if (PT_FEATURE(MOTION))
         path_time[slot] = camera_time(p, pixel, sample);
     radiance[k] = (float4)(0.0f);
 }

@@ -20,7 +20,7 @@
  * the hit's t: shading's distances, the emitter MIS pdf and absorption, are the whole segment's),
  * ray_direction (xyz; w, the BSDF pdf, kept), radiance, path_depth (0 when captured or absorbed),
  * hit (HIT_NONE for an ended path). Next: intersect_closest. The kernel exists only with
- * PT_FEATURE_BLACK_HOLES (render/session.c: scenes with holes). */
+ * PT_FEATURE(BLACK_HOLES) (render/session.c: scenes with holes). */
 
 /* Step length: a fraction of the distance r to the nearest hole (the field varies on that scale,
  * so each step's RK4 error is a fixed small fraction of the bending it traces), scaled by
@@ -159,17 +159,13 @@ inline float geodesic_chord_hit(const SceneView *scene, SceneBox box, float3 o, 
 {
     if (!chord_meets_box(o, d, tmax, box))
         return INFINITY;
-#if PT_FEATURE_CUTOUT
-    Hit h = trace_closest_through(scene, 0u, o, d, 0.0f, tmax, time, false,
-                                  rng_bounce_bits(key, bounce, DIM_OPACITY));
-#else
-    (void)key, (void)bounce;
-    Hit h = scene_closest(scene, 0u, o, d, 0.0f, tmax, time);
-#endif
+    Hit h = PT_FEATURE(CUTOUT) ? trace_closest_through(scene, 0u, o, d, 0.0f, tmax, time, false,
+                                                       rng_bounce_bits(key, bounce, DIM_OPACITY))
+                               : scene_closest(scene, 0u, o, d, 0.0f, tmax, time);
     return h.prim != HIT_NONE ? h.t : INFINITY;
 }
 
-#if PT_FEATURE_BLACK_HOLES
+#if PT_FEATURE(BLACK_HOLES)
 
 /* Counts a finished curved ray into the step statistics: totals per work-group (group[3], added
  * to stats once per group by the kernel), the histogram spread over its bins. */
@@ -198,7 +194,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
     uint k = sample_id[slot];
     RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
     uint bounce = depth - 1u;
-    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
+    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     if (t_entry > 0.0f && geodesic_chord_hit(scene, box, world, d, t_entry, time, key, bounce) < INFINITY)
         return; /* a surface before the sphere */
     /* Integrate relative to the first hole entered (float keeps its precision near it). */

@@ -5,7 +5,7 @@
  * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group).
  * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
  * the test that it renders the same image): a kernel of its own, so that the production kernel
- * carries no brute-force branch. With PT_FEATURE_CUTOUT, hits on cut-out materials may be passed
+ * carries no brute-force branch. With PT_FEATURE(CUTOUT), hits on cut-out materials may be passed
  * through (trace_closest_through): a pass-through is not a bounce, path_depth stays. */
 
 #define INTERSECT_CLOSEST_PARAMS                                                                   \
@@ -22,25 +22,25 @@ PT_INLINE bool extend_path(constant RenderParams *p, const SceneView *scene,
         return false;
     uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
-    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
-#if PT_FEATURE_CUTOUT
-    /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches is
-     * bounce path_depth - 1, whose DIM_OPACITY stream decides. */
-    uint k = sample_id[slot];
-    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
-    Hit h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time, brute_force,
+    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+    Hit h;
+    if (PT_FEATURE(CUTOUT)) {
+        /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches
+         * is bounce path_depth - 1, whose DIM_OPACITY stream decides. */
+        uint k = sample_id[slot];
+        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+        h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time, brute_force,
                                   rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
-#else
-    Hit h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false, time)
+    } else {
+        h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false, time)
                         : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
-#endif
-#if PT_FEATURE_BLACK_HOLES
+    }
     /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
      * ray_origin.w is the curve's length so far (0 for every straight ray). */
-    h.t += ray_origin[slot].w;
-#endif
+    if (PT_FEATURE(BLACK_HOLES))
+        h.t += ray_origin[slot].w;
     hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
-    if (PT_FEATURE_INSTANCES)
+    if (PT_FEATURE(INSTANCES))
         hit_instance[slot] = h.instance;
     return true;
 }

@@ -26,22 +26,23 @@ PT_INLINE bool connect_path(constant RenderParams *p, const SceneView *scene,
     uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     float4 origin = shadow_origin[slot];
     float3 d = xyz(shadow_direction[slot]);
-    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
-#if PT_FEATURE_CUTOUT
-    /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY stream
-     * decides the cut-out pass-throughs. */
-    uint k = sample_id[slot];
-    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
-    uint bounce = as_uint(shadow_direction[slot].w);
-    bool occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w, time,
-                                           brute_force,
-                                           rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
-#else
-    bool occluded = brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f,
-                                                    origin.w, true, time).prim != HIT_NONE
-                                : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f,
-                                                 origin.w, time);
-#endif
+    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+    bool occluded;
+    if (PT_FEATURE(CUTOUT)) {
+        /* shade_surface put the queuing bounce in shadow_direction.w: its DIM_SHADOW_OPACITY
+         * stream decides the cut-out pass-throughs. */
+        uint k = sample_id[slot];
+        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+        uint bounce = as_uint(shadow_direction[slot].w);
+        occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, origin.w, time,
+                                          brute_force,
+                                          rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
+    } else {
+        occluded = brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f,
+                                                   origin.w, true, time).prim != HIT_NONE
+                               : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f,
+                                                origin.w, time);
+    }
     if (!occluded)
         radiance[sample_id[slot]] += (float4)(xyz(contribution), 0.0f);
     shadow_contribution[slot] = (float4)(0.0f);

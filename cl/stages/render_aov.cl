@@ -45,15 +45,13 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
         uint sample = p->sample_index + s;
         float3 origin, dir;
         camera_sample(p, pixel, sample, &origin, &dir);
-        float time = PT_FEATURE_MOTION ? camera_time(p, pixel, sample) : 0.0f;
+        float time = PT_FEATURE(MOTION) ? camera_time(p, pixel, sample) : 0.0f;
         RngKey key = rng_path_key(pixel, sample, p->seed);
         for (uint bounce = 0u; bounce < max_segments; bounce++) {
-#if PT_FEATURE_CUTOUT
-            Hit hit = trace_closest_through(&scene, 0u, origin, dir, 0.0f, INFINITY, time, false,
-                                            rng_bounce_bits(key, bounce, DIM_OPACITY));
-#else
-            Hit hit = scene_closest(&scene, 0u, origin, dir, 0.0f, INFINITY, time);
-#endif
+            Hit hit = PT_FEATURE(CUTOUT)
+                          ? trace_closest_through(&scene, 0u, origin, dir, 0.0f, INFINITY, time,
+                                                  false, rng_bounce_bits(key, bounce, DIM_OPACITY))
+                          : scene_closest(&scene, 0u, origin, dir, 0.0f, INFINITY, time);
             if (hit.prim == HIT_NONE)
                 break;
             if (bounce == 0u) {
@@ -62,7 +60,7 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
             }
             SurfaceHit surf = surface_at(&scene, hit, time);
             Material m = scene.materials[surf.material];
-            bool is_mix = PT_HAS_MATERIAL_FEATURE(MIX) && m.type == MATERIAL_MIX;
+            bool is_mix = PT_FEATURE(MIX) && m.type == MATERIAL_MIX;
             Material leaf = is_mix ? scene.materials[material_resolve_mix(
                                          &scene, surf.material, surf.uv, surf.object_position,
                                          rng_bounce(key, bounce, DIM_MIX))]

@@ -12,6 +12,7 @@
 
 #include "device/cl_check.h"
 #include "base/error.h"
+#include "base/shared_types.h"
 
 typedef struct {
     cl_platform_id platform;
@@ -29,7 +30,7 @@ typedef struct {
                           * PT_BVH_WIDTH */
     bool bvh_quantized;  /* 2-wide: 32-byte nodes (bvh_quantized.h); PT_BVH_QUANTIZED=0/1 */
     size_t local_size;   /* work-group size of launches that name none: 64, or PT_LOCAL_SIZE */
-    char build_options[512]; /* see device_build_options; room for render/session.c's features */
+    char build_options[512]; /* see device_build_options (the features come with device_build) */
     int platform_index, device_index;
     char name[256];
     char platform_name[256];
@@ -37,6 +38,7 @@ typedef struct {
     double build_seconds; /* time to get the program: compile, or load from the kernel cache */
     bool use_cache;       /* set before device_build; device_open sets it unless PT_NO_CACHE=1 */
     bool cache_hit;       /* the program came from the kernel cache */
+    ProgramFeatures features; /* what the program was built for (device_build) */
 } Device;
 
 /* Prints every platform and device (name, type, compute units, memory, max allocation, OpenCL C
@@ -59,12 +61,27 @@ bool device_spec_is_list(const char *spec); /* "all" or a list with a comma */
 bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err);
 
 /* Builds the program from the embedded cl/ sources followed by extra_source (may be NULL; tests add
- * their kernels this way). On failure prints the full build log and returns
- * ERR_KERNEL_BUILD. */
-bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err);
+ * their kernels this way), specialised for `features` (a set of FEATURE_* bits, cl/shared/features.h;
+ * PROGRAM_FEATURES_ALL keeps every feature): the kernel cache keys on them with the options. On
+ * failure prints the full build log and returns ERR_KERNEL_BUILD. */
+bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
+                  const char *extra_name, Error *err);
 
-/* The build options, in one place: logged with every build. */
+/* The device's build options, in one place: logged with every build (followed by the features'). */
 const char *device_build_options(const Device *dev);
+
+/* The options that specialise a program for `features` (program_features.c): -DPT_FEATURES_GIVEN
+ * and -DPT_FEATURE_<NAME>=0/1 for every feature of the list, each after a space. */
+#define PT_FEATURE_OPTION_LENGTH(name, word) +sizeof(" -DPT_FEATURE_" #name "=0") - 1
+#define PROGRAM_FEATURE_OPTIONS_SIZE                                                               \
+    (sizeof(" -DPT_FEATURES_GIVEN") PROGRAM_FEATURES(PT_FEATURE_OPTION_LENGTH))
+void program_features_options(ProgramFeatures features, char out[PROGRAM_FEATURE_OPTIONS_SIZE]);
+
+/* The set in words for people: "all", "none" or its features' words, comma-separated
+ * ("env, mix, instances"). */
+#define PT_FEATURE_WORD_LENGTH(name, word) +sizeof(word) + 1
+#define PROGRAM_FEATURE_SUMMARY_SIZE (sizeof("none") PROGRAM_FEATURES(PT_FEATURE_WORD_LENGTH))
+void program_features_summary(ProgramFeatures features, char out[PROGRAM_FEATURE_SUMMARY_SIZE]);
 
 cl_kernel device_kernel(Device *dev, const char *name);
 /* The kernel, or NULL where the program's options compiled it out (#if around the kernel). */

@@ -76,7 +76,7 @@ bool device_choose_program_options(Device *dev, Error *err)
 const char *device_build_options(const Device *dev) { return dev->build_options; }
 
 /* Prints the build log of a failed build and records the error. */
-static bool build_failed(Device *dev, cl_int status, Error *err)
+static bool build_failed(Device *dev, const char *options, cl_int status, Error *err)
 {
     size_t log_size = 0;
     CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
@@ -85,8 +85,7 @@ static bool build_failed(Device *dev, cl_int status, Error *err)
         die("out of memory");
     CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
     log[log_size] = '\0';
-    fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name,
-            device_build_options(dev), log);
+    fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name, options, log);
     free(log);
     error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
               dev->name, cl_error_name(status));
@@ -94,7 +93,7 @@ static bool build_failed(Device *dev, cl_int status, Error *err)
 }
 
 /* A program from a cached binary; false (and nothing kept) when the entry is missing or unusable. */
-static bool build_from_cache(Device *dev, uint64_t key)
+static bool build_from_cache(Device *dev, const char *options, uint64_t key)
 {
     unsigned char *binary = NULL;
     size_t size = 0;
@@ -112,7 +111,7 @@ static bool build_from_cache(Device *dev, uint64_t key)
              cl_error_name(status != CL_SUCCESS ? status : binary_status));
         return false;
     }
-    if (clBuildProgram(program, 1, &dev->device, device_build_options(dev), NULL, NULL) != CL_SUCCESS) {
+    if (clBuildProgram(program, 1, &dev->device, options, NULL, NULL) != CL_SUCCESS) {
         warn("the cached kernels do not build on %s: rebuilding", dev->name);
         clReleaseProgram(program);
         return false;
@@ -136,8 +135,16 @@ static void store_in_cache(Device *dev, uint64_t key)
     free(binary);
 }
 
-bool device_build(Device *dev, const char *extra_source, const char *extra_name, Error *err)
+bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
+                  const char *extra_name, Error *err)
 {
+    /* The features are the program's specialisation: part of its options, so of the cache key. */
+    char options[sizeof dev->build_options + PROGRAM_FEATURE_OPTIONS_SIZE];
+    size_t used = strlen(device_build_options(dev));
+    memcpy(options, device_build_options(dev), used);
+    program_features_options(features, options + used);
+    dev->features = features;
+
     char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
     if (!source)
         die("out of memory");
@@ -147,19 +154,19 @@ bool device_build(Device *dev, const char *extra_source, const char *extra_name,
                 extra_name ? extra_name : "extra", extra_source);
 
     double start = seconds_now();
-    const char *key_parts[] = {source, device_build_options(dev), dev->name, dev->platform_name,
+    const char *key_parts[] = {source, options, dev->name, dev->platform_name,
                                dev->driver_version};
     uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
-    dev->cache_hit = dev->use_cache && build_from_cache(dev, key);
+    dev->cache_hit = dev->use_cache && build_from_cache(dev, options, key);
     if (!dev->cache_hit) {
         cl_int status;
         const char *sources[1] = {source};
         dev->program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
         CL_CHECK_ERR(status, "clCreateProgramWithSource");
-        status = clBuildProgram(dev->program, 1, &dev->device, device_build_options(dev), NULL, NULL);
+        status = clBuildProgram(dev->program, 1, &dev->device, options, NULL, NULL);
         if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS) {
             free(source);
-            return build_failed(dev, status, err);
+            return build_failed(dev, options, status, err);
         }
         CL_CHECK_ERR(status, "clBuildProgram");
         if (dev->use_cache)

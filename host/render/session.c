@@ -31,32 +31,25 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
     return true;
 }
 
-/* Compiles out the light types and material features the scene does not have (PT_FEATURE_* and
- * PT_MATERIAL_FEATURES in cl/core/util.cl): their
- * branches cost 4-8% of shade_surface on the H200 in scenes without them. The kernel cache keys on
- * the options, so each combination is its own entry. They always fit (PT_CL_OPTIONS is bounded):
- * dropping them is not an option, since PT_FEATURE_INSTANCES must match the layout that
+/* The features the scene uses (cl/shared/features.h): the program is built for exactly these, so
+ * the code of the others leaves the kernels. The kernel cache keys on them, so each combination is
+ * its own entry. FEATURE_INSTANCES is not optional: it must match the layout that
  * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
-static void specialise_program(Device *dev, const SceneData *data, bool black_holes)
+static ProgramFeatures scene_program_features(const SceneData *data, bool black_holes)
 {
     /* Cut-out materials (cl/material/surface_detail.cl) add a material read per hit to both
      * intersect stages: only scenes that have one pay for it. */
     bool cutout = false;
     for (uint32_t i = 0; i < data->num_materials && !cutout; i++)
         cutout = (data->materials[i].flags & MATERIAL_FLAG_CUTOUT) != 0;
-    char features[256];
-    snprintf(features, sizeof features,
-             " -DPT_FEATURE_ENV=%d -DPT_FEATURE_ANALYTIC=%d -DPT_FEATURE_CUTOUT=%d"
-             " -DPT_MATERIAL_FEATURES=%uu -DPT_FEATURE_INSTANCES=%d -DPT_FEATURE_MOTION=%d"
-             " -DPT_FEATURE_BLACK_HOLES=%d",
-             data->environment.width > 0, data->num_analytic > 0, cutout,
-             (unsigned)material_features(data->materials, data->num_materials, &data->textures),
-             data->two_level, data->num_moving > 0, black_holes);
-    size_t used = strlen(dev->build_options);
-    if (used + strlen(features) >= sizeof dev->build_options)
-        die("the kernel build options are too long for the scene's features (%zu + %zu bytes)", used,
-            strlen(features));
-    memcpy(dev->build_options + used, features, strlen(features) + 1);
+    ProgramFeatures f = material_features(data->materials, data->num_materials, &data->textures);
+    f |= data->environment.width > 0 ? FEATURE_ENV : 0u;
+    f |= data->num_analytic > 0 ? FEATURE_ANALYTIC : 0u;
+    f |= cutout ? FEATURE_CUTOUT : 0u;
+    f |= data->two_level ? FEATURE_INSTANCES : 0u;
+    f |= data->num_moving > 0 ? FEATURE_MOTION : 0u;
+    f |= black_holes ? FEATURE_BLACK_HOLES : 0u;
+    return f;
 }
 
 /* Opens the device named by spec with the program built for the scene, lays the BVH out for it
@@ -68,9 +61,9 @@ static bool open_on_device(Device *dev, SceneBvh *bvh, SceneBuffers *buffers, co
     bool opened = device_open(dev, spec, err);
     if (opened && no_cache)
         dev->use_cache = false;
-    if (opened)
-        specialise_program(dev, &scene->data, scene->desc.num_black_holes > 0);
-    if (!opened || !device_build(dev, NULL, NULL, err)) {
+    if (!opened ||
+        !device_build(dev, scene_program_features(&scene->data, scene->desc.num_black_holes > 0),
+                      NULL, NULL, err)) {
         if (dev->context)
             device_close(dev);
         return false;
@@ -144,12 +137,14 @@ static double peak_rss_mib(void)
 void session_print_summary(const Session *s)
 {
     const SceneData *d = &s->scene.data;
+    char features[PROGRAM_FEATURE_SUMMARY_SIZE];
+    program_features_summary(s->dev.features, features);
     fprintf(stderr,
             "pt: %s: %u triangles, %u materials, %u textures, %u emissive triangles; load %.2f s, "
-            "BVH %.2f s, kernels %.2f s (%s)\n",
+            "BVH %.2f s, kernels %.2f s (%s; features: %s)\n",
             s->scene.desc.path, d->num_triangles, d->num_materials, d->textures.count,
             d->num_emissive, s->load_seconds, s->bvh_seconds, s->dev.build_seconds,
-            s->dev.cache_hit ? "from the kernel cache" : "compiled");
+            s->dev.cache_hit ? "from the kernel cache" : "compiled", features);
     if (d->two_level)
         fprintf(stderr,
                 "pt: %u meshes, %u instances (%u moving): %.4g triangles rendered; two-level BVH "

@@ -222,7 +222,7 @@ kernel void bvh_test_trace_closest_dynamic(const global TraversalNode *restrict 
 }
 #endif
 
-#if PT_FEATURE_INSTANCES
+#if PT_FEATURE(INSTANCES)
 /* Two-level queries (tests/test_accel_instances_bvh.c): ray i at shutter fraction times[i]; mode 0:
  * closest (scene_closest's walk), 1: any hit, 2: brute-force closest, 3: brute-force any hit.
  * hits[i] as bvh_test_hit_record, instances_hit[i] the hit's instance. */

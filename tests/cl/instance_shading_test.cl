@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* instance_shading_test.cl: kernels for tests/test_instance_shading.c, which builds them with
- * -DPT_FEATURE_INSTANCES=1 -DPT_FEATURE_MOTION=1 (they compile without too, in the tests' shared
+ * every feature (instances and motion among them; they compile without too, in the tests' shared
  * program). */
 
 /* surface_at of hits queries[i] = (u, v, as_float(triangle), as_float(instance)) at `time`:
