@@ -9,9 +9,9 @@
  * (one level) or of instances (two levels), SCENE_BRUTE_FORCE_COUNT(p) of the RenderParams. */
 
 #if PT_FEATURE_INSTANCES
-#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->num_instances)
+#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->scene.num_instances)
 #else
-#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->num_bvh_prims)
+#define SCENE_BRUTE_FORCE_COUNT(p) ((p)->scene.num_bvh_prims)
 #endif
 
 /* The closest hit, or with any_hit the first one found. */

@@ -78,8 +78,8 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
  * whole window, dead slots idle. The film gets the window's samples at the end, as exact sums. */
 static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_size, uint32_t sample_index)
 {
-    w->params.batch_start = window_start;
-    w->params.batch_size = window_size;
+    w->params.window_start = window_start;
+    w->params.window_size = window_size;
     w->params.sample_index = w->settings.first_sample + w->block_first_sample + sample_index;
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 

@@ -8,7 +8,6 @@
 
 #include "render/megakernel.h"
 #include "render/wavefront_internal.h"
-#include "scene/camera.h"
 
 const char *const stage_names[STAGE_COUNT] = {
     "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
@@ -115,29 +114,13 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
                           (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
-    w->params = (RenderParams){
-        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
-        .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
-        .width = (uint)desc->width,
-        .height = (uint)desc->height,
-        .seed = s->seed,
-        .max_depth = (uint)s->max_depth,
-        .num_bvh_prims = buffers->num_bvh_prims,
-        .num_emissive = buffers->num_emissive,
-        .emissive_power = buffers->emissive_power,
-        .env_width = buffers->env_width,
-        .env_height = buffers->env_height,
-        .env_rotation = buffers->env_rotation,
-        .env_pick_pdf = buffers->env_pick_pdf,
-        .num_analytic = buffers->num_analytic,
-        .shutter_open = desc->camera.shutter_open,
-        .shutter_close = desc->camera.shutter_close,
-        .num_instances = buffers->num_instances,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
-                 (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u),
-        .window_pixels = w->num_pixels,
-        .clamp_indirect = s->clamp_indirect,
-    };
+    w->params = render_params_for_scene(desc, buffers);
+    w->params.seed = s->seed;
+    w->params.max_depth = (uint)s->max_depth;
+    w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+                      (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u);
+    w->params.window_pixels = w->num_pixels;
+    w->params.clamp_indirect = s->clamp_indirect;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
     if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err) || !adaptive_init(w, err))
         return false;
