@@ -18,7 +18,7 @@ static void expect_same_as_wavefront(const char *scene, RenderFixture *f, Render
     s.path_kernel = k;
     float *b = render_fixture_render(f, s, stats);
     const char *name = k == PATH_KERNEL_MEGAKERNEL ? "megakernel" : "megakernel-single";
-    cr_expect(stats->megakernel, "%s: %s: the megakernel was not used", scene, name);
+    cr_expect(stats->config.megakernel, "%s: %s: the megakernel was not used", scene, name);
     cr_expect_eq(stats->extension_rays, wave->extension_rays, "%s: %s: %llu extension rays, wavefront %llu",
                  scene, name, (unsigned long long)stats->extension_rays,
                  (unsigned long long)wave->extension_rays);
@@ -103,7 +103,7 @@ static uint64_t device_bytes(RenderFixture *f, int k, bool sort)
     RenderStats stats;
     RenderSettings s = {.spp = 1, .max_depth = 2, .path_kernel = k, .sort_materials = sort};
     free(render_fixture_render(f, s, &stats));
-    return stats.device_bytes;
+    return stats.config.device_bytes;
 }
 
 /* Asked for material sorting, the megakernel renders without a sorter (it has no shading launches
@@ -128,7 +128,7 @@ static bool auto_choice(RenderFixture *f, RenderSettings s)
     RenderStats stats;
     s.spp = 1, s.max_depth = 2;
     free(render_fixture_render(f, s, &stats));
-    return stats.megakernel;
+    return stats.config.megakernel;
 }
 
 Test(megakernel, chosen_on_cpus_unless_overridden_or_an_ablation)
