@@ -171,7 +171,7 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
      * there are more steps than bounces), and the image keeps every bit. */
     float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .path_kernel = PATH_KERNEL_WAVEFRONT}, &refilled);
     cr_expect_eq(refilled.windows, 1);
-    cr_expect_eq(refilled.pool_size, 256);
+    cr_expect_eq(refilled.config.pool_size, 256);
     cr_expect(refilled.live_per_step[40] == 256, "the pool is not kept full: %llu paths at step 40",
               (unsigned long long)refilled.live_per_step[40]);
     cr_expect_eq(refilled.extension_rays, with.extension_rays);

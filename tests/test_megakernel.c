@@ -48,14 +48,14 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     RenderStats wave, mega, single;
     s.path_kernel = PATH_KERNEL_WAVEFRONT;
     float *a = render_fixture_render(&f, s, &wave);
-    cr_expect(!wave.megakernel, "%s: the wavefront was not used", scene);
+    cr_expect(!wave.config.megakernel, "%s: the wavefront was not used", scene);
     cr_expect_gt(wave.extension_rays, (uint64_t)width * (uint64_t)height, "%s: no bounces traced", scene);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
     bool wide = f.dev->bvh_width == 8;
-    cr_expect_eq(mega.packets, packets && wide, "%s: packets %s (8-wide layout: %s)", scene,
-                 mega.packets ? "used" : "not used", wide ? "yes" : "no");
-    cr_expect(!single.packets, "%s: megakernel-single used packets", scene);
+    cr_expect_eq(mega.config.packets, packets && wide, "%s: packets %s (8-wide layout: %s)", scene,
+                 mega.config.packets ? "used" : "not used", wide ? "yes" : "no");
+    cr_expect(!single.config.packets, "%s: megakernel-single used packets", scene);
     free(a);
     render_fixture_close(&f);
 }
