@@ -163,8 +163,9 @@ int command_bench(const Options *o)
 
     printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths, window %u samples, "
            "%.1f MiB of path state\n",
-           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name, stats[0].config.pool_size,
-           stats[0].config.window_size, stats[0].config.device_bytes / 1048576.0);
+           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name,
+           stats[0].config.pool_size, stats[0].config.window_size,
+           stats[0].config.device_bytes / 1048576.0);
     printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
            "Mshadow/s", "rays/path");
     for (size_t m = 0; m < num_modes; m++) {

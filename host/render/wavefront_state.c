@@ -25,7 +25,8 @@ static const struct {
     const char *variant_kernel;
 } stage_kinds[STAGE_COUNT] = {
 #define STAGE_KIND(id, kernel, launch, made, variant)                                              \
-    {STAGE_##launch, STAGE_MADE_##made, STAGE_VARIANT_##variant, STAGE_VARIANT_KERNEL_##variant(kernel)},
+    {STAGE_##launch, STAGE_MADE_##made, STAGE_VARIANT_##variant,                                   \
+     STAGE_VARIANT_KERNEL_##variant(kernel)},
     STAGES(STAGE_KIND)
 #undef STAGE_KIND
 };
@@ -95,7 +96,8 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
 
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
- * film with its second moments, so that the plain accumulation stays as it was (STAGES' variant). */
+ * film with its second moments, so that the plain accumulation stays as it was (the variant
+ * column of STAGES). */
 static const char *stage_kernel(int stage, const RenderSettings *s)
 {
     int variant = stage_kinds[stage].variant;
@@ -130,7 +132,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->params = render_params_for_scene(desc, buffers);
     w->params.seed = s->seed;
     w->params.max_depth = (uint)s->max_depth;
-    w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+    w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) |
+                      (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
                       (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u);
     w->params.window_pixels = w->num_pixels;
     w->params.clamp_indirect = s->clamp_indirect;
@@ -172,7 +175,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
         if (!w->sorter)
             return false;
-        stats->config.device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted active list */
+        stats->config.device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted list */
     }
     set_all_args(w);
     wavefront_reset(w);
@@ -233,7 +236,8 @@ static void set_all_args(Wavefront *w)
     i = wavefront_set_path_args(w, generate, false);
     w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
 
-    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST], KARG(w->counters));
+    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
+                KARG(w->counters));
     KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE], KARG(w->shadow_queue),
                 KARG(w->shadow_count));
     KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW], KARG(w->counters),
