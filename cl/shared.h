@@ -56,18 +56,19 @@ typedef cl_uint uint;
         FIELD(TextureInfo, scale) FIELD(TextureInfo, transform)                                     \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
+    STRUCT(SceneParams, 36) FIELD(SceneParams, num_bvh_prims) FIELD(SceneParams, num_instances)    \
+        FIELD(SceneParams, num_emissive) FIELD(SceneParams, num_analytic)                           \
+        FIELD(SceneParams, emissive_power) FIELD(SceneParams, env_pick_pdf)                         \
+        FIELD(SceneParams, env_width) FIELD(SceneParams, env_height)                                \
+        FIELD(SceneParams, env_rotation)                                                            \
     STRUCT(RenderParams, 176) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
-        FIELD(RenderParams, width) FIELD(RenderParams, height) FIELD(RenderParams, seed)            \
-        FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)                            \
-        FIELD(RenderParams, num_bvh_prims) FIELD(RenderParams, num_emissive)                        \
-        FIELD(RenderParams, aov) FIELD(RenderParams, emissive_power) FIELD(RenderParams, flags)     \
-        FIELD(RenderParams, batch_start) FIELD(RenderParams, batch_size)                            \
-        FIELD(RenderParams, env_width) FIELD(RenderParams, env_height)                              \
-        FIELD(RenderParams, env_rotation) FIELD(RenderParams, env_pick_pdf)                         \
-        FIELD(RenderParams, num_analytic) FIELD(RenderParams, shutter_open)                         \
-        FIELD(RenderParams, shutter_close) FIELD(RenderParams, num_instances)                       \
-        FIELD(RenderParams, window_pixels) FIELD(RenderParams, clamp_indirect)                      \
-        FIELD(RenderParams, pixel_offset) FIELD(RenderParams, film_pad1)                               \
+        FIELD(RenderParams, scene) FIELD(RenderParams, width) FIELD(RenderParams, height)           \
+        FIELD(RenderParams, seed) FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)  \
+        FIELD(RenderParams, aov) FIELD(RenderParams, flags) FIELD(RenderParams, window_start)       \
+        FIELD(RenderParams, window_size) FIELD(RenderParams, shutter_open)                          \
+        FIELD(RenderParams, shutter_close) FIELD(RenderParams, window_pixels)                       \
+        FIELD(RenderParams, clamp_indirect) FIELD(RenderParams, pixel_offset)                       \
+        FIELD(RenderParams, pad0)                                                                   \
     STRUCT(LightEntry, 32) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf) FIELD(LightEntry, instance)              \
         FIELD(LightEntry, pad0) FIELD(LightEntry, pad1) FIELD(LightEntry, pad2)                     \

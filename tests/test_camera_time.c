@@ -35,7 +35,7 @@ static CameraPaths generate(Device *dev, float open, float close)
     p.width = p.height = SIDE;
     p.seed = 11;
     p.max_depth = 4;
-    p.batch_size = SAMPLES;
+    p.window_size = SAMPLES;
     p.window_pixels = SIDE * SIDE;
     p.shutter_open = open;
     p.shutter_close = close;

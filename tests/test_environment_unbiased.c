@@ -25,7 +25,7 @@ Test(environment, white_furnace_with_a_constant_map, .timeout = 120)
                                     "{\"eye\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y\": 40}");
     RenderFixture f;
     render_fixture_open(&f, scene, 48, 48);
-    cr_assert_eq(f.buffers.num_emissive, 1, "the map is the only entry of the light table");
+    cr_assert_eq(f.buffers.params.num_emissive, 1, "the map is the only entry of the light table");
     for (int no_nee = 0; no_nee < 2; no_nee++) {
         float *rgb = render_fixture_render(&f, (RenderSettings){.spp = 64, .max_depth = 8, .seed = 1, .no_nee = no_nee}, NULL);
         double sum = 0.0;

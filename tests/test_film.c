@@ -40,9 +40,9 @@ Test(film, windows_and_pools_do_not_change_the_bits, .timeout = 300)
     render_fixture_open(&f, "scenes/cornell-box/scene.json", SIZE, SIZE);
     RenderStats ref_stats;
     float *ref = render_fixture_render(&f, cornell, &ref_stats);
-    cr_assert_eq(ref_stats.batches, 1, "the reference is one window of 32 spp");
+    cr_assert_eq(ref_stats.windows, 1, "the reference is one window of 32 spp");
     const struct {
-        uint32_t window, pool, batches;
+        uint32_t window, pool, windows;
     } splits[] = {
         {1 * PIXELS, 256, 32},   {1 * PIXELS, PIXELS, 32}, {4 * PIXELS, 256, 8},
         {16 * PIXELS, 65536, 2}, {32 * PIXELS, 256, 1},    {32 * PIXELS, 65536, 1},
@@ -53,9 +53,9 @@ Test(film, windows_and_pools_do_not_change_the_bits, .timeout = 300)
         s.window_size = splits[i].window, s.pool_size = splits[i].pool;
         RenderStats stats;
         float *rgb = render_fixture_render(&f, s, &stats);
-        cr_expect_eq(stats.batches, splits[i].batches, "window %u: %u windows", splits[i].window,
-                     stats.batches);
-        cr_expect_eq(stats.pool_size, splits[i].pool < splits[i].window ? splits[i].pool : splits[i].window);
+        cr_expect_eq(stats.windows, splits[i].windows, "window %u: %u windows", splits[i].window,
+                     stats.windows);
+        cr_expect_eq(stats.config.pool_size, splits[i].pool < splits[i].window ? splits[i].pool : splits[i].window);
         cr_expect(memcmp(rgb, ref, PIXELS * 3 * sizeof(float)) == 0,
                   "window %u, pool %u: the image differs from one window of 32 spp", splits[i].window,
                   splits[i].pool);

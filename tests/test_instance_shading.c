@@ -199,9 +199,7 @@ static void check_light_samples(InstanceFixture *f, double s, const double from[
     RenderParams params;
     memset(&params, 0, sizeof params);
     params.seed = 5;
-    params.num_emissive = f->buffers.num_emissive;
-    params.emissive_power = f->buffers.emissive_power;
-    params.num_instances = f->buffers.num_instances;
+    params.scene = f->buffers.params;
     Error err = {0};
     cl_mem pbuf = device_buffer(f->dev, "params", CL_MEM_READ_ONLY, sizeof params, &params, &err);
     cl_mem obuf = device_buffer(f->dev, "out", CL_MEM_WRITE_ONLY,

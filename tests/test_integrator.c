@@ -170,8 +170,8 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     /* 256 slots tracing the same one window of 8192 samples: slots are refilled as paths end (so
      * there are more steps than bounces), and the image keeps every bit. */
     float *c = render_fixture_render(&f, (RenderSettings){.spp = 8, .max_depth = 8, .seed = 3, .pool_size = 256, .window_size = 8192, .path_kernel = PATH_KERNEL_WAVEFRONT}, &refilled);
-    cr_expect_eq(refilled.batches, 1);
-    cr_expect_eq(refilled.pool_size, 256);
+    cr_expect_eq(refilled.windows, 1);
+    cr_expect_eq(refilled.config.pool_size, 256);
     cr_expect(refilled.live_per_step[40] == 256, "the pool is not kept full: %llu paths at step 40",
               (unsigned long long)refilled.live_per_step[40]);
     cr_expect_eq(refilled.extension_rays, with.extension_rays);
@@ -207,9 +207,9 @@ Test(integrator, same_seed_same_bits_and_window_split_independent, .timeout = 12
      * other sums, and the film's fixed-point sums are exact, so the same bits. */
     RenderStats stats;
     float *c = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 4 * 32 * 32, .window_size = 4 * 32 * 32}, &stats);
-    cr_expect_eq(stats.batches, 4);
+    cr_expect_eq(stats.windows, 4);
     float *d = render_fixture_render(&f, (RenderSettings){.spp = 16, .max_depth = 6, .seed = 11, .pool_size = 128, .window_size = 512}, &stats);
-    cr_expect_eq(stats.batches, 32);
+    cr_expect_eq(stats.windows, 32);
     cr_expect(memcmp(a, c, n * sizeof(float)) == 0, "4 windows changed the image");
     cr_expect(memcmp(a, d, n * sizeof(float)) == 0, "32 windows changed the image");
     /* A different seed changes the image. */

@@ -18,7 +18,7 @@ static void expect_same_as_wavefront(const char *scene, RenderFixture *f, Render
     s.path_kernel = k;
     float *b = render_fixture_render(f, s, stats);
     const char *name = k == PATH_KERNEL_MEGAKERNEL ? "megakernel" : "megakernel-single";
-    cr_expect(stats->megakernel, "%s: %s: the megakernel was not used", scene, name);
+    cr_expect(stats->config.megakernel, "%s: %s: the megakernel was not used", scene, name);
     cr_expect_eq(stats->extension_rays, wave->extension_rays, "%s: %s: %llu extension rays, wavefront %llu",
                  scene, name, (unsigned long long)stats->extension_rays,
                  (unsigned long long)wave->extension_rays);
@@ -48,14 +48,14 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     RenderStats wave, mega, single;
     s.path_kernel = PATH_KERNEL_WAVEFRONT;
     float *a = render_fixture_render(&f, s, &wave);
-    cr_expect(!wave.megakernel, "%s: the wavefront was not used", scene);
+    cr_expect(!wave.config.megakernel, "%s: the wavefront was not used", scene);
     cr_expect_gt(wave.extension_rays, (uint64_t)width * (uint64_t)height, "%s: no bounces traced", scene);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
     bool wide = f.dev->bvh_width == 8;
-    cr_expect_eq(mega.packets, packets && wide, "%s: packets %s (8-wide layout: %s)", scene,
-                 mega.packets ? "used" : "not used", wide ? "yes" : "no");
-    cr_expect(!single.packets, "%s: megakernel-single used packets", scene);
+    cr_expect_eq(mega.config.packets, packets && wide, "%s: packets %s (8-wide layout: %s)", scene,
+                 mega.config.packets ? "used" : "not used", wide ? "yes" : "no");
+    cr_expect(!single.config.packets, "%s: megakernel-single used packets", scene);
     free(a);
     render_fixture_close(&f);
 }
@@ -103,7 +103,7 @@ static uint64_t device_bytes(RenderFixture *f, int k, bool sort)
     RenderStats stats;
     RenderSettings s = {.spp = 1, .max_depth = 2, .path_kernel = k, .sort_materials = sort};
     free(render_fixture_render(f, s, &stats));
-    return stats.device_bytes;
+    return stats.config.device_bytes;
 }
 
 /* Asked for material sorting, the megakernel renders without a sorter (it has no shading launches
@@ -128,7 +128,7 @@ static bool auto_choice(RenderFixture *f, RenderSettings s)
     RenderStats stats;
     s.spp = 1, s.max_depth = 2;
     free(render_fixture_render(f, s, &stats));
-    return stats.megakernel;
+    return stats.config.megakernel;
 }
 
 Test(megakernel, chosen_on_cpus_unless_overridden_or_an_ablation)

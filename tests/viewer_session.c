@@ -174,7 +174,7 @@ void channel_means(Png p, double mean[3])
 
 /* dir/NAME.png (a screenshot) against 'pt render RENDER_ARGS' at the screenshot's seed and at
  * another: with the same seed the two are the same estimate (the RNG is keyed on pixel and sample,
- * whatever the batches), so they may differ only by rounding, a small fraction of the two seeds'
+ * whatever the windows), so they may differ only by rounding, a small fraction of the two seeds'
  * difference; the screenshot's mean is within noise of the other seed's. Returns that noise. */
 double expect_screenshot_is_the_render(const char *dir, const char *name, unsigned seed,
                                               const char *render_args)

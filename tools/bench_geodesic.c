@@ -26,7 +26,7 @@ static double render(Session *s, RenderSettings rs, uint32_t geo[GEODESIC_STAT_W
     double total = 0.0;
     for (int k = 0; k < STAGE_COUNT; k++)
         total += st->stage_ms[k];
-    *share = total > 0.0 ? st->stage_ms[STAGE_GEODESIC] / total : 0.0;
+    *share = total > 0.0 ? st->stage_ms[STAGE_INTEGRATE_GEODESIC] / total : 0.0;
     if (w->geodesic_stats)
         device_read(&s->dev, w->geodesic_stats, 0, GEODESIC_STAT_WORDS * sizeof(uint32_t), geo);
     double mpaths = (double)st->paths / st->seconds * 1e-6;

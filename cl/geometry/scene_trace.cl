@@ -8,7 +8,8 @@
  * (instance, triangle). brute_count is for the brute-force ablation only: the entries of bvh_tris
  * (one level) or of instances (two levels), SCENE_BRUTE_FORCE_COUNT(p) of the RenderParams. */
 
-#define SCENE_BRUTE_FORCE_COUNT(p) (PT_FEATURE(INSTANCES) ? (p)->num_instances : (p)->num_bvh_prims)
+#define SCENE_BRUTE_FORCE_COUNT(p) \
+    (PT_FEATURE(INSTANCES) ? (p)->scene.num_instances : (p)->scene.num_bvh_prims)
 
 /* The closest hit, or with any_hit the first one found. */
 inline Hit scene_trace(const SceneView *scene, float3 o, float3 d, float tmin, float tmax,

@@ -71,7 +71,7 @@ inline float3 suns_seen(constant RenderParams *p, const global AnalyticLight *li
                         float prev_pdf_w, uint depth)
 {
     float3 sum = (float3)(0.0f);
-    for (uint i = 0u; i < p->num_analytic; i++) {
+    for (uint i = 0u; i < p->scene.num_analytic; i++) {
         AnalyticLight l = lights[i];
         if (l.type != LIGHT_SUN || !(l.params.z > 0.0f) || -dot(d, xyz(l.position)) < l.params.x)
             continue;

@@ -23,7 +23,8 @@ typedef struct {
 
 inline EnvMap env_map(constant RenderParams *p, const SceneView *scene)
 {
-    EnvMap env = {scene->env_texels, scene->env_alias, p->env_width, p->env_height, p->env_rotation};
+    EnvMap env = {scene->env_texels, scene->env_alias, p->scene.env_width, p->scene.env_height,
+                  p->scene.env_rotation};
     return env;
 }
 

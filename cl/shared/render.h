@@ -17,29 +17,38 @@ typedef struct {
 #define AOV_NORMAL 1u
 #define AOV_DEPTH 2u
 
+/* The scalars that go with the scene's buffers (SCENE_BUFFERS below): their counts, the light
+ * table's totals and the environment map's shape. Filled once, where the buffers are made
+ * (scene_buffers_upload, host/render/scene_upload.c), and carried whole into every RenderParams;
+ * kernels read p->scene.<field>. The camera, shutter and background stay in RenderParams: they
+ * come from the scene description with the view, not from the uploaded data. */
+typedef struct {
+    uint num_bvh_prims;   /* entries of bvh_tris: triangles (2-wide) or triangle packs (wide) */
+    uint num_instances;   /* entries of instances */
+    uint num_emissive;    /* entries of the light table (lights) */
+    uint num_analytic;    /* entries of analytic_lights (escaped rays look for suns there) */
+    float emissive_power; /* total emitted power of the light table (for pdfs) */
+    float env_pick_pdf;   /* probability that the light table picks the environment */
+    uint env_width;       /* environment map texels across (0: no map, background is the sky) */
+    uint env_height;
+    float env_rotation;   /* the map's rotation theta as a fraction of a turn */
+} SceneParams;
+
 typedef struct {
     Camera camera;
     float4 background; /* radiance of escaped rays */
+    SceneParams scene;
     uint width;
     uint height;
     uint seed;
     uint max_depth;
-    uint sample_index;   /* sample index of the batch's first path */
-    uint num_bvh_prims;  /* entries of bvh_tris: triangles (2-wide) or triangle packs (wide) */
-    uint num_emissive;   /* emissive triangles in the light table */
+    uint sample_index;   /* sample index of the window's first sample */
     uint aov;            /* AOV_* for render_aov */
-    float emissive_power; /* total emitted power of the light table (for pdfs) */
     uint flags;          /* RENDER_* */
-    uint batch_start;    /* pixel of the window's first sample (see PATH_STATE_FIELDS) */
-    uint batch_size;     /* samples in the window */
-    uint env_width;      /* environment map texels across (0: no map, background is the sky) */
-    uint env_height;
-    float env_rotation;  /* the map's rotation theta as a fraction of a turn */
-    float env_pick_pdf;  /* probability that the light table picks the environment */
-    uint num_analytic;   /* entries of analytic_lights (escaped rays look for suns there) */
+    uint window_start;   /* pixel of the window's first sample (see PATH_STATE_FIELDS) */
+    uint window_size;    /* samples in the window */
     float shutter_open;  /* camera.shutter: each camera path draws its time uniformly in */
     float shutter_close; /* [open, close] (PT_FEATURE(MOTION)); equal: no motion blur */
-    uint num_instances;  /* entries of instances */
     /* Film and outputs (issue 19): adaptive sampling and the indirect clamp. */
     uint window_pixels;  /* pixels a window's samples cycle over (see PATH_STATE_FIELDS): width *
                           * height, or under RENDER_ADAPTIVE the length of active_pixels */
@@ -48,7 +57,7 @@ typedef struct {
     uint pixel_offset;   /* the first pixel of the block being rendered (dist/work_units.h:
                           * a unit's tile is pixels pixel_offset .. + window_pixels - 1); 0
                           * under RENDER_ADAPTIVE, whose active_pixels name whole-film pixels */
-    uint film_pad1;
+    uint pad0;           /* to a multiple of 16 bytes */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -167,10 +176,10 @@ typedef struct {
 
 /* ---- Wavefront path state ------------------------------------------------------------------ */
 
-/* Structure of arrays. The host renders a window of batch_size samples at a time: window sample k
- * traces pixel (batch_start + k) % window_pixels, sample index sample_index + (batch_start + k) /
+/* Structure of arrays. The host renders a window of window_size samples at a time: window sample k
+ * traces pixel (window_start + k) % window_pixels, sample index sample_index + (window_start + k) /
  * window_pixels (window_pixels = width * height; under RENDER_ADAPTIVE the pixel is
- * active_pixels[(batch_start + k) % window_pixels], the pixels adaptive sampling still samples,
+ * active_pixels[(window_start + k) % window_pixels], the pixels adaptive sampling still samples,
  * which all hold sample_index samples when the window starts). A pool of path slots (often fewer than the window's samples) traces them: a slot
  * whose path ends is refilled with the window's next sample (generate_camera_rays), so the pool
  * stays full until the window runs dry. PATH_STATE_FIELDS are per slot, SAMPLE_STATE_FIELDS per
@@ -196,8 +205,8 @@ typedef struct {
 
 /* Wavefront counters (one uint buffer). */
 #define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */
-#define COUNTER_SHADOW_RAYS 1 /* shadow rays traced in the current batch */
-#define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current batch */
+#define COUNTER_SHADOW_RAYS 1 /* shadow rays traced in the current window */
+#define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current window */
 #define COUNTER_COUNT 4
 
 /* The paths of one trace_paths_packets work item (cl/stages/megakernel.cl), whose rays are traced

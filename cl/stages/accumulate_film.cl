@@ -17,11 +17,11 @@ kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global u
 {
     uint i = get_global_id(0);
     uint n = p->window_pixels;
-    if (i >= min(p->batch_size, n))
+    if (i >= min(p->window_size, n))
         return;
     ulong3 sum = (ulong3)(0);
     ulong count = 0;
-    for (uint k = i; k < p->batch_size; k += n) {
+    for (uint k = i; k < p->window_size; k += n) {
         float3 L = xyz(radiance[k]);
         if (isfinite(L.x) && isfinite(L.y) && isfinite(L.z))
             sum = add_sat(sum, film_fixed_point(L));
@@ -29,7 +29,7 @@ kernel void accumulate_film(constant RenderParams *p, PATH_STATE_PARAMS global u
             atomic_inc(&counters[COUNTER_NONFINITE]);
         count++;
     }
-    uint pixel = p->pixel_offset + (p->batch_start + i) % n;
+    uint pixel = p->pixel_offset + (p->window_start + i) % n;
     film[pixel] = add_sat(film[pixel], (ulong4)(sum, count));
 }
 
@@ -60,12 +60,12 @@ kernel void accumulate_film_moments(constant RenderParams *p, PATH_STATE_PARAMS 
 {
     uint i = get_global_id(0);
     uint n = p->window_pixels;
-    if (i >= min(p->batch_size, n))
+    if (i >= min(p->window_size, n))
         return;
     ulong3 sum = (ulong3)(0);
     ulong2 squares[3] = {(ulong2)(0), (ulong2)(0), (ulong2)(0)};
     ulong count = 0;
-    for (uint k = i; k < p->batch_size; k += n) {
+    for (uint k = i; k < p->window_size; k += n) {
         float3 L = xyz(radiance[k]);
         if (isfinite(L.x) && isfinite(L.y) && isfinite(L.z)) {
             ulong3 x = film_fixed_point(L);

@@ -15,8 +15,8 @@
 /* Traces the closest hit of the live path in slot into hit (and hit_instance); false, touching
  * nothing, for a free slot (path_depth 0). brute_force is a constant at every call. The stage
  * kernels below and the CPU's path-per-work-item kernel (megakernel.cl) share it. */
-PT_INLINE bool extend_path(constant RenderParams *p, const SceneView *scene,
-                           PATH_STATE_PARAMS uint slot, bool brute_force)
+PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView *scene,
+                                      PATH_STATE_PARAMS uint slot, bool brute_force)
 {
     if (!path_depth[slot])
         return false;
@@ -56,7 +56,7 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     barrier(CLK_LOCAL_MEM_FENCE);
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    if (i < n_active && extend_path(p, scene, PATH_STATE_ARGS slot, brute_force))
+    if (i < n_active && intersect_closest_path(p, scene, PATH_STATE_ARGS slot, brute_force))
         atomic_inc(group_rays);
     /* Every work item reaches this barrier: no early return above. */
     barrier(CLK_LOCAL_MEM_FENCE);

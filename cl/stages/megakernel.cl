@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* trace_paths: the CPU's variant of the wavefront loop (host/render/megakernel.c), one work item
- * per window sample from camera ray to last bounce: start_path, then extend_path, shade_path and
+ * per window sample from camera ray to last bounce: start_path, then intersect_closest_path, shade_path and
  * connect_path in turn until the path ends, the same stage functions in the same order as the
  * wavefront's generate_camera_rays, intersect_closest, shade_surface and intersect_shadow. A path's
  * radiance therefore gets the same additions in the same order and the film the same bits. On a
@@ -48,7 +48,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
     uint extension = 0, shadow = 0;
     if (slot < n) {
         start_path(p, PATH_STATE_ARGS slot, first_sample + slot);
-        while (extend_path(p, &scene, PATH_STATE_ARGS slot, false)) {
+        while (intersect_closest_path(p, &scene, PATH_STATE_ARGS slot, false)) {
             extension++;
             if (shade_path(p, &scene, PATH_STATE_ARGS slot) &&
                 connect_path(p, &scene, PATH_STATE_ARGS slot, false))
@@ -95,7 +95,7 @@ PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *ori
                         any_hit);
 }
 
-/* extend_path for the live paths of slots first .. first + 7 (those < n), as one packet. */
+/* intersect_closest_path for the live paths of slots first .. first + 7 (those < n), as one packet. */
 PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint first, uint n)
 {
     uint lanes = 0;
@@ -111,7 +111,7 @@ PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint firs
     for (uint k = 0; k < 8u; k++)
         if ((lanes >> k) & 1u) {
 #if PT_FEATURE_BLACK_HOLES
-            t[k] += ray_origin[first + k].w; /* as extend_path: 0 for straight rays */
+            t[k] += ray_origin[first + k].w; /* as intersect_closest_path: 0 for straight rays */
 #endif
             hit[first + k] = (float4)(t[k], u[k], v[k], as_float(prim[k]));
         }

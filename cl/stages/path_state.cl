@@ -30,7 +30,7 @@
  * RENDER_ADAPTIVE the list (then one entry) is never read. */
 inline uint window_pixel(constant RenderParams *p, const global uint *active_pixels, uint k)
 {
-    uint i = (p->batch_start + k) % p->window_pixels;
+    uint i = (p->window_start + k) % p->window_pixels;
     if (p->flags & RENDER_ADAPTIVE)
         i = active_pixels[i];
     return p->pixel_offset + i;
@@ -38,5 +38,5 @@ inline uint window_pixel(constant RenderParams *p, const global uint *active_pix
 
 inline uint window_sample(constant RenderParams *p, uint k)
 {
-    return p->sample_index + (p->batch_start + k) / p->window_pixels;
+    return p->sample_index + (p->window_start + k) / p->window_pixels;
 }

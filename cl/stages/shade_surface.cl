@@ -17,7 +17,7 @@ inline float emitter_light_pdf(constant RenderParams *p, const SceneView *scene,
 {
     /* light_sample picks a triangle with probability area * emission.w / total power, then a point
      * with density 1 / area: per unit area that is emission.w / total power. */
-    float light_pdf = m.emission.w / p->emissive_power * t * t / cos_light;
+    float light_pdf = m.emission.w / p->scene.emissive_power * t * t / cos_light;
 #if PT_FEATURE_INSTANCES
     /* A moving instance's triangles were weighed by their area at shutter open (light_sample.cl). */
     light_pdf *= emitter_area_ratio(scene, hit.prim, hit.instance, surf->to_world);
@@ -44,18 +44,18 @@ inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Ma
 }
 
 /* What an escaped ray sees: the constant background, or the environment map with the MIS weight
- * against next-event estimation (which picks the map with p->env_pick_pdf, then samples
+ * against next-event estimation (which picks the map with p->scene.env_pick_pdf, then samples
  * env_sample's density). */
 inline float3 environment_seen(constant RenderParams *p, const EnvMap *env, float3 d,
                                float prev_pdf_w, uint depth)
 {
-    if (!PT_FEATURE_ENV || p->env_width == 0u)
+    if (!PT_FEATURE_ENV || p->scene.env_width == 0u)
         return xyz(p->background);
     float pdf_w;
     float3 L = env_lookup(env, d, &pdf_w);
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
         return L;
-    return L * mis_power(prev_pdf_w, p->env_pick_pdf * pdf_w);
+    return L * mis_power(prev_pdf_w, p->scene.env_pick_pdf * pdf_w);
 }
 
 /* radiance[k] += c, skipped when c is zero: most vertices gather nothing (no emitter hit), and the
@@ -100,7 +100,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     EnvMap env = env_map(p, scene);
     if (prim == HIT_NONE) {
         float3 sky = environment_seen(p, &env, xyz(dir4), dir4.w, depth);
-        if (PT_FEATURE_ANALYTIC && p->num_analytic > 0u)
+        if (PT_FEATURE_ANALYTIC && p->scene.num_analytic > 0u)
             sky += suns_seen(p, scene->analytic_lights, xyz(dir4), dir4.w, depth);
         add_radiance(radiance, k, clamp_indirect(p, beta * sky, depth >= 3u));
         path_depth[slot] = 0u;
@@ -146,8 +146,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
         float3 wo_local = frame_to_local(frame, wo);
 
         /* Next-event estimation for every non-delta lobe. */
-        if (!bsdf_is_delta(&bsdf) && p->num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(scene, &env, p->num_emissive, surf.position, time,
+        if (!bsdf_is_delta(&bsdf) && p->scene.num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
+            LightSample ls = light_sample(scene, &env, p->scene.num_emissive, surf.position, time,
                                           rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
                                           rng_bounce(key, bounce, DIM_LIGHT_COIN),
                                           rng_bounce_bits(key, bounce, DIM_ENV_PICK),

@@ -52,7 +52,7 @@ void bench_append_csv(const char *path, const Session *s, const char *mode, cons
             s->scene.desc.max_depth, mode, st->seconds, st->paths / st->seconds * 1e-6,
             (st->extension_rays + st->shadow_rays) / st->seconds * 1e-6,
             st->extension_rays / st->seconds * 1e-6, st->shadow_rays / st->seconds * 1e-6,
-            st->pool_size, st->window_size, st->device_bytes / 1048576.0);
+            st->config.pool_size, st->config.window_size, st->config.device_bytes / 1048576.0);
     fclose(f);
 }
 
@@ -165,8 +165,9 @@ int command_bench(const Options *o)
 
     printf("pt bench: %s, %dx%d, %d spp, max depth %d, device %s, pool %u paths, window %u samples, "
            "%.1f MiB of path state\n",
-           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name, stats[0].pool_size,
-           stats[0].window_size, stats[0].device_bytes / 1048576.0);
+           d->path, d->width, d->height, d->spp, d->max_depth, s.dev.name,
+           stats[0].config.pool_size, stats[0].config.window_size,
+           stats[0].config.device_bytes / 1048576.0);
     printf("%-16s %8s %12s %12s %12s %12s %9s\n", "mode", "ms", "Mpaths/s", "Mrays/s", "Mext/s",
            "Mshadow/s", "rays/path");
     for (size_t m = 0; m < num_modes; m++) {
@@ -178,19 +179,9 @@ int command_bench(const Options *o)
     RenderSettings profiled = settings[0]; /* the default mode */
     profiled.profile = true;
     RenderStats prof = bench_render(&s, profiled, rgb);
-    double total = 0.0;
-    for (int k = 0; k < STAGE_COUNT; k++)
-        total += prof.stage_ms[k];
-    printf("%-22s %9s %11s %7s\n", "stage (profiled run)", "launches", "total ms", "share");
-    for (int k = 0; k < STAGE_COUNT; k++)
-        printf("%-22s %9u %11.2f %6.1f%%\n", stage_names[k], prof.stage_launches[k], prof.stage_ms[k],
-               total > 0 ? 100.0 * prof.stage_ms[k] / total : 0.0);
+    render_stats_print_profile(stdout, &prof, "stage (profiled run)");
     if (o->csv)
         append_profile_csv(o->csv, &s, &prof);
-    printf("live paths per step (all windows):");
-    for (int b = 0; b < 64 && prof.live_per_step[b]; b++)
-        printf(" %llu", (unsigned long long)prof.live_per_step[b]);
-    printf("\n");
     bench_units(&s, o, &list, settings[0], rgb);
     free(rgb);
     session_close(&s);

@@ -120,21 +120,10 @@ static void report_render(const Options *o, const RenderStats *stats)
                 stats->spp_done, stats->seconds, stats->paths / stats->seconds * 1e-6,
                 (stats->extension_rays + stats->shadow_rays) / stats->seconds * 1e-6,
                 stats->extension_rays / stats->seconds * 1e-6,
-                stats->shadow_rays / stats->seconds * 1e-6, stats->pool_size, stats->batches,
-                stats->window_size);
-    if (o->profile) {
-        double total = 0.0;
-        for (int k = 0; k < STAGE_COUNT; k++)
-            total += stats->stage_ms[k];
-        fprintf(stderr, "%-22s %9s %11s %7s\n", "stage", "launches", "total ms", "share");
-        for (int k = 0; k < STAGE_COUNT; k++)
-            fprintf(stderr, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
-                    stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
-        fprintf(stderr, "live paths per step (all windows):");
-        for (int b = 0; b < 64 && stats->live_per_step[b]; b++)
-            fprintf(stderr, " %llu", (unsigned long long)stats->live_per_step[b]);
-        fputc('\n', stderr);
-    }
+                stats->shadow_rays / stats->seconds * 1e-6, stats->config.pool_size, stats->windows,
+                stats->config.window_size);
+    if (o->profile)
+        render_stats_print_profile(stderr, stats, "stage");
 }
 
 /* MPI: without --device, the ranks of a node take the devices of `--device all` in turn (one

@@ -273,7 +273,7 @@ static Worker *workers_create(const UnitDevices *devices, Shared *sh, int n,
                                           &k->sums_buffer, err);
         *ok = k->w && k->pending && k->sums;
         if (*ok)
-            k->appetite = unit_grid_units_per_window(g, wavefront_stats(k->w)->window_size);
+            k->appetite = unit_grid_units_per_window(g, wavefront_stats(k->w)->config.window_size);
         else if (!error_is_set(err))
             error_set(err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for device %s's film",
                       k->report->spec);
@@ -319,7 +319,8 @@ static double workers_collect(Worker *workers, int n, double start, RenderStats 
             const RenderStats *s = wavefront_stats(k->w);
             render_stats_add(stats, s);
             if (i == 0)
-                stats->pool_size = s->pool_size, stats->window_size = s->window_size;
+                stats->config.pool_size = s->config.pool_size,
+                stats->config.window_size = s->config.window_size;
             wavefront_destroy(k->w);
         }
         free(k->pending);

@@ -78,7 +78,7 @@ bool adaptive_init(Wavefront *w, Error *err)
     cl_uint n = w->num_pixels;
     KERNEL_ARGS(a->film_variance, 0, KARG(n), KARG(w->film.sums), KARG(w->film.moments),
                 KARG(a->variance));
-    w->stats->device_bytes += np * (MOMENT_BYTES_PER_PIXEL + sizeof(cl_float4));
+    w->stats->config.device_bytes += np * (MOMENT_BYTES_PER_PIXEL + sizeof(cl_float4));
     if (!a->on)
         return true;
     a->pixel_flags = device_buffer(w->dev, "pixel_flags", CL_MEM_READ_WRITE, np * sizeof(cl_uint),
@@ -92,7 +92,7 @@ bool adaptive_init(Wavefront *w, Error *err)
     cl_uint width = w->params.width, height = w->params.height;
     KERNEL_ARGS(a->select, 0, KARG(width), KARG(height), KARG(a->threshold), KARG(a->variance),
                 KARG(a->pixel_flags));
-    w->stats->device_bytes += np * 2 * sizeof(cl_uint);
+    w->stats->config.device_bytes += np * 2 * sizeof(cl_uint);
     return true;
 }
 

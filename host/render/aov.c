@@ -3,27 +3,17 @@
 
 #include <stdlib.h>
 
-#include "scene/camera.h"
-
 /* aov_render's walk through mirrors and glass (the viewer's probe only reads the depth). */
 #define AOV_LEGACY_MAX_DEPTH 8
 
 static RenderParams aov_params(const Scene *scene, const SceneBuffers *buffers,
                                const AovSettings *s)
 {
-    const SceneDesc *desc = &scene->desc;
-    return (RenderParams){
-        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
-        .width = (uint)desc->width,
-        .height = (uint)desc->height,
-        .seed = s->seed,
-        .max_depth = (uint)s->max_depth,
-        .sample_index = s->first_sample,
-        .num_bvh_prims = buffers->num_bvh_prims,
-        .shutter_open = desc->camera.shutter_open,
-        .shutter_close = desc->camera.shutter_close,
-        .num_instances = buffers->num_instances,
-    };
+    RenderParams params = render_params_for_scene(&scene->desc, buffers);
+    params.seed = s->seed;
+    params.max_depth = (uint)s->max_depth;
+    params.sample_index = s->first_sample;
+    return params;
 }
 
 bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buffers,

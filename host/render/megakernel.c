@@ -29,7 +29,7 @@ static bool wants_megakernel(const Wavefront *w, Error *err, bool *out)
     /* The ablations measure the wavefront's parts; bent rays are a stage of their own. Material
      * sorting orders the wavefront's shading launches and has nothing to order here (and loses on
      * PoCL, bench/README.md): it does not keep a render off the megakernel. */
-    if (s->no_compaction || s->brute_force || w->kernels[STAGE_GEODESIC])
+    if (s->no_compaction || s->brute_force || w->kernels[STAGE_INTEGRATE_GEODESIC])
         *out = false;
     return true;
 }
@@ -39,7 +39,7 @@ bool megakernel_init(Wavefront *w, Error *err)
     bool use;
     if (!wants_megakernel(w, err, &use))
         return false;
-    w->stats->megakernel = use;
+    w->stats->config.megakernel = use;
     if (!use)
         return true;
     /* Packets where the program has them (8-wide layout, one BVH level, no cut-outs: see
@@ -49,11 +49,11 @@ bool megakernel_init(Wavefront *w, Error *err)
     if (w->settings.path_kernel == PATH_KERNEL_AUTO && !env_flag("PT_PACKETS", true, &packets, err))
         return false;
     cl_kernel k = packets ? device_kernel_if_built(w->dev, "trace_paths_packets") : NULL;
-    w->stats->packets = k != NULL;
+    w->stats->config.packets = k != NULL;
     w->megakernel_paths = k ? PACKET_RAYS : 1;
     if (!k)
         k = device_kernel(w->dev, "trace_paths");
-    w->kernels[STAGE_MEGAKERNEL] = k;
+    w->kernels[STAGE_TRACE_PATHS] = k;
     cl_uint zero = 0;
     w->megakernel_counts_arg = wavefront_set_path_args(w, k, true);
     KERNEL_ARGS(k, w->megakernel_counts_arg, KARG(zero), KARG(zero), KARG(w->counters));
@@ -62,8 +62,8 @@ bool megakernel_init(Wavefront *w, Error *err)
 
 void megakernel_trace_window(Wavefront *w, uint32_t window_size)
 {
-    cl_kernel k = w->kernels[STAGE_MEGAKERNEL];
-    uint32_t pool = w->stats->pool_size;
+    cl_kernel k = w->kernels[STAGE_TRACE_PATHS];
+    uint32_t pool = w->stats->config.pool_size;
     for (uint32_t first = 0; first < window_size; first += pool) {
         cl_uint n = window_size - first < pool ? window_size - first : pool;
         KERNEL_ARGS(k, w->megakernel_counts_arg, KARG(first), KARG(n));
@@ -71,7 +71,7 @@ void megakernel_trace_window(Wavefront *w, uint32_t window_size)
         size_t items = (n + w->megakernel_paths - 1) / w->megakernel_paths;
         device_run(w->dev, k, items, w->megakernel_paths > 1 ? PACKET_GROUP_ITEMS : 0,
                    w->settings.profile ? &ms : NULL);
-        w->stats->stage_ms[STAGE_MEGAKERNEL] += ms;
-        w->stats->stage_launches[STAGE_MEGAKERNEL]++;
+        w->stats->stage_ms[STAGE_TRACE_PATHS] += ms;
+        w->stats->stage_launches[STAGE_TRACE_PATHS]++;
     }
 }

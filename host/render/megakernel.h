@@ -10,7 +10,7 @@
 /* Chooses the path kernel for w's settings and device (PATH_KERNEL_AUTO: PT_MEGAKERNEL, else the
  * megakernel on CPUs; PT_PACKETS) and, when it is the megakernel, creates trace_paths_packets where
  * the program has it and is asked for, else trace_paths, with its arguments bound in
- * w->kernels[STAGE_MEGAKERNEL]. False with err set on a bad PT_MEGAKERNEL or PT_PACKETS. Call
+ * w->kernels[STAGE_TRACE_PATHS]. False with err set on a bad PT_MEGAKERNEL or PT_PACKETS. Call
  * after the path state buffers and the geodesic stage exist. */
 bool megakernel_init(Wavefront *w, Error *err);
 

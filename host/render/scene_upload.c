@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/camera.h"
 #include "scene/lights.h"
 
 /* Where one scene buffer's contents come from. */
@@ -104,7 +105,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     src.instances = source(data->num_instances, sizeof(Instance), instances);
     src.instance_motion = source(data->num_moving ? data->num_moving : 1, sizeof(InstanceMotion),
                                  motions);
-    out->num_instances = data->num_instances;
+    out->params.num_instances = data->num_instances;
     src.positions = source(nv, sizeof(float4), data->positions);
     src.normals = source(nv, sizeof(float4), data->normals);
     src.uvs = source(nv, sizeof(float2), data->uvs);
@@ -115,18 +116,18 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     src.textures = source(data->textures.count, sizeof(TextureInfo), data->textures.infos);
     src.lights = source(lights.count, sizeof(LightEntry), lights.entries);
     src.analytic_lights = source(lights.num_analytic, sizeof(AnalyticLight), lights.analytic);
-    out->num_analytic = lights.num_analytic;
+    out->params.num_analytic = lights.num_analytic;
     const Environment *env = &data->environment;
     size_t env_w = env->width, env_h = env->height;
     src.env_texels = source(env_w * env_h, sizeof(float4), env->texels);
     src.env_alias = source(env_w * env_h, sizeof(EnvAlias), env->alias);
-    out->env_width = env->width;
-    out->env_height = env->height;
-    out->env_rotation = env->rotation;
-    out->env_pick_pdf = lights.env_pick_pdf;
-    out->num_bvh_prims = bvh->num_prims;
-    out->num_emissive = lights.count;
-    out->emissive_power = lights.total_power;
+    out->params.env_width = env->width;
+    out->params.env_height = env->height;
+    out->params.env_rotation = env->rotation;
+    out->params.env_pick_pdf = lights.env_pick_pdf;
+    out->params.num_bvh_prims = bvh->num_prims;
+    out->params.num_emissive = lights.count;
+    out->params.emissive_power = lights.total_power;
 
 #define UPLOAD(type, name)                                                                         \
     if (!src.name.given)                                                                           \
@@ -164,4 +165,17 @@ cl_uint scene_buffers_set_args(const SceneBuffers *b, cl_kernel kernel, cl_uint 
     SCENE_BUFFERS(SET_ARG)
 #undef SET_ARG
     return i;
+}
+
+RenderParams render_params_for_scene(const SceneDesc *desc, const SceneBuffers *buffers)
+{
+    return (RenderParams){
+        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
+        .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
+        .scene = buffers->params,
+        .width = (uint)desc->width,
+        .height = (uint)desc->height,
+        .shutter_open = desc->camera.shutter_open,
+        .shutter_close = desc->camera.shutter_close,
+    };
 }

@@ -6,26 +6,24 @@
 
 #include "accel/scene_bvh.h"
 #include "device/device.h"
+#include "scene/scene.h"
 #include "scene/scene_data.h"
 
 typedef struct {
 #define SCENE_BUFFER_MEMBER(type, name) cl_mem name;
     SCENE_BUFFERS(SCENE_BUFFER_MEMBER)
 #undef SCENE_BUFFER_MEMBER
-    uint32_t num_bvh_prims; /* entries of bvh_tris (RenderParams.num_bvh_prims) */
-    uint32_t num_emissive;  /* entries of lights (RenderParams.num_emissive) */
-    float emissive_power;   /* the light table's total power (RenderParams.emissive_power) */
-    uint32_t env_width, env_height; /* the environment map's size, 0 without one */
-    float env_rotation;     /* RenderParams.env_rotation */
-    uint32_t num_analytic;  /* entries of analytic_lights (RenderParams.num_analytic) */
-    uint32_t num_instances; /* entries of instances (RenderParams.num_instances) */
-    float env_pick_pdf;     /* the light table's probability of the environment entry */
+    SceneParams params; /* their counts and totals, as every RenderParams carries them */
     size_t bytes; /* device memory used */
 } SceneBuffers;
 
 /* ERR_ALLOC_TOO_LARGE names the buffer that does not fit. */
 bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bvh,
                           SceneBuffers *out, Error *err);
+/* The parameters that the scene fixes: its camera, film size, shutter and background from the
+ * description, and the buffers' SceneParams. The wavefront and the AOV pass add their own
+ * (seed, depth, flags, ...). */
+RenderParams render_params_for_scene(const SceneDesc *desc, const SceneBuffers *buffers);
 /* The scene's BVH for the device's layout (dev->bvh_width, bvh_quantized): two levels when asked,
  * which a program built with PT_FEATURE_INSTANCES=1 needs (session.c asks for data->two_level and
  * builds the program to match; the tests' program has every feature), else one. */

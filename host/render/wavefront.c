@@ -24,12 +24,12 @@ static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
     run(w, stage, n_active);
 }
 
-/* With --profile the compactor adds its kernels' device time to stage_ms[STAGE_COMPACT] itself
- * (compactor_set_profile in wavefront_state.c). */
+/* With --profile the compactor adds its kernels' device time to stage_ms[STAGE_COMPACT_PATHS]
+ * itself (compactor_set_profile in wavefront_state.c). */
 static uint32_t compact_paths(Wavefront *w, uint32_t pool)
 {
     uint32_t live = compactor_run(w->compactor, w->path_depth, w->active, pool);
-    w->stats->stage_launches[STAGE_COMPACT]++;
+    w->stats->stage_launches[STAGE_COMPACT_PATHS]++;
     return live;
 }
 
@@ -40,34 +40,34 @@ static void list_free_slots(Wavefront *w) { compactor_enqueue_free(w->compactor,
  * appends them to the active list after its n_live entries. */
 static void generate(Wavefront *w, uint32_t n_live, uint32_t first, uint32_t n_new, bool fresh)
 {
-    cl_kernel k = w->kernels[STAGE_GENERATE];
+    cl_kernel k = w->kernels[STAGE_GENERATE_CAMERA_RAYS];
     cl_uint fresh_arg = fresh ? 1u : 0u;
     KERNEL_ARGS(k, w->generate_counts_arg, KARG(n_live), KARG(first), KARG(n_new), KARG(fresh_arg));
-    run(w, STAGE_GENERATE, n_new);
+    run(w, STAGE_GENERATE_CAMERA_RAYS, n_new);
 }
 
 /* One step of every path in the active list: extend, shade, connect. */
 static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
 {
-    if (step < 64)
+    if (step < RENDER_LIVE_STEPS)
         w->stats->live_per_step[step] += n_active;
-    if (w->kernels[STAGE_GEODESIC]) /* bends the rays near black holes (integrate_geodesic.cl) */
-        run_over_active(w, STAGE_GEODESIC, n_active);
-    run_over_active(w, STAGE_EXTEND, n_active);
+    if (w->kernels[STAGE_INTEGRATE_GEODESIC]) /* bends the rays near black holes */
+        run_over_active(w, STAGE_INTEGRATE_GEODESIC, n_active);
+    run_over_active(w, STAGE_INTERSECT_CLOSEST, n_active);
     if (w->sorter) {
         double ms = 0.0;
         material_sorter_set_profile(w->sorter, w->settings.profile ? &ms : NULL);
         material_sorter_run(w->sorter, w->hit, w->scene->material_ids, w->active, w->sorted_active,
                             n_active);
-        w->stats->stage_ms[STAGE_SORT] += ms;
-        w->stats->stage_launches[STAGE_SORT]++;
+        w->stats->stage_ms[STAGE_SORT_MATERIALS] += ms;
+        w->stats->stage_launches[STAGE_SORT_MATERIALS]++;
     }
     if (!w->settings.shadow_flags) {
         uint32_t zero = 0;
         device_fill(w->dev, w->shadow_count, &zero, sizeof zero, 0, sizeof zero, NULL);
     }
-    run_over_active(w, STAGE_SHADE, n_active);
-    run_over_active(w, STAGE_CONNECT, n_active);
+    run_over_active(w, STAGE_SHADE_SURFACE, n_active);
+    run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
 }
 
 /* One window of samples, traced to the end: the wavefront loop. With compaction, each step's live
@@ -77,13 +77,13 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
  * whole window, dead slots idle. The film gets the window's samples at the end, as exact sums. */
 static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_size, uint32_t sample_index)
 {
-    w->params.batch_start = window_start;
-    w->params.batch_size = window_size;
+    w->params.window_start = window_start;
+    w->params.window_size = window_size;
     w->params.sample_index = w->settings.first_sample + w->block_first_sample + sample_index;
     device_write(w->dev, w->params_buf, 0, sizeof w->params, &w->params);
 
-    uint32_t pool = w->stats->pool_size;
-    if (w->kernels[STAGE_MEGAKERNEL]) {
+    uint32_t pool = w->stats->config.pool_size;
+    if (w->kernels[STAGE_TRACE_PATHS]) {
         megakernel_trace_window(w, window_size); /* render/megakernel.c */
     } else if (w->settings.no_compaction) {
         generate(w, 0, 0, window_size, true);
@@ -107,9 +107,9 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
         }
     }
     uint32_t np = w->params.window_pixels;
-    run(w, STAGE_ACCUMULATE, window_size < np ? window_size : np);
+    run(w, STAGE_ACCUMULATE_FILM, window_size < np ? window_size : np);
     w->stats->paths += window_size;
-    w->stats->batches++;
+    w->stats->windows++;
     /* The per-window ray counters stay far below 2^32; fold them into the 64-bit totals. */
     uint32_t rays[2], zeros[2] = {0, 0};
     _Static_assert(COUNTER_EXTENSION_RAYS == COUNTER_SHADOW_RAYS + 1, "ray counters are adjacent");
@@ -124,7 +124,7 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
  * next adaptive decision. Returns the paths traced. */
 static uint32_t render_next_window(Wavefront *w, uint32_t max_spp)
 {
-    uint32_t window = w->stats->window_size, np = w->params.window_pixels, n;
+    uint32_t window = w->stats->config.window_size, np = w->params.window_pixels, n;
     uint32_t end = adaptive_window_end(w, max_spp);
     if (window >= np && w->next_pixel == 0) {
         uint32_t k = window / np;

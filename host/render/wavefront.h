@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "device/device.h"
 #include "scene/scene.h"
@@ -56,31 +57,69 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
  * paths of the window run with no refills, is about a pool's worth of work). */
 #define WINDOW_PER_POOL 4
 
-enum {
-    STAGE_GENERATE, STAGE_EXTEND, STAGE_SORT, STAGE_SHADE, STAGE_CONNECT, STAGE_COMPACT,
-    STAGE_ACCUMULATE, STAGE_GEODESIC /* scenes with black holes only */,
-    STAGE_MEGAKERNEL /* PATH_KERNEL_MEGAKERNEL: every stage of a path in one kernel */, STAGE_COUNT
-};
+/* The frame loop's stages, one line each, in the order of the --profile table:
+ * X(ID, kernel, launch, made, variant). STAGE_<ID> indexes the per-stage tables (the kernels,
+ * RenderStats' times and launches); `kernel` is the stage's kernel (cl/stages/<kernel>.cl) and its
+ * name in stage_names and the profile table.
+ *   launch   OVER_ACTIVE: a work item per entry of the active list, its count set before each
+ *            launch; OWN_COUNT: a count of its own; HELPER: a module of parallel/ with kernels of
+ *            its own, which adds their device time to the stage.
+ *   made     INIT: by wavefront_init; HOLES: by black_holes_init, for scenes with black holes only;
+ *            MEGAKERNEL: by megakernel_init (trace_paths or trace_paths_packets, megakernel.h);
+ *            HELPER: by the helper.
+ *   variant  a second kernel "<kernel>_<variant>" that some settings take instead: BRUTE_FORCE (the
+ *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), or NONE. */
+#define STAGES(X)                                                                                  \
+    X(GENERATE_CAMERA_RAYS, generate_camera_rays, OWN_COUNT, INIT, NONE)                           \
+    X(INTERSECT_CLOSEST, intersect_closest, OVER_ACTIVE, INIT, BRUTE_FORCE)                        \
+    X(SORT_MATERIALS, sort_materials, HELPER, HELPER, NONE)                                        \
+    X(SHADE_SURFACE, shade_surface, OVER_ACTIVE, INIT, NONE)                                       \
+    X(INTERSECT_SHADOW, intersect_shadow, OVER_ACTIVE, INIT, BRUTE_FORCE)                          \
+    X(COMPACT_PATHS, compact_paths, HELPER, HELPER, NONE)                                          \
+    X(ACCUMULATE_FILM, accumulate_film, OWN_COUNT, INIT, MOMENTS)                                  \
+    X(INTEGRATE_GEODESIC, integrate_geodesic, OVER_ACTIVE, HOLES, NONE)                            \
+    X(TRACE_PATHS, trace_paths, OWN_COUNT, MEGAKERNEL, NONE)
 
+#define STAGE_ENUM(id, kernel, launch, made, variant) STAGE_##id,
+enum { STAGES(STAGE_ENUM) STAGE_COUNT };
+#undef STAGE_ENUM
+
+/* How a render is laid out on its device: set by wavefront_create, kept by wavefront_reset. */
 typedef struct {
-    int spp_done;              /* samples per pixel in the film (fewer than asked if interrupted) */
-    double seconds;            /* wall time of the sample loop */
-    uint64_t paths;            /* camera paths traced */
-    uint64_t extension_rays;   /* closest-hit rays traced (live paths per bounce) */
-    uint64_t shadow_rays;      /* any-hit rays traced for next-event estimation */
-    uint32_t nonfinite;        /* samples dropped as NaN/Inf */
     uint32_t pool_size;
     uint32_t window_size;
-    uint32_t batches;          /* windows rendered */
-    bool megakernel;           /* traced by the megakernel (PATH_KERNEL_*) */
-    bool packets;              /* ... by trace_paths_packets: eight paths per work item */
-    uint32_t active_pixels;    /* adaptive sampling: pixels still sampled (all before the first
-                                * decision, 0 once every pixel has stopped) */
-    uint64_t device_bytes;     /* path state (with the sorted list when sorting), window and film on the device */
-    double stage_ms[STAGE_COUNT];   /* with settings.profile */
-    uint32_t stage_launches[STAGE_COUNT];
-    uint64_t live_per_step[64];     /* live paths entering each step (= bounce without refills),
-                                     * summed over windows */
+    uint64_t device_bytes; /* path state (with the sorted list when sorting), window and film on
+                            * the device; render_stats_add sums it: the devices' memory together */
+    bool megakernel;       /* traced by the megakernel (PATH_KERNEL_*) */
+    bool packets;          /* ... by trace_paths_packets: eight paths per work item */
+} RenderConfig;
+
+#define RENDER_LIVE_STEPS 64 /* steps whose live paths RenderStats counts */
+
+/* What a render counts: X(type, name) a scalar, ARRAY(type, name, length) an array. Zeroed by
+ * wavefront_reset, summed over devices and ranks by render_stats_add; a new counter is one line
+ * here. */
+#define RENDER_COUNTERS(X, ARRAY)                                                                  \
+    X(uint64_t, paths)          /* camera paths traced */                                          \
+    X(uint64_t, extension_rays) /* closest-hit rays traced (live paths per bounce) */              \
+    X(uint64_t, shadow_rays)    /* any-hit rays traced for next-event estimation */                \
+    X(uint32_t, nonfinite)      /* samples dropped as NaN/Inf */                                   \
+    X(uint32_t, windows)        /* windows rendered */                                             \
+    ARRAY(double, stage_ms, STAGE_COUNT) /* device time per stage, with settings.profile */        \
+    ARRAY(uint32_t, stage_launches, STAGE_COUNT)                                                   \
+    ARRAY(uint64_t, live_per_step, RENDER_LIVE_STEPS) /* entering each step, all windows */
+
+typedef struct {
+    RenderConfig config;
+    int spp_done;           /* samples per pixel in the film (fewer than asked if interrupted) */
+    double seconds;         /* wall time of the sample loop */
+    uint32_t active_pixels; /* adaptive sampling: pixels still sampled (all before the first
+                             * decision, 0 once every pixel has stopped) */
+#define RENDER_COUNTER_MEMBER(type, name) type name;
+#define RENDER_COUNTER_ARRAY_MEMBER(type, name, length) type name[length];
+    RENDER_COUNTERS(RENDER_COUNTER_MEMBER, RENDER_COUNTER_ARRAY_MEMBER)
+#undef RENDER_COUNTER_MEMBER
+#undef RENDER_COUNTER_ARRAY_MEMBER
 } RenderStats;
 
 /* A block of the film (a run of work units, dist/work_units.h): pixels first_pixel ..
@@ -121,9 +160,12 @@ Film *wavefront_film(Wavefront *w);                 /* its sums: to merge or res
 void wavefront_reset(Wavefront *w);                  /* empty film, sample 0 */
 void wavefront_set_camera(Wavefront *w, const Camera *camera); /* and reset */
 RenderStats *wavefront_stats(Wavefront *w);
-/* Adds the counts and times of from (another device's, another rank's) to into: paths, rays,
- * nonfinite samples, windows, device bytes, stage times and launches, live paths per step. */
+/* Adds the counters of from (another device's, another rank's) to into: every RENDER_COUNTERS
+ * entry, and the device bytes. */
 void render_stats_add(RenderStats *into, const RenderStats *from);
+/* The --profile table: launches, device time and share of each stage (headed `title` where the
+ * table says "stage"), then the live paths per step. */
+void render_stats_print_profile(FILE *out, const RenderStats *stats, const char *title);
 /* Reads the device's counters into the stats (nonfinite: wavefront_read_film does it too). */
 void wavefront_read_counters(Wavefront *w);
 void wavefront_destroy(Wavefront *w);
@@ -134,6 +176,6 @@ void wavefront_destroy(Wavefront *w);
 bool wavefront_render(Device *dev, const Scene *scene, const SceneBuffers *buffers,
                       const RenderSettings *settings, float *rgb, RenderStats *stats, Error *err);
 
-extern const char *const stage_names[STAGE_COUNT];
+extern const char *const stage_names[STAGE_COUNT]; /* the kernels of STAGES */
 
 #endif

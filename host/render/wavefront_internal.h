@@ -32,12 +32,12 @@ struct Wavefront {
     cl_uint generate_counts_arg;       /* index of generate_camera_rays' n_live */
     Compactor *compactor;
     /* Black holes (scene/black_holes.h): the holes and integrate_geodesic's step counts
-     * (GEODESIC_STAT_*); NULL without holes, and kernels[STAGE_GEODESIC] too. */
+     * (GEODESIC_STAT_*); NULL without holes, and kernels[STAGE_INTEGRATE_GEODESIC] too. */
     cl_mem black_holes, geodesic_stats;
     cl_uint num_black_holes;
     cl_float4 scene_box[2]; /* the scene's world box (lo, hi) with a margin */
     uint32_t num_pixels;
-    uint32_t next_sample, next_pixel; /* where the next batch starts (next_sample counts the
+    uint32_t next_sample, next_pixel; /* where the next window starts (next_sample counts the
                                        * film's samples: its index is first_sample + next_sample) */
     uint32_t block_first_sample;      /* wavefront_render_block: the block's first sample, added
                                        * to next_sample's; 0 otherwise */

@@ -8,12 +8,27 @@
 
 #include "render/megakernel.h"
 #include "render/wavefront_internal.h"
-#include "scene/camera.h"
 
-const char *const stage_names[STAGE_COUNT] = {
-    "generate_camera_rays", "intersect_closest", "sort_materials", "shade_surface",
-    "intersect_shadow",     "compact_paths",     "accumulate_film",      "integrate_geodesic",
-    "trace_paths",
+#define STAGE_NAME(id, kernel, launch, made, variant) #kernel,
+const char *const stage_names[STAGE_COUNT] = {STAGES(STAGE_NAME)};
+#undef STAGE_NAME
+
+/* The columns of STAGES that setting up the kernels reads (wavefront.h says what they mean). */
+enum { STAGE_OVER_ACTIVE, STAGE_OWN_COUNT, STAGE_HELPER };
+enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_HELPER };
+enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS };
+#define STAGE_VARIANT_KERNEL_NONE(kernel) NULL
+#define STAGE_VARIANT_KERNEL_BRUTE_FORCE(kernel) #kernel "_brute_force"
+#define STAGE_VARIANT_KERNEL_MOMENTS(kernel) #kernel "_moments"
+static const struct {
+    int launch, made, variant;
+    const char *variant_kernel;
+} stage_kinds[STAGE_COUNT] = {
+#define STAGE_KIND(id, kernel, launch, made, variant)                                              \
+    {STAGE_##launch, STAGE_MADE_##made, STAGE_VARIANT_##variant,                                   \
+     STAGE_VARIANT_KERNEL_##variant(kernel)},
+    STAGES(STAGE_KIND)
+#undef STAGE_KIND
 };
 
 /* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
@@ -68,7 +83,7 @@ static bool black_holes_init(Wavefront *w, const SceneDesc *desc, const SceneDat
                                       GEODESIC_STAT_WORDS * sizeof(uint32_t), NULL, err);
     if (error_is_set(err))
         return false;
-    w->kernels[STAGE_GEODESIC] = device_kernel(w->dev, "integrate_geodesic");
+    w->kernels[STAGE_INTEGRATE_GEODESIC] = device_kernel(w->dev, "integrate_geodesic");
     return true;
 }
 
@@ -81,15 +96,14 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
 
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
- * film with its second moments, so that the plain accumulation stays as it was. */
-static const char *stage_kernel(int stage, bool brute_force, bool moments)
+ * film with its second moments, so that the plain accumulation stays as it was (the variant
+ * column of STAGES). */
+static const char *stage_kernel(int stage, const RenderSettings *s)
 {
-    if (moments && stage == STAGE_ACCUMULATE)
-        return "accumulate_film_moments";
-    if (brute_force && stage == STAGE_EXTEND)
-        return "intersect_closest_brute_force";
-    if (brute_force && stage == STAGE_CONNECT)
-        return "intersect_shadow_brute_force";
+    int variant = stage_kinds[stage].variant;
+    if ((variant == STAGE_VARIANT_BRUTE_FORCE && s->brute_force) ||
+        (variant == STAGE_VARIANT_MOMENTS && s->moments))
+        return stage_kinds[stage].variant_kernel;
     return stage_names[stage];
 }
 
@@ -110,34 +124,19 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     uint32_t pool, window;
     choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, &pool, &window);
-    stats->pool_size = pool;
-    stats->window_size = window;
-    stats->device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
+    stats->config.pool_size = pool;
+    stats->config.window_size = window;
+    stats->config.device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
                           (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
-    w->params = (RenderParams){
-        .camera = camera_from_desc(&desc->camera, desc->width, desc->height),
-        .background = {{desc->background[0], desc->background[1], desc->background[2], 0.0f}},
-        .width = (uint)desc->width,
-        .height = (uint)desc->height,
-        .seed = s->seed,
-        .max_depth = (uint)s->max_depth,
-        .num_bvh_prims = buffers->num_bvh_prims,
-        .num_emissive = buffers->num_emissive,
-        .emissive_power = buffers->emissive_power,
-        .env_width = buffers->env_width,
-        .env_height = buffers->env_height,
-        .env_rotation = buffers->env_rotation,
-        .env_pick_pdf = buffers->env_pick_pdf,
-        .num_analytic = buffers->num_analytic,
-        .shutter_open = desc->camera.shutter_open,
-        .shutter_close = desc->camera.shutter_close,
-        .num_instances = buffers->num_instances,
-        .flags = (s->no_nee ? RENDER_NO_NEE : 0u) | (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
-                 (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u),
-        .window_pixels = w->num_pixels,
-        .clamp_indirect = s->clamp_indirect,
-    };
+    w->params = render_params_for_scene(desc, buffers);
+    w->params.seed = s->seed;
+    w->params.max_depth = (uint)s->max_depth;
+    w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) |
+                      (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+                      (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u);
+    w->params.window_pixels = w->num_pixels;
+    w->params.clamp_indirect = s->clamp_indirect;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
     if (error_is_set(err) || !film_init(&w->film, dev, w->num_pixels, err) || !adaptive_init(w, err))
         return false;
@@ -163,19 +162,19 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     /* --profile: the compaction's own kernels' device time, like every other stage (a wall clock
      * around it also counted the blocking count read). */
     if (s->profile)
-        compactor_set_profile(w->compactor, &stats->stage_ms[STAGE_COMPACT]);
+        compactor_set_profile(w->compactor, &stats->stage_ms[STAGE_COMPACT_PATHS]);
     for (int k = 0; k < STAGE_COUNT; k++)
-        if (k != STAGE_COMPACT && k != STAGE_SORT && k != STAGE_GEODESIC && k != STAGE_MEGAKERNEL)
-            w->kernels[k] = device_kernel(dev, stage_kernel(k, s->brute_force, s->moments));
+        if (stage_kinds[k].made == STAGE_MADE_INIT)
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
     if (!black_holes_init(w, &scene->desc, &scene->data, err) || !megakernel_init(w, err))
         return false;
     /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
-    if (s->sort_materials && !stats->megakernel) {
+    if (s->sort_materials && !stats->config.megakernel) {
         w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
         w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
         if (!w->sorter)
             return false;
-        stats->device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted active list */
+        stats->config.device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted list */
     }
     set_all_args(w);
     wavefront_reset(w);
@@ -190,13 +189,7 @@ void wavefront_reset(Wavefront *w)
     if (w->geodesic_stats)
         device_fill(w->dev, w->geodesic_stats, &zero, sizeof zero, 0,
                     GEODESIC_STAT_WORDS * sizeof(uint32_t), NULL);
-    RenderStats sizes = *w->stats;
-    memset(w->stats, 0, sizeof *w->stats);
-    w->stats->pool_size = sizes.pool_size;
-    w->stats->window_size = sizes.window_size;
-    w->stats->device_bytes = sizes.device_bytes;
-    w->stats->megakernel = sizes.megakernel;
-    w->stats->packets = sizes.packets;
+    *w->stats = (RenderStats){.config = w->stats->config};
     w->next_sample = w->next_pixel = 0;
     adaptive_reset(w);
 }
@@ -222,41 +215,38 @@ cl_uint wavefront_set_path_args(Wavefront *w, cl_kernel k, bool with_scene)
 }
 
 /* Binds every argument once; the counts that change per launch (n_active, generate's counts) are
- * set again before each launch at the indices recorded here. */
+ * set again before each launch at the indices recorded here. Every OVER_ACTIVE stage takes the
+ * path arguments with the scene, then its list and n_active, then its own: own[stage] is the index
+ * of the first of its own. */
 static void set_all_args(Wavefront *w)
 {
-    cl_uint zero = 0, i;
-    cl_kernel generate = w->kernels[STAGE_GENERATE];
+    cl_uint zero = 0, i, own[STAGE_COUNT] = {0};
+    for (int st = 0; st < STAGE_COUNT; st++) {
+        if (stage_kinds[st].launch != STAGE_OVER_ACTIVE || !w->kernels[st])
+            continue;
+        /* shade_surface walks the list sorted by material when sorting */
+        cl_mem list = st == STAGE_SHADE_SURFACE && w->sorted_active ? w->sorted_active : w->active;
+        i = wavefront_set_path_args(w, w->kernels[st], true);
+        w->n_active_arg[st] = i + 1;
+        own[st] = KERNEL_ARGS(w->kernels[st], i, KARG(list), KARG(zero));
+    }
+    cl_kernel generate = w->kernels[STAGE_GENERATE_CAMERA_RAYS];
     i = wavefront_set_path_args(w, generate, false);
     w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
 
-    cl_kernel extend = w->kernels[STAGE_EXTEND];
-    i = wavefront_set_path_args(w, extend, true);
-    w->n_active_arg[STAGE_EXTEND] = i + 1;
-    KERNEL_ARGS(extend, i, KARG(w->active), KARG(zero), KARG(w->counters));
-
-    cl_kernel shade = w->kernels[STAGE_SHADE];
-    cl_mem shade_list = w->sorted_active ? w->sorted_active : w->active;
-    i = wavefront_set_path_args(w, shade, true);
-    w->n_active_arg[STAGE_SHADE] = i + 1;
-    KERNEL_ARGS(shade, i, KARG(shade_list), KARG(zero), KARG(w->shadow_queue), KARG(w->shadow_count));
-
-    cl_kernel connect = w->kernels[STAGE_CONNECT];
-    i = wavefront_set_path_args(w, connect, true);
-    w->n_active_arg[STAGE_CONNECT] = i + 1;
-    KERNEL_ARGS(connect, i, KARG(w->active), KARG(zero), KARG(w->counters), KARG(w->shadow_queue),
+    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
+                KARG(w->counters));
+    KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE], KARG(w->shadow_queue),
                 KARG(w->shadow_count));
-
-    cl_kernel geodesic = w->kernels[STAGE_GEODESIC];
-    if (geodesic) {
-        i = wavefront_set_path_args(w, geodesic, true);
-        w->n_active_arg[STAGE_GEODESIC] = i + 1;
-        KERNEL_ARGS(geodesic, i, KARG(w->active), KARG(zero), KARG(w->black_holes),
+    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW], KARG(w->counters),
+                KARG(w->shadow_queue), KARG(w->shadow_count));
+    cl_kernel geodesic = w->kernels[STAGE_INTEGRATE_GEODESIC];
+    if (geodesic)
+        KERNEL_ARGS(geodesic, own[STAGE_INTEGRATE_GEODESIC], KARG(w->black_holes),
                     KARG(w->num_black_holes), KARG(w->scene_box[0]), KARG(w->scene_box[1]),
                     KARG(w->geodesic_stats));
-    }
 
-    cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE];
+    cl_kernel accumulate = w->kernels[STAGE_ACCUMULATE_FILM];
     i = wavefront_set_path_args(w, accumulate, false);
     i = KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
     if (w->settings.moments)
@@ -272,18 +262,29 @@ RenderStats *wavefront_stats(Wavefront *w) { return w->stats; }
 
 void render_stats_add(RenderStats *into, const RenderStats *from)
 {
-    into->paths += from->paths;
-    into->extension_rays += from->extension_rays;
-    into->shadow_rays += from->shadow_rays;
-    into->nonfinite += from->nonfinite;
-    into->batches += from->batches;
-    into->device_bytes += from->device_bytes;
-    for (int st = 0; st < STAGE_COUNT; st++) {
-        into->stage_ms[st] += from->stage_ms[st];
-        into->stage_launches[st] += from->stage_launches[st];
-    }
-    for (int b = 0; b < 64; b++)
-        into->live_per_step[b] += from->live_per_step[b];
+#define ADD_COUNTER(type, name) into->name += from->name;
+#define ADD_COUNTER_ARRAY(type, name, length)                                                      \
+    for (int i = 0; i < (length); i++)                                                             \
+        into->name[i] += from->name[i];
+    RENDER_COUNTERS(ADD_COUNTER, ADD_COUNTER_ARRAY)
+#undef ADD_COUNTER
+#undef ADD_COUNTER_ARRAY
+    into->config.device_bytes += from->config.device_bytes;
+}
+
+void render_stats_print_profile(FILE *out, const RenderStats *stats, const char *title)
+{
+    double total = 0.0;
+    for (int k = 0; k < STAGE_COUNT; k++)
+        total += stats->stage_ms[k];
+    fprintf(out, "%-22s %9s %11s %7s\n", title, "launches", "total ms", "share");
+    for (int k = 0; k < STAGE_COUNT; k++)
+        fprintf(out, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
+                stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
+    fprintf(out, "live paths per step (all windows):");
+    for (int b = 0; b < RENDER_LIVE_STEPS && stats->live_per_step[b]; b++)
+        fprintf(out, " %llu", (unsigned long long)stats->live_per_step[b]);
+    fputc('\n', out);
 }
 
 void wavefront_read_counters(Wavefront *w)

@@ -75,7 +75,7 @@ void viewer_change_aperture(Viewer *v, int steps)
 bool viewer_turn_environment(Viewer *v, int steps)
 {
     SceneDesc *d = &v->session.scene.desc;
-    if (v->session.buffers.env_width == 0) {
+    if (v->session.buffers.params.env_width == 0) {
         printf("environment: the scene has no environment map to turn\n");
         return false;
     }
@@ -83,10 +83,10 @@ bool viewer_turn_environment(Viewer *v, int steps)
     if (degrees < 0.0)
         degrees += 360.0;
     d->environment_rotation = (float)degrees;
-    /* What the kernels read (RenderParams.env_rotation, a fraction of a turn, as
+    /* What the kernels read (SceneParams.env_rotation, a fraction of a turn, as
      * environment_build stores it); the sampling tables do not depend on the rotation. */
-    v->session.buffers.env_rotation = (float)(degrees / 360.0);
-    v->session.scene.data.environment.rotation = v->session.buffers.env_rotation;
+    v->session.buffers.params.env_rotation = (float)(degrees / 360.0);
+    v->session.scene.data.environment.rotation = v->session.buffers.params.env_rotation;
     printf("environment rotation %g degrees\n", degrees);
     viewer_print_event(&v->input, "environment rotation %g", degrees);
     return true;

@@ -64,7 +64,7 @@ static void adapt_window(Viewer *v)
 {
     if (v->recent_seconds < 0.1) /* too young a measurement */
         return;
-    uint32_t current = wavefront_stats(v->wavefront)->window_size;
+    uint32_t current = wavefront_stats(v->wavefront)->config.window_size;
     uint32_t wanted = viewer_window_for_rate(v->paths_per_second);
     uint64_t film = (uint64_t)v->session.scene.desc.width * (uint64_t)v->session.scene.desc.height;
     bool capped = current >= film * (uint64_t)v->target_spp; /* the whole render fits already */
@@ -90,7 +90,7 @@ static void resize_film(Viewer *v)
     if (width <= 0 || height <= 0 || (width == d->width && height == d->height))
         return;
     d->width = width, d->height = height;
-    create_film(v, wavefront_stats(v->wavefront)->window_size);
+    create_film(v, wavefront_stats(v->wavefront)->config.window_size);
     viewer_display_resize(&v->display, width, height);
 }
 
@@ -130,7 +130,7 @@ static void apply_input(Viewer *v, double seconds)
         apply_camera(v);
     /* A new rotation is a new scene for the film: the wavefront takes it at creation. */
     if (in->environment_steps && viewer_turn_environment(v, in->environment_steps)) {
-        create_film(v, wavefront_stats(v->wavefront)->window_size);
+        create_film(v, wavefront_stats(v->wavefront)->config.window_size);
         v->paused = false;
     }
     if (in->exposure_steps) {
