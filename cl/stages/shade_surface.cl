@@ -104,31 +104,6 @@ inline float3 escaped_radiance(constant RenderParams *p, const SceneView *scene,
     return clamp_indirect(p, beta * sky, depth >= 3u);
 }
 
-/* The shaded vertex as the arriving ray sees it (a small Cycles ShaderData). */
-typedef struct {
-    SurfaceHit surf;
-    float3 wo;             /* unit, back along the arriving ray */
-    float3 ng, ns;         /* geometric and shading normals, turned to wo's side */
-    float cos_o_geometric; /* dot(wo, surf.geometric_normal): the emitter's cosine */
-    bool front;            /* the ray arrived on the side surf.geometric_normal points to */
-} ShadingPoint;
-
-/* Sidedness: the surface at h, its normals turned toward the ray of direction d. */
-inline ShadingPoint shading_point(const SceneView *scene, Hit h, float time, float3 d)
-{
-    ShadingPoint sp;
-    sp.surf = surface_at(scene, h, time);
-    sp.wo = -d;
-    sp.cos_o_geometric = dot(sp.wo, sp.surf.geometric_normal);
-    sp.front = sp.cos_o_geometric > 0.0f;
-    sp.ng = sp.front ? sp.surf.geometric_normal : -sp.surf.geometric_normal;
-    sp.ns = sp.front ? sp.surf.shading_normal : -sp.surf.shading_normal;
-    /* An interpolated normal facing away from the viewer gives way to the true one. */
-    if (dot(sp.ns, sp.wo) <= 0.0f)
-        sp.ns = sp.ng;
-    return sp;
-}
-
 /* Emission with MIS (Cycles' surface_emission): what material m emits toward wo, times beta,
  * clamped as indirect light from segment 3 on. */
 inline float3 surface_emission(constant RenderParams *p, const SceneView *scene, Material m, Hit h,
@@ -137,48 +112,6 @@ inline float3 surface_emission(constant RenderParams *p, const SceneView *scene,
     float3 L = emission_seen(p, scene, m, h, &sp->surf, h.t, sp->cos_o_geometric, prev_pdf_w,
                              depth);
     return clamp_indirect(p, beta * L, depth >= 3u);
-}
-
-/* The material whose BSDF scatters at the vertex and its index. */
-typedef struct {
-    Material material;
-    uint index;
-} Leaf;
-
-/* Leaf resolution: the hit's material, or the leaf its mix resolves to (DIM_MIX). Emission,
- * opacity and surface detail stay the hit material's. */
-inline Leaf resolve_leaf(const SceneView *scene, Material m, const SurfaceHit *surf, RngKey key,
-                         uint bounce)
-{
-    Leaf leaf = {m, surf->material};
-    if (PT_HAS_MATERIAL_FEATURE(MIX) && m.type == MATERIAL_MIX) {
-        leaf.index = material_resolve_mix(scene, surf->material, surf->uv, surf->object_position,
-                                          rng_bounce(key, bounce, DIM_MIX));
-        leaf.material = scene->materials[leaf.index];
-    }
-    return leaf;
-}
-
-/* The leaf's BSDF in its shading frame, and wo in that frame. */
-typedef struct {
-    Bsdf bsdf;
-    Frame frame;
-    float3 wo_local;
-} SurfaceBsdf;
-
-/* Textures are looked up in object space, the rest is world space (surface.cl). Normal and bump
- * maps and anisotropy need the uv tangent frame (surface_detail.cl); plain materials keep the
- * cheap one. */
-inline SurfaceBsdf surface_bsdf(const SceneView *scene, const ShadingPoint *sp, uint prim,
-                                Material m, Material leaf)
-{
-    SurfaceBsdf sb;
-    sb.bsdf = bsdf_at(scene, leaf, sp->surf.uv, sp->surf.object_position);
-    sb.frame = surface_needs_tangents(m, leaf)
-                   ? surface_detail_frame(scene, prim, sp->surf, m, sp->wo, sp->front, sp->ng)
-                   : frame_from_normal(sp->ns);
-    sb.wo_local = frame_to_local(sb.frame, sp->wo);
-    return sb;
 }
 
 /* A next-event shadow ray as shade_path queues it (queue_shadow_ray): intersect_shadow adds
