@@ -15,10 +15,11 @@
  * Several holes: their accelerations add (each with its own h), an approximation of the
  * two-centre metric that holds while the holes are far apart (the scene check keeps them apart).
  * Shadow rays (intersect_shadow) stay straight: next-event estimation does not see lensing.
- * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin (xyz; w: the
- * length of the curve from the segment's start to this origin, which intersect_closest adds to
- * the hit's t: shading's distances, the emitter MIS pdf and absorption, are the whole segment's),
- * ray_direction (xyz; w, the BSDF pdf, kept), radiance, path_depth (0 when captured or absorbed),
+ * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin (xyz;
+ * travelled: the length of the curve from the segment's start to this origin, which
+ * intersect_closest adds to the hit's t: shading's distances, the emitter MIS pdf and absorption,
+ * are the whole segment's),
+ * ray_direction (xyz; pdf_w, kept), radiance, path_depth (0 when captured or absorbed),
  * hit (HIT_NONE for an ended path). Next: intersect_closest. The kernel exists only with
  * PT_FEATURE_BLACK_HOLES (render/session.c: scenes with holes). */
 

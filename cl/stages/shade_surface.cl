@@ -80,7 +80,9 @@ inline float3 clamp_indirect(constant RenderParams *p, float3 c, bool indirect)
     return largest > p->clamp_indirect ? c * (p->clamp_indirect / largest) : c;
 }
 
-/* ---- shade_path's steps, in its order (the names of Cycles' integrator_shade_surface) ---- */
+/* ---- shade_path's steps, in its order (the names of Cycles' integrator_shade_surface); the
+ * vertex set-up it shares with render_aov (shading_point, resolve_leaf, surface_bsdf) is in
+ * cl/material/shading_point.cl ---- */
 
 /* Beer-Lambert: what of c survives `distance` inside the absorbing dielectric `medium` (the
  * throughput lane's medium, 1 + its material index); outside any (0), c itself. */
