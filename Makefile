@@ -43,7 +43,7 @@ CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/geometry.h cl/shared/ma
               cl/geometry/ray_offset.cl cl/geometry/surface.cl cl/material/texture.cl \
               cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \
-              cl/material/bsdf.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
+              cl/material/bsdf.cl cl/material/shading_point.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
               cl/light/accretion_disk.cl \
               cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \

@@ -46,12 +46,13 @@ inline float emitter_area_ratio(const SceneView *scene, uint prim, uint instance
     return now > 0.0f ? affine_double_area(open, e1, e2) / now : 1.0f;
 }
 
-/* pick_bits, u_coin choose the light; env_pick_bits, env_coin the environment map's texel when it
- * is chosen (independent numbers: the light's are spent on the light); u1, u2 the point on it.
- * time: the path's shutter fraction (where a moving instance's emitters are). */
+/* A light point seen from `from` for bounce `bounce` of the path with key `key`: its dimensions
+ * DIM_LIGHT_PICK and DIM_LIGHT_COIN choose the light, DIM_ENV_PICK and DIM_ENV_COIN the environment
+ * map's texel when it is chosen (independent numbers: the light's are spent on the light),
+ * DIM_LIGHT_U and DIM_LIGHT_V the point on it. time: the path's shutter fraction (where a moving
+ * instance's emitters are). */
 PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, uint num_lights,
-                                   float3 from, float time, uint pick_bits, float u_coin,
-                                   uint env_pick_bits, float env_coin, float u1, float u2)
+                                   float3 from, float time, RngKey key, uint bounce)
 {
     const global LightEntry *lights = scene->lights;
     const global float4 *positions = scene->positions;
@@ -59,9 +60,12 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     const global uint *material_ids = scene->material_ids;
     const global Material *materials = scene->materials;
     LightSample ls;
-    LightEntry entry = light_pick(lights, num_lights, pick_bits, u_coin);
+    LightEntry entry = light_pick(lights, num_lights, rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
+                                  rng_bounce(key, bounce, DIM_LIGHT_COIN));
+    float u1 = rng_bounce(key, bounce, DIM_LIGHT_U), u2 = rng_bounce(key, bounce, DIM_LIGHT_V);
     if (PT_FEATURE(ENV) && entry.triangle == LIGHT_ENVIRONMENT) {
-        EnvSample es = env_sample(env, env_pick_bits, env_coin, u1, u2);
+        EnvSample es = env_sample(env, rng_bounce_bits(key, bounce, DIM_ENV_PICK),
+                                  rng_bounce(key, bounce, DIM_ENV_COIN), u1, u2);
         ls.position = from;
         ls.normal = -es.direction;
         ls.direction = es.direction;

@@ -30,7 +30,7 @@
 inline uint material_key(global const float4 *hit, global const uint *material_ids, uint slot,
                          uint num_materials)
 {
-    const uint prim = as_uint(hit[slot].w);
+    const uint prim = hit_prim(hit[slot]);
     return prim == HIT_NONE ? num_materials : min(material_ids[prim], num_materials);
 }
 

@@ -67,17 +67,7 @@ typedef uint ProgramFeatures;
 #define PT_FEATURE(name) (PT_FEATURE_##name)
 #else
 #define PT_FEATURE(name) 1
-/* Remove after merge: the old spellings that cl/stages/shade_surface.cl and megakernel.cl still
- * use (with PT_FEATURES_GIVEN the options define them). */
-#define PT_FEATURE_ENV 1
-#define PT_FEATURE_ANALYTIC 1
-#define PT_FEATURE_CUTOUT 1
-#define PT_FEATURE_INSTANCES 1
-#define PT_FEATURE_MOTION 1
-#define PT_FEATURE_BLACK_HOLES 1
 #endif
-/* Remove after merge (the same two files). */
-#define PT_HAS_MATERIAL_FEATURE(name) PT_FEATURE(name)
 #endif
 
 #endif

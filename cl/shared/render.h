@@ -186,13 +186,13 @@ typedef struct {
  * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
  * expand from these lists. */
 #define PATH_STATE_FIELDS(X)                                                                       \
-    X(float4, ray_origin)          /* xyz; w unused */                                              \
-    X(float4, ray_direction)       /* xyz; w: solid-angle pdf of the BSDF sample, 0 if specular */  \
-    X(float4, throughput)          /* rgb path weight; w unused */                                 \
-    X(float4, hit)                 /* t, u, v, as_float(triangle) or HIT_NONE */                    \
-    X(float4, shadow_origin)       /* xyz; w: tmax of the shadow ray */                            \
-    X(float4, shadow_direction)    /* xyz; w unused */                                             \
-    X(float4, shadow_contribution) /* rgb added if unoccluded; w: 1 when a shadow ray waits */     \
+    X(float4, ray_origin)          /* xyz; w: travelled (ray_origin_pack) */                       \
+    X(float4, ray_direction)       /* xyz; w: pdf_w (ray_direction_pack) */                        \
+    X(float4, throughput)          /* rgb path weight; w: medium (throughput_pack) */              \
+    X(float4, hit)                 /* t, u, v, prim (hit_pack) */                                  \
+    X(float4, shadow_origin)       /* xyz; w: tmax (shadow_origin_pack) */                         \
+    X(float4, shadow_direction)    /* xyz; w: bounce (shadow_direction_pack) */                    \
+    X(float4, shadow_contribution) /* rgb added if unoccluded; w: waits (..._pack) */             \
     X(uint, hit_instance)          /* the instance hit (PT_FEATURE(INSTANCES); else unused) */     \
     X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE(MOTION), else 0) */ \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
@@ -202,6 +202,60 @@ typedef struct {
 /* Per pixel (one entry when adaptive sampling is off): read by window_pixel. */
 #define PIXEL_STATE_FIELDS(X)                                                                      \
     X(uint, active_pixels)         /* RENDER_ADAPTIVE: the pixels still sampled, ascending */
+
+#ifdef __OPENCL_C_VERSION__
+/* Each float4 lane of PATH_STATE_FIELDS packs a fourth value into w, written with its _pack and
+ * read with its accessor: a slot's lane stays one 16-byte load and store (the GPU's shading is
+ * bound by memory traffic), and no kernel reads a bare .w or as_uint. */
+
+/* travelled: the length of the bent curve from the segment's start to this origin, which
+ * intersect_closest_path adds to the hit's t (integrate_geodesic.cl); 0 for every straight ray. */
+inline float4 ray_origin_pack(float3 origin, float travelled)
+{
+    return (float4)(origin, travelled);
+}
+inline float ray_origin_travelled(float4 origin) { return origin.w; }
+
+/* pdf_w: the solid-angle density of the BSDF sample that chose the direction, 0 if specular (and
+ * for the camera ray): emission and escaped rays weigh against light sampling with it. */
+inline float4 ray_direction_pack(float3 direction, float pdf_w)
+{
+    return (float4)(direction, pdf_w);
+}
+inline float ray_direction_pdf_w(float4 direction) { return direction.w; }
+
+/* medium: 1 + the material index of the absorbing dielectric the segment runs inside, 0 outside
+ * any (the camera starts outside). */
+inline float4 throughput_pack(float3 beta, uint medium) { return (float4)(beta, as_float(medium)); }
+inline uint throughput_medium(float4 throughput) { return as_uint(throughput.w); }
+
+/* t, u, v: distance and barycentrics; prim: the triangle, HIT_NONE for an escaped ray. */
+inline float4 hit_pack(float t, float u, float v, uint prim)
+{
+    return (float4)(t, u, v, as_float(prim));
+}
+inline uint hit_prim(float4 hit) { return as_uint(hit.w); }
+inline float hit_t(float4 hit) { return hit.x; }
+
+/* tmax: the shadow ray's end (INFINITY toward a light at infinity; the test is t < tmax). */
+inline float4 shadow_origin_pack(float3 origin, float tmax) { return (float4)(origin, tmax); }
+inline float shadow_origin_tmax(float4 origin) { return origin.w; }
+
+/* bounce: the bounce that queued the shadow ray, whose DIM_SHADOW_OPACITY stream decides the
+ * cut-out pass-throughs along it (intersect_shadow.cl). */
+inline float4 shadow_direction_pack(float3 direction, uint bounce)
+{
+    return (float4)(direction, as_float(bounce));
+}
+inline uint shadow_direction_bounce(float4 direction) { return as_uint(direction.w); }
+
+/* waits: a shadow ray is queued and its contribution not yet resolved. */
+inline float4 shadow_contribution_pack(float3 contribution, bool waits)
+{
+    return (float4)(contribution, waits ? 1.0f : 0.0f);
+}
+inline bool shadow_contribution_waits(float4 contribution) { return contribution.w != 0.0f; }
+#endif
 
 /* Wavefront counters (one uint buffer). */
 #define COUNTER_NONFINITE 0   /* samples whose radiance was NaN or Inf (dropped) */

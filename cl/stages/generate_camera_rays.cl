@@ -3,10 +3,10 @@
  * free slots and appends those slots to the active list after its n_live live entries. The free
  * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
  * fresh != 0 (an empty pool: every slot is free).
- * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (w = 0: the camera ray
- * counts as specular for MIS), throughput = 1, radiance[k] = 0, path_depth = 1 (the camera
- * ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction, camera_time),
- * active[n_live + j].
+ * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (pdf_w = 0: the camera
+ * ray counts as specular for MIS), throughput = 1 (medium 0: outside), radiance[k] = 0,
+ * path_depth = 1 (the camera ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction,
+ * camera_time), active[n_live + j].
  * Next: intersect_closest. */
 
 /* Starts window sample k's camera path in slot (shared with megakernel.cl). */
@@ -15,10 +15,10 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     uint pixel = window_pixel(p, active_pixels, k), sample = window_sample(p, k);
     float3 origin, dir;
     camera_sample(p, pixel, sample, &origin, &dir);
-    ray_origin[slot] = (float4)(origin, 0.0f);
-    ray_direction[slot] = (float4)(dir, 0.0f);
-    throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
-    shadow_contribution[slot] = (float4)(0.0f);
+    ray_origin[slot] = ray_origin_pack(origin, 0.0f);
+    ray_direction[slot] = ray_direction_pack(dir, 0.0f);
+    throughput[slot] = throughput_pack((float3)(1.0f), 0u);
+    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     sample_id[slot] = k;
     path_depth[slot] = 1u;
     /* Unread without moving instances (intersect_*, shade_surface take 0): no store. */

@@ -15,10 +15,11 @@
  * Several holes: their accelerations add (each with its own h), an approximation of the
  * two-centre metric that holds while the holes are far apart (the scene check keeps them apart).
  * Shadow rays (intersect_shadow) stay straight: next-event estimation does not see lensing.
- * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin (xyz; w: the
- * length of the curve from the segment's start to this origin, which intersect_closest adds to
- * the hit's t: shading's distances, the emitter MIS pdf and absorption, are the whole segment's),
- * ray_direction (xyz; w, the BSDF pdf, kept), radiance, path_depth (0 when captured or absorbed),
+ * Reads: active, path_depth, ray_*, throughput, sample_id, holes. Writes: ray_origin (xyz;
+ * travelled: the length of the curve from the segment's start to this origin, which
+ * intersect_closest adds to the hit's t: shading's distances, the emitter MIS pdf and absorption,
+ * are the whole segment's),
+ * ray_direction (xyz; pdf_w, kept), radiance, path_depth (0 when captured or absorbed),
  * hit (HIT_NONE for an ended path). Next: intersect_closest. The kernel exists only with
  * PT_FEATURE(BLACK_HOLES) (render/session.c: scenes with holes). */
 
@@ -192,7 +193,7 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
     if (t_entry == INFINITY)
         return; /* a straight ray: intersect_closest as always */
     uint k = sample_id[slot];
-    RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+    RngKey key = path_rng_key(p, active_pixels, k);
     uint bounce = depth - 1u;
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     if (t_entry > 0.0f && geodesic_chord_hit(scene, box, world, d, t_entry, time, key, bounce) < INFINITY)
@@ -262,11 +263,11 @@ PT_INLINE void integrate_path(constant RenderParams *p, const SceneView *scene,
     geodesic_count(group, stats, steps, captured);
     if (ended) {
         path_depth[slot] = 0u;
-        hit[slot] = (float4)(INFINITY, 0.0f, 0.0f, as_float(HIT_NONE));
+        hit[slot] = hit_pack(INFINITY, 0.0f, 0.0f, HIT_NONE);
         return;
     }
-    ray_origin[slot] = (float4)(x + anchor, travelled);
-    ray_direction[slot] = (float4)(normalize(v), dir4.w);
+    ray_origin[slot] = ray_origin_pack(x + anchor, travelled);
+    ray_direction[slot] = ray_direction_pack(normalize(v), ray_direction_pdf_w(dir4));
 }
 
 kernel void integrate_geodesic(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS

@@ -2,7 +2,7 @@
 /* intersect_closest: extends every live path by one segment.
  * Reads: active[0..n_active), ray_origin, ray_direction. Writes: hit (t, u, v, triangle or
  * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped.
- * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (one global atomic per work-group).
+ * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays, path_state.cl).
  * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
  * the test that it renders the same image): a kernel of its own, so that the production kernel
  * carries no brute-force branch. With PT_FEATURE(CUTOUT), hits on cut-out materials may be passed
@@ -27,8 +27,7 @@ PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView 
     if (PT_FEATURE(CUTOUT)) {
         /* Cut-outs let the ray through stochastically (surface_detail.cl); the vertex it reaches
          * is bounce path_depth - 1, whose DIM_OPACITY stream decides. */
-        uint k = sample_id[slot];
-        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+        RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
         h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time, brute_force,
                                   rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
     } else {
@@ -36,10 +35,10 @@ PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView 
                         : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
     }
     /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
-     * ray_origin.w is the curve's length so far (0 for every straight ray). */
+     * the curve's length so far is ray_origin's travelled lane (0 for every straight ray). */
     if (PT_FEATURE(BLACK_HOLES))
-        h.t += ray_origin[slot].w;
-    hit[slot] = (float4)(h.t, h.u, h.v, as_float(h.prim));
+        h.t += ray_origin_travelled(ray_origin[slot]);
+    hit[slot] = hit_pack(h.t, h.u, h.v, h.prim);
     if (PT_FEATURE(INSTANCES))
         hit_instance[slot] = h.instance;
     return true;
@@ -51,29 +50,26 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
                                        global uint *counters, local uint *group_rays,
                                        bool brute_force)
 {
-    if (get_local_id(0) == 0)
-        *group_rays = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
+    clear_group_rays(group_rays);
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    if (i < n_active && intersect_closest_path(p, scene, PATH_STATE_ARGS slot, brute_force))
-        atomic_inc(group_rays);
-    /* Every work item reaches this barrier: no early return above. */
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0 && *group_rays > 0)
-        atomic_add(&counters[COUNTER_EXTENSION_RAYS], *group_rays);
+    bool traced = i < n_active && intersect_closest_path(p, scene, PATH_STATE_ARGS slot, brute_force);
+    /* Every work item gets here: no early return above. */
+    count_group_rays(group_rays, traced ? 1u : 0u, 0u, counters);
 }
 
 kernel void intersect_closest(INTERSECT_CLOSEST_PARAMS)
 {
-    local uint group_rays;
+    local uint group_rays[2];
     SceneView scene = SCENE_VIEW;
-    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, &group_rays, false);
+    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, group_rays,
+                            false);
 }
 
 kernel void intersect_closest_brute_force(INTERSECT_CLOSEST_PARAMS)
 {
-    local uint group_rays;
+    local uint group_rays[2];
     SceneView scene = SCENE_VIEW;
-    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, &group_rays, true);
+    intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, group_rays,
+                            true);
 }

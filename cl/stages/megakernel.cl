@@ -8,35 +8,9 @@
  * needs the wavefront for, coherent lanes, is worth nothing there, while the path's state stays in
  * the cache between stages and no compaction, refill or count read-back runs between bounces.
  * Work item j uses slot j: the host launches at most a pool of samples, first_sample .. + n - 1.
- * counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] count the rays (one atomic per group).
+ * counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] count the rays (count_group_rays).
  * Not for the ablations (no compaction, brute force) nor scenes with black holes (their bent rays
  * are a stage of their own). */
-
-/* The work-group's ray counts (extension, shadow) in local memory, one global atomic each per
- * group: cleared before the paths start, added to counters after all have ended. Both contain a
- * barrier, so every work item of the group calls them. */
-inline void clear_group_rays(local uint *group_rays)
-{
-    if (get_local_id(0) == 0)
-        group_rays[0] = group_rays[1] = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-}
-
-inline void count_group_rays(local uint *group_rays, uint extension, uint shadow,
-                             global uint *counters)
-{
-    if (extension > 0)
-        atomic_add(&group_rays[0], extension);
-    if (shadow > 0)
-        atomic_add(&group_rays[1], shadow);
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (get_local_id(0) == 0) {
-        if (group_rays[0] > 0)
-            atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_rays[0]);
-        if (group_rays[1] > 0)
-            atomic_add(&counters[COUNTER_SHADOW_RAYS], group_rays[1]);
-    }
-}
 
 kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint first_sample,
                         uint n, global uint *counters)
@@ -59,7 +33,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
     count_group_rays(group_rays, extension, shadow, counters);
 }
 
-#if BVH_WIDTH == 8 && !PT_FEATURE_INSTANCES && !PT_FEATURE_CUTOUT
+#if BVH_WIDTH == 8 && !PT_FEATURE(INSTANCES) && !PT_FEATURE(CUTOUT)
 #if PACKET_RAYS != 8
 #error "trace_paths_packets traces PACKET_RAYS paths in float8 lanes: the host's count must be 8"
 #endif
@@ -76,8 +50,9 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
  * ceil(n / PACKET_RAYS) work items. */
 
 /* The rays of slots first + k for the bits k set in lanes (!= 0) as one packet from tmin 0:
- * origins in origins' xyz, directions in dirs' xyz, tmax in origins' w where tmax_in_w, else
- * infinite. A lane without a ray holds another lane's, which trace_packet leaves out. */
+ * origins in origins' xyz, directions in dirs' xyz, tmax the shadow rays' (shadow_origin_tmax)
+ * where tmax_in_w, else infinite. A lane without a ray holds another lane's, which trace_packet
+ * leaves out. */
 PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *origins,
                                 const global float4 *dirs, bool tmax_in_w, uint first, uint lanes,
                                 bool any_hit)
@@ -88,7 +63,7 @@ PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *ori
         uint s = first + ((lanes >> k) & 1u ? k : lowest_lane(lanes));
         float4 o = origins[s];
         origin[k] = xyz(o), dir[k] = xyz(dirs[s]);
-        tmin[k] = 0.0f, tmax[k] = tmax_in_w ? o.w : INFINITY;
+        tmin[k] = 0.0f, tmax[k] = tmax_in_w ? shadow_origin_tmax(o) : INFINITY;
     }
     RayPacket r = ray_packet(scene->bvh_nodes, origin, dir, tmin);
     return trace_packet(scene->bvh_nodes, scene->bvh_tris, &r, lanes_of(lanes), vload8(0, tmax),
@@ -110,10 +85,9 @@ PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint firs
     vstore8(h.t, 0, t), vstore8(h.u, 0, u), vstore8(h.v, 0, v), vstore8(h.prim, 0, prim);
     for (uint k = 0; k < 8u; k++)
         if ((lanes >> k) & 1u) {
-#if PT_FEATURE_BLACK_HOLES
-            t[k] += ray_origin[first + k].w; /* as intersect_closest_path: 0 for straight rays */
-#endif
-            hit[first + k] = (float4)(t[k], u[k], v[k], as_float(prim[k]));
+            if (PT_FEATURE(BLACK_HOLES))
+                t[k] += ray_origin_travelled(ray_origin[first + k]); /* as intersect_closest_path */
+            hit[first + k] = hit_pack(t[k], u[k], v[k], prim[k]);
         }
 }
 
@@ -123,7 +97,7 @@ PT_INLINE uint connect_packet(const SceneView *scene, PATH_STATE_PARAMS uint fir
 {
     uint lanes = 0;
     for (uint k = 0; k < 8u; k++)
-        if (first + k < n && shadow_contribution[first + k].w != 0.0f)
+        if (first + k < n && shadow_contribution_waits(shadow_contribution[first + k]))
             lanes |= 1u << k;
     if (lanes == 0u)
         return 0u;
@@ -153,11 +127,11 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
             uint occluded = connect_packet(&scene, PATH_STATE_ARGS first, n);
             live = false;
             for (uint slot = first; slot < end; slot++) {
-                if (shadow_contribution[slot].w != 0.0f) {
+                float4 contribution = shadow_contribution[slot];
+                if (shadow_contribution_waits(contribution)) {
                     shadow++;
-                    if (!(occluded & (1u << (slot - first))))
-                        radiance[sample_id[slot]] += (float4)(xyz(shadow_contribution[slot]), 0.0f);
-                    shadow_contribution[slot] = (float4)(0.0f);
+                    resolve_shadow_ray(PATH_STATE_ARGS slot, contribution,
+                                       (occluded >> (slot - first)) & 1u);
                 }
                 live |= path_depth[slot] != 0u;
             }

@@ -40,3 +40,44 @@ inline uint window_sample(constant RenderParams *p, uint k)
 {
     return p->sample_index + (p->window_start + k) / p->window_pixels;
 }
+
+/* The random-number key of window sample k's path: every stage that draws for the path in a slot
+ * (sample_id[slot] = k) draws from this key, so the wavefront and the megakernel agree. */
+inline RngKey path_rng_key(constant RenderParams *p, const global uint *active_pixels, uint k)
+{
+    return rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+}
+
+/* The hit lane (hit_pack) and the slot's hit_instance as the Hit that surface_at takes. */
+inline Hit path_hit(float4 hit, uint instance)
+{
+    Hit h = {hit_t(hit), hit.y, hit.z, hit_prim(hit), instance};
+    return h;
+}
+
+/* The work-group's ray counts (extension, shadow) in local memory, one global atomic each per
+ * group (intersect_closest, intersect_shadow, megakernel.cl): cleared before the rays are traced,
+ * added to counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] after. Both contain a barrier,
+ * so every work item of the group calls them. */
+inline void clear_group_rays(local uint *group_rays)
+{
+    if (get_local_id(0) == 0)
+        group_rays[0] = group_rays[1] = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+inline void count_group_rays(local uint *group_rays, uint extension, uint shadow,
+                             global uint *counters)
+{
+    if (extension > 0)
+        atomic_add(&group_rays[0], extension);
+    if (shadow > 0)
+        atomic_add(&group_rays[1], shadow);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0) {
+        if (group_rays[0] > 0)
+            atomic_add(&counters[COUNTER_EXTENSION_RAYS], group_rays[0]);
+        if (group_rays[1] > 0)
+            atomic_add(&counters[COUNTER_SHADOW_RAYS], group_rays[1]);
+    }
+}

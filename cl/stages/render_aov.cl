@@ -58,30 +58,17 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
                 depth_sum += hit.t;
                 hits++;
             }
-            SurfaceHit surf = surface_at(&scene, hit, time);
-            Material m = scene.materials[surf.material];
-            bool is_mix = PT_FEATURE(MIX) && m.type == MATERIAL_MIX;
-            Material leaf = is_mix ? scene.materials[material_resolve_mix(
-                                         &scene, surf.material, surf.uv, surf.object_position,
-                                         rng_bounce(key, bounce, DIM_MIX))]
-                                   : m;
-            Bsdf bsdf = bsdf_at(&scene, leaf, surf.uv, surf.object_position);
-            float3 wo = -dir;
-            bool front = dot(wo, surf.geometric_normal) > 0.0f;
-            float3 ng = front ? surf.geometric_normal : -surf.geometric_normal;
-            float3 ns = front ? surf.shading_normal : -surf.shading_normal;
-            if (dot(ns, wo) <= 0.0f)
-                ns = ng;
-            Frame frame = surface_needs_tangents(m, leaf)
-                              ? surface_detail_frame(&scene, hit.prim, surf, m, wo, front, ng)
-                              : frame_from_normal(ns);
-            if (!bsdf_is_delta(&bsdf) || bounce + 1u == max_segments) {
-                albedo_sum += bsdf_albedo(&bsdf);
-                normal_sum += frame.n;
+            ShadingPoint sp = shading_point(&scene, hit, time, dir);
+            Material m = scene.materials[sp.surf.material];
+            Leaf leaf = resolve_leaf(&scene, m, &sp.surf, key, bounce);
+            SurfaceBsdf sb = surface_bsdf(&scene, &sp, hit.prim, m, leaf.material);
+            if (!bsdf_is_delta(&sb.bsdf) || bounce + 1u == max_segments) {
+                albedo_sum += bsdf_albedo(&sb.bsdf);
+                normal_sum += sb.frame.n;
                 break;
             }
-            dir = frame_to_world(frame, aov_delta_direction(&bsdf, frame_to_local(frame, wo), front));
-            origin = offset_ray_origin(surf.position, surf.geometric_normal, dir);
+            dir = frame_to_world(sb.frame, aov_delta_direction(&sb.bsdf, sb.wo_local, sp.front));
+            origin = offset_ray_origin(sp.surf.position, sp.surf.geometric_normal, dir);
         }
     }
     float n = (float)max(spp, 1u);

@@ -3,9 +3,9 @@
  * next-event shadow ray for non-delta materials, samples the BSDF for the next segment and applies
  * Russian roulette. depth = path_depth[slot] = segments traced so far (1 after the camera ray); paths
  * of different depths share a launch once slots are refilled.
- * Reads: hit, hit_instance (PT_FEATURE_INSTANCES), path_time (PT_FEATURE_MOTION: where moving
+ * Reads: hit, hit_instance (PT_FEATURE(INSTANCES)), path_time (PT_FEATURE(MOTION): where moving
  * instances and their emitters are), ray_*, throughput, path_depth, sample_id, scene. Writes:
- * radiance[sample_id], throughput, ray_* (next segment), shadow_* (w = 1 when queued), path_depth
+ * radiance[sample_id], throughput, ray_* (next segment), shadow_* (waits when queued), path_depth
  * (depth + 1, or 0 when the path ends). Positions, normals and directions are world space;
  * textures are looked up at the hit's object-space point (surface.cl).
  * Next: intersect_shadow, then compaction. */
@@ -18,12 +18,9 @@ inline float emitter_light_pdf(constant RenderParams *p, const SceneView *scene,
     /* light_sample picks a triangle with probability area * emission.w / total power, then a point
      * with density 1 / area: per unit area that is emission.w / total power. */
     float light_pdf = m.emission.w / p->scene.emissive_power * t * t / cos_light;
-#if PT_FEATURE_INSTANCES
     /* A moving instance's triangles were weighed by their area at shutter open (light_sample.cl). */
-    light_pdf *= emitter_area_ratio(scene, hit.prim, hit.instance, surf->to_world);
-#else
-    (void)scene, (void)hit, (void)surf;
-#endif
+    if (PT_FEATURE(INSTANCES))
+        light_pdf *= emitter_area_ratio(scene, hit.prim, hit.instance, surf->to_world);
     return light_pdf;
 }
 
@@ -35,7 +32,7 @@ inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Ma
     if (m.emission.w <= 0.0f || cos_light <= 0.0f)
         return (float3)(0.0f);
     float3 L = xyz(m.emission);
-    if (PT_HAS_MATERIAL_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
+    if (PT_FEATURE(EMISSION_TEXTURE) && m.tex[MATERIAL_TEX_EMISSION] != NO_TEXTURE)
         L *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_EMISSION], surf->uv, surf->object_position));
     /* Camera rays, specular bounces and BSDF-only rendering have no light-sampling rival. */
     if (depth == 1u || prev_pdf_w == 0.0f || (p->flags & RENDER_NO_NEE))
@@ -49,7 +46,7 @@ inline float3 emission_seen(constant RenderParams *p, const SceneView *scene, Ma
 inline float3 environment_seen(constant RenderParams *p, const EnvMap *env, float3 d,
                                float prev_pdf_w, uint depth)
 {
-    if (!PT_FEATURE_ENV || p->scene.env_width == 0u)
+    if (!PT_FEATURE(ENV) || p->scene.env_width == 0u)
         return xyz(p->background);
     float pdf_w;
     float3 L = env_lookup(env, d, &pdf_w);
@@ -80,6 +77,167 @@ inline float3 clamp_indirect(constant RenderParams *p, float3 c, bool indirect)
     return largest > p->clamp_indirect ? c * (p->clamp_indirect / largest) : c;
 }
 
+/* ---- shade_path's steps, in its order (the names of Cycles' integrator_shade_surface); the
+ * vertex set-up it shares with render_aov (shading_point, resolve_leaf, surface_bsdf) is in
+ * cl/material/shading_point.cl ---- */
+
+/* Beer-Lambert: what of c survives `distance` inside the absorbing dielectric `medium` (the
+ * throughput lane's medium, 1 + its material index); outside any (0), c itself. */
+inline float3 through_medium(const SceneView *scene, uint medium, float3 c, float distance)
+{
+    if (PT_FEATURE(ABSORPTION) && medium != 0u)
+        c *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), distance);
+    return c;
+}
+
+/* Escaped ray (Cycles' shade_background): the sky seen along direction (ray_direction's lane),
+ * the environment and the suns, times beta, clamped as indirect light from segment 3 on. */
+inline float3 escaped_radiance(constant RenderParams *p, const SceneView *scene, const EnvMap *env,
+                               float4 direction, float3 beta, uint depth)
+{
+    float3 d = xyz(direction);
+    float prev_pdf_w = ray_direction_pdf_w(direction);
+    float3 sky = environment_seen(p, env, d, prev_pdf_w, depth);
+    if (PT_FEATURE(ANALYTIC) && p->scene.num_analytic > 0u)
+        sky += suns_seen(p, scene->analytic_lights, d, prev_pdf_w, depth);
+    return clamp_indirect(p, beta * sky, depth >= 3u);
+}
+
+/* Emission with MIS (Cycles' surface_emission): what material m emits toward wo, times beta,
+ * clamped as indirect light from segment 3 on. */
+inline float3 surface_emission(constant RenderParams *p, const SceneView *scene, Material m, Hit h,
+                               const ShadingPoint *sp, float prev_pdf_w, float3 beta, uint depth)
+{
+    float3 L = emission_seen(p, scene, m, h, &sp->surf, h.t, sp->cos_o_geometric, prev_pdf_w,
+                             depth);
+    return clamp_indirect(p, beta * L, depth >= 3u);
+}
+
+/* A next-event shadow ray as shade_path queues it (queue_shadow_ray): intersect_shadow adds
+ * contribution to the sample's radiance unless something lies along direction before tmax. */
+typedef struct {
+    float3 origin, direction, contribution;
+    float tmax;
+    bool queued; /* false: no ray, the other fields undefined */
+} ShadowRay;
+
+/* The ray from origin (off the surface toward wi) to light sample ls. It ends at the light point
+ * moved off the light by the same robust offset, toward the shaded point: it reaches everything
+ * in front of the light, however close, and never the light's own triangle (the test is
+ * half-open, t < tmax). */
+inline ShadowRay shadow_ray_to(LightSample ls, float3 origin, float3 wi)
+{
+    ShadowRay ray;
+    ray.origin = origin;
+    ray.tmax = INFINITY;
+    ray.direction = wi;
+    if (ls.delta && !ls.at_infinity) {
+        /* A point or spot light has no surface: the ray ends exactly at it. */
+        ray.tmax = length(ls.position - origin);
+        ray.direction = (ls.position - origin) / ray.tmax;
+    } else if (!ls.at_infinity) {
+        float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
+        ray.tmax = length(target - origin);
+        ray.direction = (target - origin) / ray.tmax;
+    }
+    return ray;
+}
+
+/* Light connection (Cycles' surface_direct_light): next-event estimation for every non-delta
+ * BSDF, one light sample weighed against BSDF sampling; a ray not queued when there is none. */
+inline ShadowRay connect_light(constant RenderParams *p, const SceneView *scene, const EnvMap *env,
+                               const ShadingPoint *sp, const SurfaceBsdf *sb, float3 beta,
+                               uint medium, float time, RngKey key, uint bounce, uint depth)
+{
+    ShadowRay none;
+    none.queued = false;
+    if (bsdf_is_delta(&sb->bsdf) || p->scene.num_emissive == 0u || (p->flags & RENDER_NO_NEE))
+        return none;
+    float3 position = sp->surf.position;
+    LightSample ls = light_sample(scene, env, p->scene.num_emissive, position, time, key, bounce);
+    float3 wi = ls.direction;
+    float3 wi_local = frame_to_local(sb->frame, wi);
+    float bsdf_pdf;
+    float3 f_cos = bsdf_eval(&sb->bsdf, sb->wo_local, wi_local, sp->front, &bsdf_pdf);
+    /* The light must lie on the side of the true surface that the shading frame puts it on
+     * (reflection above, transmission below): shading normals never leak light. */
+    bool same_side = (dot(wi, sp->ng) > 0.0f) == (wi_local.z > 0.0f);
+    if (!(ls.pdf_w > 0.0f && max3(f_cos) > 0.0f && same_side))
+        return none;
+    /* A delta light cannot be hit by the BSDF's rays: no MIS. */
+    float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
+    float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
+    /* A light seen from inside an absorbing medium (rare: a lamp inside glass). */
+    if (wi_local.z > 0.0f)
+        contribution = through_medium(scene, medium, contribution,
+                                      ls.at_infinity ? INFINITY : length(ls.position - position));
+    float3 origin = offset_ray_origin(position, sp->surf.geometric_normal, wi);
+    ShadowRay ray = shadow_ray_to(ls, origin, wi);
+    ray.contribution = clamp_indirect(p, contribution, depth >= 2u);
+    ray.queued = true;
+    return ray;
+}
+
+/* Stores a queued shadow ray in slot's shadow lanes (bounce: for its cut-out stream); true when
+ * queued. */
+inline bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce)
+{
+    if (!ray.queued)
+        return false;
+    shadow_origin[slot] = shadow_origin_pack(ray.origin, ray.tmax);
+    shadow_direction[slot] = shadow_direction_pack(ray.direction, bounce);
+    shadow_contribution[slot] = shadow_contribution_pack(ray.contribution, true);
+    return true;
+}
+
+/* Russian roulette (Cycles' path_terminate), driven by the throughput: false when the path ends,
+ * else beta is divided by the survival probability. */
+inline bool survives_roulette(float3 *beta, RngKey key, uint bounce)
+{
+    float q = fmin(max3(*beta), 0.95f);
+    if (rng_bounce(key, bounce, DIM_ROULETTE) >= q)
+        return false;
+    *beta /= q;
+    return true;
+}
+
+/* The medium of the next segment: refraction into a dielectric that absorbs starts a segment
+ * inside it; refraction out of one (wo inside, !front) ends it. Reflections keep the medium. */
+inline uint medium_after(uint medium, BsdfSample bs, bool front, Leaf leaf)
+{
+    if (PT_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
+        medium = front && max3(xyz(leaf.material.absorption)) > 0.0f ? leaf.index + 1u : 0u;
+    return medium;
+}
+
+/* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette from the third vertex on;
+ * when the path goes on, writes the next segment's ray and throughput and returns true. */
+inline bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
+                          const SurfaceBsdf *sb, Leaf leaf, float3 beta, uint medium, RngKey key,
+                          uint bounce, uint depth)
+{
+    BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front,
+                                rng_bounce(key, bounce, DIM_BSDF_U),
+                                rng_bounce(key, bounce, DIM_BSDF_V),
+                                rng_bounce(key, bounce, DIM_BSDF_LOBE));
+    float3 wi = frame_to_world(sb->frame, bs.wi);
+    beta *= bs.weight;
+    /* A sample on the other side of the true surface than its lobe says (possible with shading
+     * normals) is lost, never counted on the wrong side. */
+    bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
+    if (bs.flags == 0u || (dot(wi, sp->ng) > 0.0f) != reflects)
+        return false;
+    if (depth >= 3u && !survives_roulette(&beta, key, bounce))
+        return false;
+    if (!(max3(beta) > 0.0f))
+        return false;
+    float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, wi);
+    ray_origin[slot] = ray_origin_pack(origin, 0.0f);
+    ray_direction[slot] = ray_direction_pack(wi, bs.pdf_w);
+    throughput[slot] = throughput_pack(beta, medium_after(medium, bs, sp->front, leaf));
+    return true;
+}
+
 /* Shades the path in slot; true when it queued a shadow ray. */
 PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
 {
@@ -87,141 +245,36 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH
     if (depth == 0u)
         return false;
     uint k = sample_id[slot];
-    float4 h = hit[slot];
-    float4 dir4 = ray_direction[slot];
-    float4 throughput4 = throughput[slot];
-    float3 beta = xyz(throughput4);
-    /* throughput.w: 1 + the absorbing dielectric the segment ran inside, 0 outside any (the
-     * camera starts outside). Beer-Lambert over the segment just traced. */
-    uint medium = as_uint(throughput4.w);
-    if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && medium != 0u)
-        beta *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), h.x);
-    uint prim = as_uint(h.w);
+    float4 hit4 = hit[slot], direction = ray_direction[slot], throughput4 = throughput[slot];
+    uint medium = throughput_medium(throughput4);
+    /* Absorption along the segment just traced. */
+    float3 beta = through_medium(scene, medium, xyz(throughput4), hit_t(hit4));
     EnvMap env = env_map(p, scene);
-    if (prim == HIT_NONE) {
-        float3 sky = environment_seen(p, &env, xyz(dir4), dir4.w, depth);
-        if (PT_FEATURE_ANALYTIC && p->scene.num_analytic > 0u)
-            sky += suns_seen(p, scene->analytic_lights, xyz(dir4), dir4.w, depth);
-        add_radiance(radiance, k, clamp_indirect(p, beta * sky, depth >= 3u));
+    if (hit_prim(hit4) == HIT_NONE) {
+        add_radiance(radiance, k, escaped_radiance(p, scene, &env, direction, beta, depth));
         path_depth[slot] = 0u;
         return false;
     }
-    Hit hh = {h.x, h.y, h.z, prim, PT_FEATURE_INSTANCES ? hit_instance[slot] : 0u};
-    float time = PT_FEATURE_MOTION ? path_time[slot] : 0.0f;
-    SurfaceHit surf = surface_at(scene, hh, time);
-    Material m = scene->materials[surf.material];
-    float3 wo = -xyz(dir4);
-    float cos_o_geometric = dot(wo, surf.geometric_normal);
-    bool front = cos_o_geometric > 0.0f;
-    float3 ng = front ? surf.geometric_normal : -surf.geometric_normal;
-    float3 ns = front ? surf.shading_normal : -surf.shading_normal;
-    if (dot(ns, wo) <= 0.0f) /* interpolated normal facing away from the viewer: use the true one */
-        ns = ng;
-
-    float3 L = emission_seen(p, scene, m, hh, &surf, h.x, cos_o_geometric, dir4.w, depth);
-    float3 gathered = clamp_indirect(p, beta * L, depth >= 3u);
+    Hit h = path_hit(hit4, PT_FEATURE(INSTANCES) ? hit_instance[slot] : 0u);
+    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+    ShadingPoint sp = shading_point(scene, h, time, xyz(direction));
+    Material m = scene->materials[sp.surf.material];
+    float prev_pdf_w = ray_direction_pdf_w(direction);
+    float3 gathered = surface_emission(p, scene, m, h, &sp, prev_pdf_w, beta, depth);
 
     bool path_continues = depth < p->max_depth;
     bool queued = false;
-    shadow_contribution[slot] = (float4)(0.0f);
+    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (path_continues) {
-        RngKey key = rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+        RngKey key = path_rng_key(p, active_pixels, k);
         uint bounce = depth - 1u;
-        /* Emission, opacity and surface detail belong to the hit's material; the BSDF to the leaf
-         * a mix resolves to. */
-        bool is_mix = PT_HAS_MATERIAL_FEATURE(MIX) && m.type == MATERIAL_MIX;
-        uint leaf_index = is_mix
-                              ? material_resolve_mix(scene, surf.material, surf.uv,
-                                                     surf.object_position,
-                                                     rng_bounce(key, bounce, DIM_MIX))
-                              : surf.material;
-        Material leaf = is_mix ? scene->materials[leaf_index] : m;
-        /* Textures are looked up in object space, the rest is world space (surface.cl). */
-        Bsdf bsdf = bsdf_at(scene, leaf, surf.uv, surf.object_position);
-        /* Normal and bump maps and anisotropy need the uv tangent frame (surface_detail.cl); plain
-         * materials keep the cheap one. */
-        Frame frame = surface_needs_tangents(m, leaf)
-                          ? surface_detail_frame(scene, prim, surf, m, wo, front, ng)
-                          : frame_from_normal(ns);
-        float3 wo_local = frame_to_local(frame, wo);
-
-        /* Next-event estimation for every non-delta lobe. */
-        if (!bsdf_is_delta(&bsdf) && p->scene.num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
-            LightSample ls = light_sample(scene, &env, p->scene.num_emissive, surf.position, time,
-                                          rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
-                                          rng_bounce(key, bounce, DIM_LIGHT_COIN),
-                                          rng_bounce_bits(key, bounce, DIM_ENV_PICK),
-                                          rng_bounce(key, bounce, DIM_ENV_COIN),
-                                          rng_bounce(key, bounce, DIM_LIGHT_U),
-                                          rng_bounce(key, bounce, DIM_LIGHT_V));
-            float3 wi = ls.direction;
-            float3 wi_local = frame_to_local(frame, wi);
-            float bsdf_pdf;
-            float3 f_cos = bsdf_eval(&bsdf, wo_local, wi_local, front, &bsdf_pdf);
-            /* The light must lie on the side of the true surface that the shading frame puts it
-             * on (reflection above, transmission below): shading normals never leak light. */
-            bool same_side = (dot(wi, ng) > 0.0f) == (wi_local.z > 0.0f);
-            if (ls.pdf_w > 0.0f && max3(f_cos) > 0.0f && same_side) {
-                /* A delta light cannot be hit by the BSDF's rays: no MIS. */
-                float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
-                float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
-                /* A light seen from inside an absorbing medium (rare: a lamp inside glass). */
-                if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && medium != 0u && wi_local.z > 0.0f)
-                    contribution *= dielectric_transmittance(
-                        xyz(scene->materials[medium - 1u].absorption),
-                        ls.at_infinity ? INFINITY : length(ls.position - surf.position));
-                float3 origin = offset_ray_origin(surf.position, surf.geometric_normal, wi);
-                float dist = INFINITY;
-                float3 to_target = wi;
-                /* The ray ends at the light point moved off the light by the same robust offset,
-                 * toward the shaded point: it reaches everything in front of the light, however
-                 * close, and never the light's own triangle (the test is half-open, t < tmax). */
-                if (ls.delta && !ls.at_infinity) {
-                    /* A point or spot light has no surface: the ray ends exactly at it. */
-                    dist = length(ls.position - origin);
-                    to_target = (ls.position - origin) / dist;
-                } else if (!ls.at_infinity) {
-                    float3 target = offset_ray_origin(ls.position, ls.normal, origin - ls.position);
-                    dist = length(target - origin);
-                    to_target = (target - origin) / dist;
-                }
-                shadow_origin[slot] = (float4)(origin, dist);
-                shadow_direction[slot] = (float4)(to_target, as_float(bounce));
-                shadow_contribution[slot] =
-                    (float4)(clamp_indirect(p, contribution, depth >= 2u), 1.0f);
-                queued = true;
-            }
-        }
-
-        BsdfSample bs = bsdf_sample(&bsdf, wo_local, front, rng_bounce(key, bounce, DIM_BSDF_U),
-                                    rng_bounce(key, bounce, DIM_BSDF_V),
-                                    rng_bounce(key, bounce, DIM_BSDF_LOBE));
-        float3 wi = frame_to_world(frame, bs.wi);
-        beta *= bs.weight;
-        /* A sample on the other side of the true surface than its lobe says (possible with
-         * shading normals) is lost, never counted on the wrong side. */
-        bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
-        if (bs.flags == 0u || (dot(wi, ng) > 0.0f) != reflects)
-            path_continues = false;
-        /* Russian roulette from the third vertex on, driven by the throughput. */
-        if (path_continues && depth >= 3u) {
-            float q = fmin(max3(beta), 0.95f);
-            if (rng_bounce(key, bounce, DIM_ROULETTE) >= q)
-                path_continues = false;
-            else
-                beta /= q;
-        }
-        if (!(max3(beta) > 0.0f))
-            path_continues = false;
-        if (path_continues) {
-            ray_origin[slot] = (float4)(offset_ray_origin(surf.position, surf.geometric_normal, wi), 0.0f);
-            ray_direction[slot] = (float4)(wi, bs.pdf_w);
-            /* Refraction into a dielectric that absorbs starts a segment inside it; refraction out
-             * of one (wo inside, !front) ends it. Reflections keep the medium. */
-            if (PT_HAS_MATERIAL_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
-                medium = front && max3(xyz(leaf.absorption)) > 0.0f ? leaf_index + 1u : 0u;
-            throughput[slot] = (float4)(beta, as_float(medium));
-        }
+        Leaf leaf = resolve_leaf(scene, m, &sp.surf, key, bounce);
+        SurfaceBsdf sb = surface_bsdf(scene, &sp, h.prim, m, leaf.material);
+        ShadowRay shadow =
+            connect_light(p, scene, &env, &sp, &sb, beta, medium, time, key, bounce, depth);
+        queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce);
+        path_continues = continue_path(PATH_STATE_ARGS slot, &sp, &sb, leaf, beta, medium, key,
+                                       bounce, depth);
     }
     add_radiance(radiance, k, gathered);
     path_depth[slot] = path_continues ? depth + 1u : 0u;

@@ -25,7 +25,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
  * (seed, depth, flags, ...). */
 RenderParams render_params_for_scene(const SceneDesc *desc, const SceneBuffers *buffers);
 /* The scene's BVH for the device's layout (dev->bvh_width, bvh_quantized): two levels when asked,
- * which a program built with PT_FEATURE_INSTANCES=1 needs (session.c asks for data->two_level and
+ * which a program built with PT_FEATURE(INSTANCES) needs (session.c asks for data->two_level and
  * builds the program to match; the tests' program has every feature), else one. */
 void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, bool two_level);
 /* The kernels' instances and motions (cl/shared.h) from the scene's and the BVH's: *instances has

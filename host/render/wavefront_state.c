@@ -64,7 +64,7 @@ static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_
 static void set_all_args(Wavefront *w);
 
 /* The holes' buffer, the step counts and the integrate_geodesic kernel, for scenes with holes
- * (the program has the kernel exactly then: PT_FEATURE_BLACK_HOLES, render/session.c). */
+ * (the program has the kernel exactly then: PT_FEATURE(BLACK_HOLES), render/session.c). */
 static bool black_holes_init(Wavefront *w, const SceneDesc *desc, const SceneData *data, Error *err)
 {
     if (desc->num_black_holes == 0)

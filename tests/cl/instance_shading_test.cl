@@ -38,8 +38,7 @@ kernel void instance_shading_test_light(constant RenderParams *p, SCENE_PARAMS f
     uint pick = rng_bounce_bits(key, 0u, DIM_LIGHT_PICK);
     float coin = rng_bounce(key, 0u, DIM_LIGHT_COIN);
     float u1 = rng_bounce(key, 0u, DIM_LIGHT_U), u2 = rng_bounce(key, 0u, DIM_LIGHT_V);
-    LightSample ls = light_sample(&scene, &env, p->scene.num_emissive, xyz(from), time, pick, coin, 0u,
-                                  0.0f, u1, u2);
+    LightSample ls = light_sample(&scene, &env, p->scene.num_emissive, xyz(from), time, key, 0u);
     LightEntry entry = light_pick(scene.lights, p->scene.num_emissive, pick, coin);
     float2 b = sample_triangle_uniform(u1, u2);
     float t = length(ls.position - xyz(from));
