@@ -245,6 +245,8 @@ Test(cli_options, bad_values_are_one_line)
         {"--tonemap sepia", "sepia"}, {"--tonemap=", "--tonemap"}, {"--aov albedo,shiny", "shiny"},
         {"--aov ''", "--aov"}, {"--time-limit 0", "--time-limit"}, {"--min-spp 0", "--min-spp"},
         {"--min-spp 16 --spp 8", "--min-spp"}, {"--spp=", "--spp"},
+        /* render/ finds this one (the scene's spp) and names min_spp; pt names the flag. */
+        {"--min-spp 99999", "--min-spp 99999: more than the spp"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char args[256];

@@ -58,6 +58,8 @@ void cli_print_help(void)
 #define MAX_OPTIONS 64
 static struct option long_options[MAX_OPTIONS + 1];
 static char short_options[2 * MAX_OPTIONS + 2];
+/* "--name" of each row, for flag_of_setting: written before any render thread reads them. */
+static char flags[MAX_OPTIONS][32];
 
 static void build_getopt_tables(void)
 {
@@ -67,6 +69,7 @@ static void build_getopt_tables(void)
     short_options[s++] = ':'; /* a missing value returns ':' */
     for (size_t i = 0; i < cli_option_count; i++) {
         const CliOption *c = &cli_options[i];
+        snprintf(flags[i], sizeof flags[i], "--%s", c->name);
         if (c->kind == ARG_HELP_ONLY)
             continue;
         bool value = cli_option_takes_value(c);
@@ -174,8 +177,19 @@ static bool parse_options(int sub_argc, char **sub_argv, Options *o, Error *err)
     return true;
 }
 
+/* The flag that sets a render setting (error_set_setting's namer): render/ and dist/ word their
+ * messages with the setting's name, pt's messages name what the user typed. */
+static const char *flag_of_setting(const char *setting)
+{
+    for (size_t i = 0; i < cli_option_count; i++)
+        if (cli_options[i].setting && strcmp(cli_options[i].setting, setting) == 0)
+            return flags[i];
+    return NULL;
+}
+
 bool cli_parse(int argc, char **argv, Options *o, Error *err)
 {
+    error_set_setting_namer(flag_of_setting);
     memset(o, 0, sizeof *o);
     o->tonemap = TONEMAP_DEFAULT;
     if (argc < 2) {

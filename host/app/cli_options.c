@@ -136,15 +136,19 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
 
 
 /* The columns between kind and commands, per kind. */
-#define INT(f, lo, hi) ARG_INT, offsetof(Options, f), lo, hi, NULL
-#define FLOAT(f, lo, hi) ARG_FLOAT, offsetof(Options, f), lo, hi, NULL
-#define NUMBER(f, lo, hi) ARG_NUMBER, offsetof(Options, f), lo, hi, NULL
-#define TEXT(f) ARG_TEXT, offsetof(Options, f), 0, 0, NULL
-#define FLAG(f) ARG_FLAG, offsetof(Options, f), 0, 0, NULL
-#define SET(f, v) ARG_SET, offsetof(Options, f), v, v, NULL
-#define CUSTOM(fn) ARG_CUSTOM, 0, 0, 0, fn
-#define CUSTOM_FLAG(fn) ARG_CUSTOM_FLAG, 0, 0, 0, fn
-#define HELP_ONLY ARG_HELP_ONLY, 0, 0, 0, NULL
+#define INT(f, lo, hi) ARG_INT, offsetof(Options, f), lo, hi, NULL, NULL
+#define FLOAT(f, lo, hi) ARG_FLOAT, offsetof(Options, f), lo, hi, NULL, NULL
+#define NUMBER(f, lo, hi) ARG_NUMBER, offsetof(Options, f), lo, hi, NULL, NULL
+#define TEXT(f) ARG_TEXT, offsetof(Options, f), 0, 0, NULL, NULL
+#define FLAG(f) ARG_FLAG, offsetof(Options, f), 0, 0, NULL, NULL
+#define SET(f, v) ARG_SET, offsetof(Options, f), v, v, NULL, NULL
+#define CUSTOM(fn) ARG_CUSTOM, 0, 0, 0, fn, NULL
+#define CUSTOM_FLAG(fn) ARG_CUSTOM_FLAG, 0, 0, 0, fn, NULL
+#define HELP_ONLY ARG_HELP_ONLY, 0, 0, 0, NULL, NULL
+/* An option whose value render/ checks again (the scene may change what is valid) and names by
+ * the RenderSettings field it sets. */
+#define INT_SETTING(f, lo, hi, setting) ARG_INT, offsetof(Options, f), lo, hi, NULL, setting
+#define FLOAT_SETTING(f, lo, hi, setting) ARG_FLOAT, offsetof(Options, f), lo, hi, NULL, setting
 #define COMMAND(c) SET(command, c)
 
 /* Who takes what: an option a command would ignore is refused (cli.c), so each set is what the
@@ -206,17 +210,20 @@ const CliOption cli_options[] = {
      "                     linear, without it): a share S in [0, 1] of the light above\n"
      "                     luminance 1 spread by a Gaussian of radius R pixels (3 sigma;\n"
      "                     default 1% of the image diagonal)"},
-    {"clamp", 0, FLOAT(clamp_max, 1e-6, 1e30), SCENE_COMMANDS, HELP_OPTIONS, "--clamp MAX",
+    {"clamp", 0, FLOAT_SETTING(clamp_max, 1e-6, 1e30, "clamp_indirect"), SCENE_COMMANDS,
+     HELP_OPTIONS, "--clamp MAX",
      "clamp each indirect sample's radiance to MAX (removes fireflies,\n"
      "                     biases the image; off by default)"},
     {"aov", 0, CUSTOM(parse_aov), RENDER, HELP_OPTIONS, "--aov LIST",
      "add layers to the EXR beside the image: albedo, normal, depth,\n"
      "                     variance, spp (comma-separated) or all"},
-    {"noise-threshold", 0, FLOAT(noise_threshold, 1e-9, 1e9), RENDER | VIEW, HELP_OPTIONS,
+    {"noise-threshold", 0, FLOAT_SETTING(noise_threshold, 1e-9, 1e9, "noise_threshold"),
+     RENDER | VIEW, HELP_OPTIONS,
      "--noise-threshold T",
      "adaptive sampling: pixels stop once their relative error is\n"
      "                     below T (after --min-spp samples); --spp is the most a pixel gets"},
-    {"min-spp", 0, INT(min_spp, 1, INT_MAX), RENDER | VIEW, HELP_OPTIONS, "--min-spp N",
+    {"min-spp", 0, INT_SETTING(min_spp, 1, INT_MAX, "min_spp"), RENDER | VIEW, HELP_OPTIONS,
+     "--min-spp N",
      "samples every pixel gets before adaptive sampling decides"},
     {"time-limit", 0, NUMBER(time_limit, 1e-3, 1e9), RENDER, HELP_OPTIONS, "--time-limit S",
      "stop after S seconds of rendering, at a whole sample: the image is\n"

@@ -36,6 +36,8 @@ typedef struct {
     size_t field;      /* offsetof(Options, ...) */
     double min, max;   /* ARG_INT, ARG_FLOAT, ARG_NUMBER: the range; ARG_SET: the value */
     OptionParser parse; /* ARG_CUSTOM, ARG_CUSTOM_FLAG */
+    const char *setting; /* the RenderSettings field it sets, as render/ names it in a message
+                          * (error_set_setting); NULL for the others */
     unsigned commands; /* CMD_BIT of each command that takes the option */
     HelpSection section;
     const char *usage; /* the left column of help */

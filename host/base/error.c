@@ -7,6 +7,7 @@
 #include <string.h>
 
 static int g_warning_count;
+static SettingNamer g_setting_namer;
 static bool g_warnings_quiet;
 
 /* A name longer than NAME_SHOWN_MAX bytes (a 100 KB file name, say) is shown as its first and last
@@ -79,6 +80,21 @@ void error_set(Error *err, ErrorCode code, const char *file, int line, const cha
     char *text = format_message(file, fmt, ap);
     va_end(ap);
     snprintf(err->message, sizeof err->message, "%s", text ? text : fmt);
+    free(text);
+}
+
+void error_set_setting_namer(SettingNamer namer) { g_setting_namer = namer; }
+
+void error_set_setting(Error *err, const char *setting, const char *fmt, ...)
+{
+    if (!err || err->code != ERR_NONE)
+        return;
+    const char *shown = g_setting_namer ? g_setting_namer(setting) : NULL;
+    va_list ap;
+    va_start(ap, fmt);
+    char *text = format_message(NULL, fmt, ap);
+    va_end(ap);
+    error_set(err, ERR_SETTINGS, NULL, 0, "%s %s", shown ? shown : setting, text ? text : fmt);
     free(text);
 }
 

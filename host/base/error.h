@@ -47,6 +47,14 @@ typedef struct {
 /* Records an error; message is printf-formatted. Keeps the first error if one is already set. */
 void error_set(Error *err, ErrorCode code, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
+/* An ERR_SETTINGS error about a render setting, worded by the layer that checks it (render/,
+ * dist/) with the setting's own name (RenderSettings' field: "min_spp"): the message is that name,
+ * a blank and fmt. The command layer, which knows the flag that set it, registers a namer that
+ * gives the name users typed ("--min-spp"); NULL from the namer, or no namer, keeps the setting's. */
+typedef const char *(*SettingNamer)(const char *setting);
+void error_set_setting_namer(SettingNamer namer);
+void error_set_setting(Error *err, const char *setting, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 const char *error_code_name(ErrorCode code);
 bool error_is_set(const Error *err);
 

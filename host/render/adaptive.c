@@ -22,16 +22,16 @@ bool adaptive_configure(Wavefront *w, const Scene *scene, RenderSettings *s, Err
     Adaptive *a = &w->adaptive;
     const SceneDesc *d = &scene->desc;
     if (s->noise_threshold != 0.0f && !(s->noise_threshold > 0.0f && isfinite(s->noise_threshold))) {
-        error_set(err, ERR_SETTINGS, NULL, 0, "--noise-threshold %g: must be a finite number > 0",
-                  s->noise_threshold);
+        error_set_setting(err, "noise_threshold", "%g: must be a finite number > 0",
+                          s->noise_threshold);
         return false;
     }
     if (s->min_spp < 0) {
-        error_set(err, ERR_SETTINGS, NULL, 0, "--min-spp %d: must be at least 1", s->min_spp);
+        error_set_setting(err, "min_spp", "%d: must be at least 1", s->min_spp);
         return false;
     }
     if (s->min_spp > s->spp) {
-        error_set(err, ERR_SETTINGS, NULL, 0, "--min-spp %d: more than the spp (%d)", s->min_spp, s->spp);
+        error_set_setting(err, "min_spp", "%d: more than the spp (%d)", s->min_spp, s->spp);
         return false;
     }
     if (!s->min_spp && d->min_spp > s->spp) {

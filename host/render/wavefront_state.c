@@ -115,7 +115,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->dev = dev, w->scene = buffers, w->settings = *asked, w->stats = stats;
     const RenderSettings *s = &w->settings;
     if (!(s->clamp_indirect >= 0.0f && isfinite(s->clamp_indirect))) {
-        error_set(err, ERR_SETTINGS, NULL, 0, "--clamp %g: must be a finite number > 0", s->clamp_indirect);
+        error_set_setting(err, "clamp_indirect", "%g: must be a finite number > 0",
+                          s->clamp_indirect);
         return false;
     }
     if (!adaptive_configure(w, scene, &w->settings, err))
