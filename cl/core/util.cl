@@ -6,7 +6,7 @@
 /* Functions a CPU compiler must inline: PoCL's LLVM leaves large ones out of line, and then passes
  * their struct arguments and results through memory, where the reloads stall on store forwarding
  * (perf: a sixth of the traversal's time). NVIDIA's compiler inlines everything anyway. */
-#ifdef PT_VENDOR_NVIDIA
+#if defined(PT_VENDOR_NVIDIA) && !defined(PT_FORCE_INLINE)
 #define PT_INLINE inline
 #else
 #define PT_INLINE inline __attribute__((always_inline))

@@ -13,7 +13,7 @@ typedef struct {
 } ShadingPoint;
 
 /* Sidedness: the surface at h, its normals turned toward the ray of direction d. */
-inline ShadingPoint shading_point(const SceneView *scene, Hit h, float time, float3 d)
+PT_INLINE ShadingPoint shading_point(const SceneView *scene, Hit h, float time, float3 d)
 {
     ShadingPoint sp;
     sp.surf = surface_at(scene, h, time);
@@ -36,8 +36,8 @@ typedef struct {
 
 /* Leaf resolution: the hit's material, or the leaf its mix resolves to (DIM_MIX). Emission,
  * opacity and surface detail stay the hit material's. */
-inline Leaf resolve_leaf(const SceneView *scene, Material m, const SurfaceHit *surf, RngKey key,
-                         uint bounce)
+PT_INLINE Leaf resolve_leaf(const SceneView *scene, Material m, const SurfaceHit *surf, RngKey key,
+                            uint bounce)
 {
     Leaf leaf = {m, surf->material};
     if (PT_FEATURE(MIX) && m.type == MATERIAL_MIX) {
@@ -58,8 +58,8 @@ typedef struct {
 /* Textures are looked up in object space, the rest is world space (surface.cl). Normal and bump
  * maps and anisotropy need the uv tangent frame (surface_detail.cl); plain materials keep the
  * cheap one. */
-inline SurfaceBsdf surface_bsdf(const SceneView *scene, const ShadingPoint *sp, uint prim,
-                                Material m, Material leaf)
+PT_INLINE SurfaceBsdf surface_bsdf(const SceneView *scene, const ShadingPoint *sp, uint prim,
+                                   Material m, Material leaf)
 {
     SurfaceBsdf sb;
     sb.bsdf = bsdf_at(scene, leaf, sp->surf.uv, sp->surf.object_position);

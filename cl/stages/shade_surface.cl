@@ -83,7 +83,7 @@ inline float3 clamp_indirect(constant RenderParams *p, float3 c, bool indirect)
 
 /* Beer-Lambert: what of c survives `distance` inside the absorbing dielectric `medium` (the
  * throughput lane's medium, 1 + its material index); outside any (0), c itself. */
-inline float3 through_medium(const SceneView *scene, uint medium, float3 c, float distance)
+PT_INLINE float3 through_medium(const SceneView *scene, uint medium, float3 c, float distance)
 {
     if (PT_FEATURE(ABSORPTION) && medium != 0u)
         c *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), distance);
@@ -92,8 +92,8 @@ inline float3 through_medium(const SceneView *scene, uint medium, float3 c, floa
 
 /* Escaped ray (Cycles' shade_background): the sky seen along direction (ray_direction's lane),
  * the environment and the suns, times beta, clamped as indirect light from segment 3 on. */
-inline float3 escaped_radiance(constant RenderParams *p, const SceneView *scene, const EnvMap *env,
-                               float4 direction, float3 beta, uint depth)
+PT_INLINE float3 escaped_radiance(constant RenderParams *p, const SceneView *scene,
+                                  const EnvMap *env, float4 direction, float3 beta, uint depth)
 {
     float3 d = xyz(direction);
     float prev_pdf_w = ray_direction_pdf_w(direction);
@@ -105,8 +105,9 @@ inline float3 escaped_radiance(constant RenderParams *p, const SceneView *scene,
 
 /* Emission with MIS (Cycles' surface_emission): what material m emits toward wo, times beta,
  * clamped as indirect light from segment 3 on. */
-inline float3 surface_emission(constant RenderParams *p, const SceneView *scene, Material m, Hit h,
-                               const ShadingPoint *sp, float prev_pdf_w, float3 beta, uint depth)
+PT_INLINE float3 surface_emission(constant RenderParams *p, const SceneView *scene, Material m,
+                                  Hit h, const ShadingPoint *sp, float prev_pdf_w, float3 beta,
+                                  uint depth)
 {
     float3 L = emission_seen(p, scene, m, h, &sp->surf, h.t, sp->cos_o_geometric, prev_pdf_w,
                              depth);
@@ -125,7 +126,7 @@ typedef struct {
  * moved off the light by the same robust offset, toward the shaded point: it reaches everything
  * in front of the light, however close, and never the light's own triangle (the test is
  * half-open, t < tmax). */
-inline ShadowRay shadow_ray_to(LightSample ls, float3 origin, float3 wi)
+PT_INLINE ShadowRay shadow_ray_to(LightSample ls, float3 origin, float3 wi)
 {
     ShadowRay ray;
     ray.origin = origin;
@@ -145,9 +146,10 @@ inline ShadowRay shadow_ray_to(LightSample ls, float3 origin, float3 wi)
 
 /* Light connection (Cycles' surface_direct_light): next-event estimation for every non-delta
  * BSDF, one light sample weighed against BSDF sampling; a ray not queued when there is none. */
-inline ShadowRay connect_light(constant RenderParams *p, const SceneView *scene, const EnvMap *env,
-                               const ShadingPoint *sp, const SurfaceBsdf *sb, float3 beta,
-                               uint medium, float time, RngKey key, uint bounce, uint depth)
+PT_INLINE ShadowRay connect_light(constant RenderParams *p, const SceneView *scene,
+                                  const EnvMap *env, const ShadingPoint *sp, const SurfaceBsdf *sb,
+                                  float3 beta, uint medium, float time, RngKey key, uint bounce,
+                                  uint depth)
 {
     ShadowRay none;
     none.queued = false;
@@ -180,7 +182,7 @@ inline ShadowRay connect_light(constant RenderParams *p, const SceneView *scene,
 
 /* Stores a queued shadow ray in slot's shadow lanes (bounce: for its cut-out stream); true when
  * queued. */
-inline bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce)
+PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce)
 {
     if (!ray.queued)
         return false;
@@ -192,7 +194,7 @@ inline bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bo
 
 /* Russian roulette (Cycles' path_terminate), driven by the throughput: false when the path ends,
  * else beta is divided by the survival probability. */
-inline bool survives_roulette(float3 *beta, RngKey key, uint bounce)
+PT_INLINE bool survives_roulette(float3 *beta, RngKey key, uint bounce)
 {
     float q = fmin(max3(*beta), 0.95f);
     if (rng_bounce(key, bounce, DIM_ROULETTE) >= q)
@@ -203,7 +205,7 @@ inline bool survives_roulette(float3 *beta, RngKey key, uint bounce)
 
 /* The medium of the next segment: refraction into a dielectric that absorbs starts a segment
  * inside it; refraction out of one (wo inside, !front) ends it. Reflections keep the medium. */
-inline uint medium_after(uint medium, BsdfSample bs, bool front, Leaf leaf)
+PT_INLINE uint medium_after(uint medium, BsdfSample bs, bool front, Leaf leaf)
 {
     if (PT_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
         medium = front && max3(xyz(leaf.material.absorption)) > 0.0f ? leaf.index + 1u : 0u;
@@ -212,9 +214,9 @@ inline uint medium_after(uint medium, BsdfSample bs, bool front, Leaf leaf)
 
 /* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette from the third vertex on;
  * when the path goes on, writes the next segment's ray and throughput and returns true. */
-inline bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
-                          const SurfaceBsdf *sb, Leaf leaf, float3 beta, uint medium, RngKey key,
-                          uint bounce, uint depth)
+PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
+                             const SurfaceBsdf *sb, Leaf leaf, float3 beta, uint medium, RngKey key,
+                             uint bounce, uint depth)
 {
     BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front,
                                 rng_bounce(key, bounce, DIM_BSDF_U),
@@ -239,7 +241,8 @@ inline bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
-PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot)
+PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
+                          PATH_STATE_PARAMS uint slot)
 {
     uint depth = path_depth[slot];
     if (depth == 0u)
