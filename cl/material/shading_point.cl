@@ -28,24 +28,21 @@ PT_INLINE ShadingPoint shading_point(const SceneView *scene, Hit h, float time, 
     return sp;
 }
 
-/* The material whose BSDF scatters at the vertex and its index. */
-typedef struct {
-    Material material;
-    uint index;
-} Leaf;
+/* A mix material (resolve_leaf picks one of its leaves at each vertex). */
+inline bool material_is_mix(uint type) { return PT_FEATURE(MIX) && type == MATERIAL_MIX; }
 
-/* Leaf resolution: the hit's material, or the leaf its mix resolves to (DIM_MIX). Emission,
- * opacity and surface detail stay the hit material's. */
-PT_INLINE Leaf resolve_leaf(const SceneView *scene, Material m, const SurfaceHit *surf, RngKey key,
+/* Leaf resolution: the index of the material whose BSDF scatters at the vertex, the hit's or the
+ * leaf its mix resolves to (DIM_MIX). Emission, opacity and surface detail stay the hit
+ * material's. The caller reads the leaf's Material itself (m unless m is a mix): returned
+ * inside a struct, NVIDIA's compiler copied it from global memory byte by byte, with more
+ * registers live in shade_surface (bench/README.md, "Architecture v3"). */
+PT_INLINE uint resolve_leaf(const SceneView *scene, Material m, const SurfaceHit *surf, RngKey key,
                             uint bounce)
 {
-    Leaf leaf = {m, surf->material};
-    if (PT_FEATURE(MIX) && m.type == MATERIAL_MIX) {
-        leaf.index = material_resolve_mix(scene, surf->material, surf->uv, surf->object_position,
-                                          rng_bounce(key, bounce, DIM_MIX));
-        leaf.material = scene->materials[leaf.index];
-    }
-    return leaf;
+    if (!material_is_mix(m.type))
+        return surf->material;
+    return material_resolve_mix(scene, surf->material, surf->uv, surf->object_position,
+                                rng_bounce(key, bounce, DIM_MIX));
 }
 
 /* The leaf's BSDF in its shading frame, and wo in that frame. */

@@ -60,8 +60,9 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
             }
             ShadingPoint sp = shading_point(&scene, hit, time, dir);
             Material m = scene.materials[sp.surf.material];
-            Leaf leaf = resolve_leaf(&scene, m, &sp.surf, key, bounce);
-            SurfaceBsdf sb = surface_bsdf(&scene, &sp, hit.prim, m, leaf.material);
+            uint leaf_index = resolve_leaf(&scene, m, &sp.surf, key, bounce);
+            Material leaf = material_is_mix(m.type) ? scene.materials[leaf_index] : m;
+            SurfaceBsdf sb = surface_bsdf(&scene, &sp, hit.prim, m, leaf);
             if (!bsdf_is_delta(&sb.bsdf) || bounce + 1u == max_segments) {
                 albedo_sum += bsdf_albedo(&sb.bsdf);
                 normal_sum += sb.frame.n;

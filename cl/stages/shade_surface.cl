@@ -205,18 +205,19 @@ PT_INLINE bool survives_roulette(float3 *beta, RngKey key, uint bounce)
 
 /* The medium of the next segment: refraction into a dielectric that absorbs starts a segment
  * inside it; refraction out of one (wo inside, !front) ends it. Reflections keep the medium. */
-PT_INLINE uint medium_after(uint medium, BsdfSample bs, bool front, Leaf leaf)
+PT_INLINE uint medium_after(uint medium, BsdfSample bs, bool front, float3 leaf_absorption,
+                            uint leaf_index)
 {
     if (PT_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
-        medium = front && max3(xyz(leaf.material.absorption)) > 0.0f ? leaf.index + 1u : 0u;
+        medium = front && max3(leaf_absorption) > 0.0f ? leaf_index + 1u : 0u;
     return medium;
 }
 
 /* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette from the third vertex on;
  * when the path goes on, writes the next segment's ray and throughput and returns true. */
 PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
-                             const SurfaceBsdf *sb, Leaf leaf, float3 beta, uint medium, RngKey key,
-                             uint bounce, uint depth)
+                             const SurfaceBsdf *sb, float3 leaf_absorption, uint leaf_index,
+                             float3 beta, uint medium, RngKey key, uint bounce, uint depth)
 {
     BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front,
                                 rng_bounce(key, bounce, DIM_BSDF_U),
@@ -236,7 +237,8 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, wi);
     ray_origin[slot] = ray_origin_pack(origin, 0.0f);
     ray_direction[slot] = ray_direction_pack(wi, bs.pdf_w);
-    throughput[slot] = throughput_pack(beta, medium_after(medium, bs, sp->front, leaf));
+    throughput[slot] = throughput_pack(
+        beta, medium_after(medium, bs, sp->front, leaf_absorption, leaf_index));
     return true;
 }
 
@@ -271,13 +273,14 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     if (path_continues) {
         RngKey key = path_rng_key(p, active_pixels, k);
         uint bounce = depth - 1u;
-        Leaf leaf = resolve_leaf(scene, m, &sp.surf, key, bounce);
-        SurfaceBsdf sb = surface_bsdf(scene, &sp, h.prim, m, leaf.material);
+        uint leaf_index = resolve_leaf(scene, m, &sp.surf, key, bounce);
+        Material leaf = material_is_mix(m.type) ? scene->materials[leaf_index] : m;
+        SurfaceBsdf sb = surface_bsdf(scene, &sp, h.prim, m, leaf);
         ShadowRay shadow =
             connect_light(p, scene, &env, &sp, &sb, beta, medium, time, key, bounce, depth);
         queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce);
-        path_continues = continue_path(PATH_STATE_ARGS slot, &sp, &sb, leaf, beta, medium, key,
-                                       bounce, depth);
+        path_continues = continue_path(PATH_STATE_ARGS slot, &sp, &sb, xyz(leaf.absorption),
+                                       leaf_index, beta, medium, key, bounce, depth);
     }
     add_radiance(radiance, k, gathered);
     path_depth[slot] = path_continues ? depth + 1u : 0u;
