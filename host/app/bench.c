@@ -79,7 +79,7 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
     fclose(f);
     bench_sibling_path(path, sizeof path, csv, "live");
     f = bench_open_csv(path, "device,scene,width,height,spp,step,live_paths\n");
-    for (int b = 0; b < 64 && st->live_per_step[b]; b++)
+    for (int b = 0; b < RENDER_LIVE_STEPS && st->live_per_step[b]; b++)
         fprintf(f, "\"%s\",\"%s\",%d,%d,%d,%d,%llu\n", s->dev.name, s->scene.desc.path,
                 s->scene.desc.width, s->scene.desc.height, st->spp_done, b,
                 (unsigned long long)st->live_per_step[b]);

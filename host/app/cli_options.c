@@ -5,6 +5,7 @@
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
+#include "render/session.h"
 #include "scene/scene.h"
 
 #include <errno.h>

@@ -9,7 +9,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "app/cli.h"
+#include "app/options.h"
+#include "base/error.h"
 
 typedef enum {
     ARG_INT,    /* int field, value in [min, max] */
