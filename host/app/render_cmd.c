@@ -136,6 +136,77 @@ static void choose_rank_device(const Options *o, RenderDesc *render, DeviceSpecL
     render->device = devices->spec[mpi_link_local_rank() % devices->count];
 }
 
+/* The checkpoint of a unit render sits beside -o's file, or at out/<scene>.ptckpt (not numbered,
+ * so that --resume finds it): base is that output's path. */
+static void checkpoint_base(const Options *o, char *base, size_t size)
+{
+    if (o->output) {
+        snprintf(base, size, "%s", o->output);
+        return;
+    }
+    char stem[512];
+    fs_stem(o->scene, stem, sizeof stem);
+    snprintf(base, size, "out/%s", stem);
+}
+
+/* The albedo, normal and depth layers asked for: after the beauty, from camera samples of their
+ * own, so that the beauty's bits cannot depend on them. */
+static void aov_pass(const Options *o, RenderImages *images, Session *session,
+                     const RenderSettings *settings, int spp_done)
+{
+    Error err = {0};
+    double start = seconds_now();
+    if (!render_images_aov_pass(images, session, settings, spp_done, &err))
+        die("%s", err.message);
+    if (!o->quiet && (images->mask & (AOV_MASK(AOV_LAYER_ALBEDO) | AOV_MASK(AOV_LAYER_NORMAL) |
+                                      AOV_MASK(AOV_LAYER_DEPTH))))
+        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_pass_spp(spp_done),
+                seconds_now() - start);
+}
+
+/* The EXR (linear, every layer, the record in its header), then the PNG (bloom and the display
+ * curve applied to the beauty after the EXR was written). */
+static void write_outputs(const Options *o, const OutputPaths *out, RenderImages *images,
+                          Session *session, const RenderStats *stats, int spp, RenderStop stop)
+{
+    const SceneDesc *desc = &session->scene.desc;
+    Error err = {0};
+    if (out->exr[0]) {
+        RenderRecord record = {.spp_done = stats->spp_done,
+                               .spp_requested = spp,
+                               .seed = o->seed, /* 0 unless --seed */
+                               .render_seconds = stats->seconds,
+                               .scene = o->scene,
+                               .partial = stop != RENDER_COMPLETE};
+        if (!render_write_exr(out->exr, images, session, &record, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out->exr);
+    }
+    if (out->png[0]) {
+        if (o->bloom_strength > 0.0f &&
+            !bloom_apply(&session->dev, images->rgb, desc->width, desc->height, o->bloom_strength,
+                         o->bloom_radius, &err))
+            die("%s", err.message);
+        DisplaySettings display = {.exposure = o->exposure, .tonemap = o->tonemap};
+        if (!image_write_png(out->png, images->rgb, desc->width, desc->height, display, &err))
+            die("%s", err.message);
+        printf("wrote %s\n", out->png);
+    }
+}
+
+/* Why the image holds fewer spp than asked, when it does. */
+static void report_stop(RenderStop stop, int spp_done, int spp, bool has_exr)
+{
+    const char *partial = has_exr ? " (its EXR header says partial = 1)" : "";
+    if (stop_signal_received())
+        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp%s\n",
+                stop_signal_name(stop_signal_received()), spp_done, spp,
+                spp_done < spp ? partial : "");
+    else if (stop == RENDER_STOPPED_BY_TIME_LIMIT)
+        fprintf(stderr, "pt: stopped by the time limit: the image holds %d of %d spp%s\n", spp_done,
+                spp, partial);
+}
+
 int command_render(const Options *o)
 {
     Error err = {0};
@@ -167,7 +238,6 @@ int command_render(const Options *o)
     RenderImages images;
     if (!render_images_alloc(&images, o->aov_mask, num_pixels))
         die("out of memory for a %dx%d film", desc->width, desc->height);
-    unsigned seed = o->seed; /* 0 unless --seed */
     int spp = desc->spp, spp_done = spp;
     RenderStop stop = RENDER_COMPLETE; /* anything else: the image is partial */
     /* From here on, SIGINT, SIGTERM and SIGHUP stop the render and keep the image. */
@@ -180,15 +250,7 @@ int command_render(const Options *o)
     bool rendered;
     char base[1100] = ""; /* the output a checkpoint sits beside */
     if (units) {
-        /* The checkpoint sits beside -o's file, or at out/<scene>.ptckpt (not numbered, so that
-         * --resume finds it). */
-        if (o->output)
-            snprintf(base, sizeof base, "%s", o->output);
-        else {
-            char stem[512];
-            fs_stem(o->scene, stem, sizeof stem);
-            snprintf(base, sizeof base, "out/%s", stem);
-        }
+        checkpoint_base(o, base, sizeof base);
         rendered = render_cmd_units_run(o, &session, &devices, &settings, base, &images, &stats,
                                         &stop, &err);
     } else {
@@ -212,47 +274,12 @@ int command_render(const Options *o)
         session_close(&session);
         return stop_exit_status();
     }
-    /* After the beauty, from its own camera samples: the beauty's bits cannot depend on it. */
-    double aov_start = seconds_now();
-    if (!render_images_aov_pass(&images, &session, &settings, spp_done, &err))
-        die("%s", err.message);
-    if (!o->quiet && (images.mask & (AOV_MASK(AOV_LAYER_ALBEDO) | AOV_MASK(AOV_LAYER_NORMAL) |
-                                     AOV_MASK(AOV_LAYER_DEPTH))))
-        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_pass_spp(spp_done),
-                seconds_now() - aov_start);
-
-    if (out.exr[0]) {
-        RenderRecord record = {.spp_done = spp_done,
-                               .spp_requested = spp,
-                               .seed = seed,
-                               .render_seconds = stats.seconds,
-                               .scene = o->scene,
-                               .partial = stop != RENDER_COMPLETE};
-        if (!render_write_exr(out.exr, &images, &session, &record, &err))
-            die("%s", err.message);
-        printf("wrote %s\n", out.exr);
-    }
-    if (out.png[0]) {
-        /* after the EXR, which stays the linear estimate without bloom */
-        if (o->bloom_strength > 0.0f &&
-            !bloom_apply(&session.dev, images.rgb, desc->width, desc->height, o->bloom_strength,
-                         o->bloom_radius, &err))
-            die("%s", err.message);
-        DisplaySettings display = {.exposure = o->exposure, .tonemap = o->tonemap};
-        if (!image_write_png(out.png, images.rgb, desc->width, desc->height, display, &err))
-            die("%s", err.message);
-        printf("wrote %s\n", out.png);
-    }
+    aov_pass(o, &images, &session, &settings, spp_done);
+    write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)
         render_cmd_units_remove_checkpoint(o, base);
     render_images_free(&images);
     session_close(&session);
-    if (stop_signal_received())
-        fprintf(stderr, "pt: stopped by %s: the image holds %d of %d spp%s\n",
-                stop_signal_name(stop_signal_received()), spp_done, spp,
-                spp_done < spp && out.exr[0] ? " (its EXR header says partial = 1)" : "");
-    else if (stop == RENDER_STOPPED_BY_TIME_LIMIT)
-        fprintf(stderr, "pt: stopped by the time limit: the image holds %d of %d spp%s\n", spp_done,
-                spp, out.exr[0] ? " (its EXR header says partial = 1)" : "");
+    report_stop(stop, spp_done, spp, out.exr[0] != 0);
     return stop_exit_status(); /* 0 after a time limit: the render the user asked for */
 }
