@@ -77,7 +77,7 @@ def main():
         common += ["--device", a.device]
     out = a.out or tempfile.mkdtemp(prefix="compare-builds-")
     os.makedirs(out, exist_ok=True)
-    same = differ = failed = 0
+    same = differ = failed = both_fail = 0
     for scene in scenes:
         for v in a.variants.split(","):
             args, env = VARIANTS[v]
@@ -90,7 +90,7 @@ def main():
             if codes[0][0] or codes[1][0]:
                 if codes[0][0] == codes[1][0]:
                     print(f"both fail  {name}: exit {codes[0][0]} {codes[0][1]}")
-                    same += 1
+                    both_fail += 1
                 else:
                     print(f"FAILED     {name}: exits {codes[0][0]} / {codes[1][0]} {codes[0][1]} {codes[1][1]}")
                     failed += 1
@@ -101,7 +101,8 @@ def main():
             else:
                 print(f"DIFFERENT  {name}")
                 differ += 1
-    print(f"compare-builds: {same} identical, {differ} different, {failed} failed")
+    print(f"compare-builds: {same} identical, {differ} different, {failed} failed"
+          f"{f', {both_fail} refused by both (same exit status)' if both_fail else ''}")
     return 0 if differ == 0 and failed == 0 else 1
 
 
