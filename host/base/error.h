@@ -29,7 +29,8 @@
     X(ERR_SETTINGS, "invalid setting")                                                             \
     X(ERR_OUT_OF_MEMORY, "out of memory")                                                          \
     X(ERR_SYSTEM, "operating system failure")                                                      \
-    X(ERR_MPI, "MPI job failure")
+    X(ERR_MPI, "MPI job failure")                                                                  \
+    X(ERR_PATH_ESCAPES, "path leaves the file's folder")
 
 typedef enum {
 #define X(code, text) code,

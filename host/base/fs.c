@@ -71,6 +71,56 @@ void fs_stem(const char *path, char *out, size_t size)
     snprintf(out, size, "%.*s", (int)len, path + start);
 }
 
+/* ---- Paths inside files ------------------------------------------------------------------- */
+
+static bool allow_outside_paths;
+
+void fs_set_allow_outside_paths(bool allow) { allow_outside_paths = allow; }
+bool fs_allow_outside_paths(void) { return allow_outside_paths; }
+
+/* True when the relative path ref climbs above its starting folder ("a/../../b" does, "a/../b"
+ * does not); "." and empty components do not count. */
+static bool climbs_out(const char *ref)
+{
+    int depth = 0;
+    for (const char *p = ref; *p;) {
+        const char *end = strchr(p, '/');
+        size_t n = end ? (size_t)(end - p) : strlen(p);
+        if (n == 2 && p[0] == '.' && p[1] == '.') {
+            if (--depth < 0)
+                return true;
+        } else if (n > 0 && !(n == 1 && p[0] == '.')) {
+            depth++;
+        }
+        p += n;
+        while (*p == '/')
+            p++;
+    }
+    return false;
+}
+
+bool fs_resolve_inside(const char *container, const char *ref, const char *what, char *out,
+                       size_t size, Error *err)
+{
+    if (!allow_outside_paths && (ref[0] == '/' || climbs_out(ref))) {
+        error_set(err, ERR_PATH_ESCAPES, container, 0,
+                  "%s: %s \"%s\" leaves the file's folder (paths in a scene file are relative to "
+                  "it; pt --allow-outside-paths reads them anyway)", container, what, ref);
+        return false;
+    }
+    int n;
+    const char *slash = strrchr(container, '/');
+    if (ref[0] == '/' || !slash)
+        n = snprintf(out, size, "%s", ref);
+    else
+        n = snprintf(out, size, "%.*s/%s", (int)(slash - container), container, ref);
+    if (n < 0 || (size_t)n >= size) {
+        error_set(err, ERR_TOO_LARGE, container, 0, "%s: %s: path too long", container, what);
+        return false;
+    }
+    return true;
+}
+
 /* ---- Atomic writes -------------------------------------------------------------------------- */
 
 /* Splits off the folder of `path` ("." when it has none). */

@@ -22,6 +22,16 @@ bool fs_has_suffix(const char *name, const char *suffix);
  * ("scenes/cornell-box/" -> "cornell-box", "a/b.json" -> "b"), into out[size]. */
 void fs_stem(const char *path, char *out, size_t size);
 
+/* A path named inside a file (a glTF URI, an MTL map, a COLLADA image, a Mitsuba or pbrt file
+ * name), resolved against that file's folder into out[size]. Such paths are relative and stay
+ * inside the folder: an absolute one, or one whose ".." lead outside the folder (checked on the
+ * text, before any file is touched), is refused with ERR_PATH_ESCAPES naming `what` (the key or
+ * element, e.g. "images[0].uri") and the path, unless fs_set_allow_outside_paths(true) (pt
+ * --allow-outside-paths). A JSON scene's own paths are not checked: the user wrote them. */
+bool fs_resolve_inside(const char *container, const char *ref, const char *what, char *out,
+                       size_t size, Error *err);
+void fs_set_allow_outside_paths(bool allow);
+bool fs_allow_outside_paths(void);
 
 /* Checks before a long computation that a file can be created at path: not empty, not a folder,
  * its folder exists and is writable, and room for the temporary name. ERR_OUTPUT otherwise. */

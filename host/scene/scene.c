@@ -65,23 +65,62 @@ static void set_defaults(SceneDesc *d)
     d->environment_scale = 1.0f;
 }
 
-/* Scene and mesh formats of other tools that pt does not read: named as such, not reported as
- * malformed JSON. */
-static bool refuse_foreign_format(const char *path, Error *err)
+/* The importers' declarations (scene/scene_import.h SCENE_IMPORTERS). */
+
+typedef struct {
+    const char *extension;
+    SceneImporter import;
+    const char *name;
+} ForeignFormat;
+
+#define FOREIGN_FORMAT(ext, importer, format_name) {ext, importer, format_name},
+static const ForeignFormat foreign_formats[] = {SCENE_IMPORTERS(FOREIGN_FORMAT)};
+#undef FOREIGN_FORMAT
+
+static const ForeignFormat *foreign_format(const char *path)
 {
-    static const char *const foreign[] = {".fbx", ".dae", ".3ds", ".blend", ".usd", ".usda",
-                                          ".usdc", ".usdz", ".stl", ".abc", ".x3d", ".wrl",
-                                          ".3mf", ".off", ".max", ".ma", ".mb", ".c4d", ".lwo",
-                                          ".dxf", ".step", ".stp", ".iges", ".igs", ".ifc", NULL};
-    for (int i = 0; foreign[i]; i++)
-        if (fs_has_suffix(path, foreign[i])) {
-            const char *dot = path + strlen(path) - strlen(foreign[i]);
-            error_set(err, ERR_FILE_READ, path, 0,
-                      "%s: pt does not read %s files; pt reads .json scenes, .obj, .ply, .gltf and "
-                      ".glb (export to one of them, e.g. glTF from Blender)", path, dot);
-            return true;
-        }
+    for (size_t i = 0; i < sizeof foreign_formats / sizeof foreign_formats[0]; i++)
+        if (fs_has_suffix(path, foreign_formats[i].extension))
+            return &foreign_formats[i];
+    return NULL;
+}
+
+/* The formats pt reads, for the message that refuses one it does not. */
+static void list_read_formats(char *out, size_t size)
+{
+    int n = snprintf(out, size, ".json scenes, .obj, .ply, .gltf, .glb");
+    for (size_t i = 0; i < sizeof foreign_formats / sizeof foreign_formats[0]; i++)
+        if (foreign_formats[i].import && n >= 0 && (size_t)n < size)
+            n += snprintf(out + n, size - (size_t)n, ", %s", foreign_formats[i].extension);
+}
+
+/* A scene file of another tool: read by its importer into a pt JSON tree and in-memory meshes
+ * (scene/scene_import.h), then read as any JSON scene; refused by name when pt does not read it. */
+static bool refuse_format(const char *path, const ForeignFormat *f, Error *err)
+{
+    char formats[512];
+    list_read_formats(formats, sizeof formats);
+    error_set(err, ERR_FILE_READ, path, 0,
+              "%s: pt does not read %s (%s) files; pt reads %s (export to one of them, e.g. glTF "
+              "from Blender)", path, f->name, f->extension, formats);
     return false;
+}
+
+static bool load_foreign(SceneDesc *d, const ForeignFormat *f, Error *err)
+{
+    if (!f->import)
+        return refuse_format(d->path, f, err);
+    if (!f->import(d->path, &d->imported, err))
+        return false;
+    if (!d->imported.root) {
+        error_set(err, ERR_FILE_READ, d->path, 0, "%s: the %s reader made no scene", d->path, f->name);
+        return false;
+    }
+    JsonParser p = {.file = d->path, .text = NULL, .err = err};
+    bool ok = scene_json_read(&p, d->imported.root, d);
+    cJSON_Delete(d->imported.root);
+    d->imported.root = NULL;
+    return ok;
 }
 
 /* A bare glTF: its objects, lights and materials; its own camera when it has one, else framed
@@ -96,8 +135,9 @@ static bool load_bare_gltf(SceneDesc *d, Error *err)
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
 {
     set_defaults(out);
-    if (refuse_foreign_format(path, err))
-        return false;
+    const ForeignFormat *named = foreign_format(path);
+    if (named && !named->import) /* refused by name, whether or not the file is there */
+        return refuse_format(path, named, err);
     struct stat st;
     if (stat(path, &st) != 0) {
         ErrorCode code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
@@ -114,6 +154,9 @@ bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: path too long", path);
         return false;
     }
+    const ForeignFormat *foreign = foreign_format(out->path);
+    if (foreign)
+        return load_foreign(out, foreign, err) || (scene_desc_free(out), false);
     bool ply = fs_has_suffix(out->path, ".ply");
     if (fs_has_suffix(out->path, ".gltf") || fs_has_suffix(out->path, ".glb"))
         return load_bare_gltf(out, err) || (scene_desc_free(out), false);
@@ -156,6 +199,7 @@ void scene_desc_free(SceneDesc *desc)
     free(desc->gltf_files);
     desc->gltf_files = NULL;
     desc->num_gltf_files = 0;
+    imported_scene_free(&desc->imported);
     free(desc->textures);
     desc->textures = NULL;
     desc->num_textures = 0;

@@ -83,10 +83,43 @@ static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc
     return true;
 }
 
+/* An object naming a mesh of an imported scene (scene/scene_import.h) by its "mesh" key: the mesh
+ * is in memory, keyed "<file>#<name>" so that objects naming it share it. */
+static bool parse_imported_object(JsonParser *p, const cJSON *e, const cJSON *mesh, int i,
+                                  bool has_shutter, SceneDesc *d)
+{
+    char key[64];
+    snprintf(key, sizeof key, "objects[%d].mesh", i);
+    if (!cJSON_IsString(mesh))
+        return json_fail(p, ERR_JSON_TYPE, key, "expected a mesh name (string)");
+    int m = imported_scene_find_mesh(&d->imported, mesh->valuestring);
+    if (m < 0)
+        return json_fail(p, ERR_JSON_VALUE, key,
+                         "no mesh named \"%s\" (the key names meshes of imported scene files)",
+                         mesh->valuestring);
+    ObjectOptions options = {0};
+    ObjectTransform transform = {0};
+    if (!parse_object_options(p, e, i, d, &options) ||
+        !object_transform_from_json(p, e, i, has_shutter, &transform))
+        return false;
+    if (!scene_desc_reserve_objects(d, 1))
+        return json_fail(p, ERR_TOO_LARGE, "objects", "out of memory");
+    int k = d->num_objects;
+    int n = snprintf(d->objects[k], sizeof d->objects[k], "%s#%s", d->path, mesh->valuestring);
+    if (n < 0 || (size_t)n >= sizeof d->objects[k])
+        return json_fail(p, ERR_TOO_LARGE, key, "file and mesh name too long");
+    d->object_formats[k] = MESH_IMPORTED;
+    d->object_options[k] = options;
+    d->object_transforms[k] = transform;
+    d->object_meshes[k] = &d->imported.meshes[m].mesh;
+    d->num_objects = k + 1;
+    return true;
+}
+
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
-    static const char *const keys[] = {"obj",    "ply",       "gltf",          "material",
-                                       "smooth", "transform", "transform_end", NULL};
+    static const char *const keys[] = {"obj",       "ply",           "gltf", "mesh", "material",
+                                       "smooth",    "transform",     "transform_end", NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -111,10 +144,15 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
         /* Exactly one of "obj", "ply" and "gltf" names the mesh; the key, not the extension,
          * says how to read it. */
         const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply"),
-                    *gltf = json_member(e, "gltf");
-        if (!!obj + !!ply + !!gltf > 1)
-            return json_fail(p, ERR_JSON_VALUE, key, "has both \"%s\" and \"%s\" (give one)",
-                             obj ? "obj" : "ply", gltf ? "gltf" : "ply");
+                    *gltf = json_member(e, "gltf"), *mesh = json_member(e, "mesh");
+        if (!!obj + !!ply + !!gltf + !!mesh > 1)
+            return json_fail(p, ERR_JSON_VALUE, key, "names more than one of \"obj\", \"ply\", "
+                             "\"gltf\" and \"mesh\" (give one)");
+        if (mesh) {
+            if (!parse_imported_object(p, e, mesh, i, has_shutter, d))
+                return false;
+            continue;
+        }
         if (!obj && !ply && !gltf) {
             snprintf(key, sizeof key, "objects[%d].obj", i);
             return json_fail(p, ERR_JSON_VALUE, key, "missing (or \"ply\", \"gltf\": the mesh file)");

@@ -13,6 +13,7 @@
 #include "scene/camera.h"
 #include "scene/material_json.h"
 #include "scene/scene_data.h"
+#include "scene/scene_import.h"
 #include "scene/texture_json.h"
 
 /* The limits of the film and of path depth, for the scene file and the command line alike. */
@@ -38,8 +39,9 @@ typedef enum {
 
 /* What an object's file is, by the key that named it ("obj", "ply" or "gltf"), never by its
  * extension. A MESH_GLTF object is one primitive of a glTF placed by one node: its mesh is in
- * memory (SceneDesc.object_meshes), its objects[i] the primitive's key "<file>#meshes[m].primitives[p]". */
-typedef enum { MESH_OBJ, MESH_PLY, MESH_GLTF } MeshFormat;
+ * memory (SceneDesc.object_meshes), its objects[i] the primitive's key "<file>#meshes[m].primitives[p]".
+ * A MESH_IMPORTED object names a mesh of SceneDesc.imported: its key is "<file>#<mesh name>". */
+typedef enum { MESH_OBJ, MESH_PLY, MESH_GLTF, MESH_IMPORTED } MeshFormat;
 
 /* A glTF file the description read (scene/gltf_scene.h), kept until scene_desc_free: its decoded
  * primitives are the objects' meshes, its images the materials' embedded textures. */
@@ -73,6 +75,8 @@ typedef struct {
                                       NULL (objects[i] is read); NULL: none */
     SceneGltf *gltf_files; /* the glTF files the objects come from */
     int num_gltf_files;
+    ImportedScene imported; /* a foreign scene file's meshes (scene/scene_import.h), named by
+                               objects' "mesh" key; its root is freed once read */
     TextureDesc *textures;   /* the "textures" block */
     int num_textures;
     MaterialDesc *materials; /* the "materials" block; scene material i is materials[i] */
