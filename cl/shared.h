@@ -22,6 +22,7 @@ typedef cl_uint uint;
  * after this file instead (an OpenCL program is one text: Makefile CL_SOURCES). */
 #ifndef __OPENCL_C_VERSION__
 #include "shared/features.h"
+#include "shared/program_parts.h"
 #include "shared/geometry.h"
 #include "shared/material.h"
 #include "shared/render.h"

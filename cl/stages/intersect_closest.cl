@@ -58,6 +58,7 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
     count_group_rays(group_rays, traced ? 1u : 0u, 0u, counters);
 }
 
+#if PT_PART(CORE)
 kernel void intersect_closest(INTERSECT_CLOSEST_PARAMS)
 {
     local uint group_rays[2];
@@ -65,7 +66,9 @@ kernel void intersect_closest(INTERSECT_CLOSEST_PARAMS)
     intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, group_rays,
                             false);
 }
+#endif
 
+#if PT_PART(ABLATION)
 kernel void intersect_closest_brute_force(INTERSECT_CLOSEST_PARAMS)
 {
     local uint group_rays[2];
@@ -73,3 +76,4 @@ kernel void intersect_closest_brute_force(INTERSECT_CLOSEST_PARAMS)
     intersect_closest_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, group_rays,
                             true);
 }
+#endif

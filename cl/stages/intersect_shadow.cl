@@ -75,6 +75,7 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
     count_group_rays(group_rays, 0u, traced ? 1u : 0u, counters);
 }
 
+#if PT_PART(CORE)
 kernel void intersect_shadow(INTERSECT_SHADOW_PARAMS)
 {
     local uint group_rays[2];
@@ -82,7 +83,9 @@ kernel void intersect_shadow(INTERSECT_SHADOW_PARAMS)
     intersect_shadow_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, shadow_queue,
                            shadow_count, group_rays, false);
 }
+#endif
 
+#if PT_PART(ABLATION)
 kernel void intersect_shadow_brute_force(INTERSECT_SHADOW_PARAMS)
 {
     local uint group_rays[2];
@@ -90,3 +93,4 @@ kernel void intersect_shadow_brute_force(INTERSECT_SHADOW_PARAMS)
     intersect_shadow_group(p, &scene, PATH_STATE_ARGS active, n_active, counters, shadow_queue,
                            shadow_count, group_rays, true);
 }
+#endif

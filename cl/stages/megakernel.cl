@@ -12,6 +12,7 @@
  * Not for the ablations (no compaction, brute force) nor scenes with black holes (their bent rays
  * are a stage of their own). */
 
+#if PT_PART(MEGAKERNEL)
 kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint first_sample,
                         uint n, global uint *counters)
 {
@@ -32,6 +33,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, extension, shadow, counters);
 }
+#endif
 
 #if BVH_WIDTH == 8 && !PT_FEATURE(INSTANCES) && !PT_FEATURE(CUTOUT)
 #if PACKET_RAYS != 8
@@ -105,6 +107,7 @@ PT_INLINE uint connect_packet(const SceneView *scene, PATH_STATE_PARAMS uint fir
     return lanes & lane_bits(h.prim != (uint8)(HIT_NONE));
 }
 
+#if PT_PART(MEGAKERNEL)
 kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                                 uint first_sample, uint n, global uint *counters)
 {
@@ -140,4 +143,5 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, extension, shadow, counters);
 }
+#endif
 #endif

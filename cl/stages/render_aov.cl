@@ -30,6 +30,7 @@ inline float3 aov_delta_direction(const Bsdf *b, float3 wo, bool front)
     return normalize((float3)(-wo.x / eta, -wo.y / eta, -cos_t));
 }
 
+#if PT_PART(AOV)
 kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global float4 *albedo,
                        global float4 *normal)
 {
@@ -76,3 +77,4 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
     albedo[pixel] = (float4)(albedo_sum / n, hits ? depth_sum / (float)hits : 0.0f);
     normal[pixel] = (float4)(normal_sum / n, (float)hits / n);
 }
+#endif

@@ -290,6 +290,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
 /* With shadow_queue != 0 (RENDER_SHADOW_QUEUE), the slots that queued a shadow ray are appended to
  * shadow_queue[] (one global atomic per work-group, on shadow_count[0]) so that intersect_shadow
  * runs over those only; otherwise intersect_shadow checks every active slot's flag. */
+#if PT_PART(CORE)
 kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                           const global uint *active, uint n_active, global uint *shadow_queue,
                           global uint *shadow_count)
@@ -312,3 +313,4 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     if (queued)
         shadow_queue[group_base + rank] = slot;
 }
+#endif

@@ -332,8 +332,11 @@ bool device_open(Device *dev, const char *spec, Error *err)
 
 void device_close(Device *dev)
 {
-    if (dev->program)
-        clReleaseProgram(dev->program);
+    for (int i = 0; i < PROGRAM_PART_COUNT; i++)
+        if (dev->programs[i])
+            clReleaseProgram(dev->programs[i]);
+    free(dev->source);
+    free(dev->options);
     if (dev->queue)
         clReleaseCommandQueue(dev->queue);
     if (dev->context)

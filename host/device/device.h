@@ -14,12 +14,29 @@
 #include "base/error.h"
 #include "base/shared_types.h"
 
+/* The parts the program is built in (cl/shared/program_parts.h says why): X(NAME, the kernels
+ * that only part NAME has, space-separated). A kernel of no list is CORE's (or in every part). */
+#define PROGRAM_PARTS(X)                                                                           \
+    X(CORE, "")                                                                                    \
+    X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
+    X(AOV, "render_aov")                                                                           \
+    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")
+#define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
+enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
+#undef PROGRAM_PART_ENUM
+
 typedef struct {
     cl_platform_id platform;
     cl_device_id device;
     cl_context context;
     cl_command_queue queue; /* in order, with profiling enabled */
-    cl_program program;
+    /* The program's parts (PROGRAM_PARTS), each built when first needed; a program built whole
+     * (tests' programs with kernels of their own, PT_PROGRAM_PARTS=0) is programs[0] alone. */
+    cl_program programs[PROGRAM_PART_COUNT];
+    bool whole_program;
+    char *source;    /* the program's text, kept for the parts built later */
+    char *options;   /* its options (features included), likewise */
+    bool announced;  /* the first-time build was announced (one line a device) */
     cl_device_type type;
     cl_ulong max_alloc;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE */
     cl_ulong global_mem; /* CL_DEVICE_GLOBAL_MEM_SIZE */
@@ -35,9 +52,10 @@ typedef struct {
     char name[256];
     char platform_name[256];
     char driver_version[128];
-    double build_seconds; /* time to get the program: compile, or load from the kernel cache */
+    double build_seconds; /* time to get the program's parts built so far: compile, or load from
+                           * the kernel cache */
     bool use_cache;       /* set before device_build; device_open sets it unless PT_NO_CACHE=1 */
-    bool cache_hit;       /* the program came from the kernel cache */
+    bool cache_hit;       /* every part built so far came from the kernel cache */
     ProgramFeatures features; /* what the program was built for (device_build) */
 } Device;
 
@@ -62,8 +80,9 @@ bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err);
 
 /* Builds the program from the embedded cl/ sources followed by extra_source (may be NULL; tests add
  * their kernels this way), specialised for `features` (a set of FEATURE_* bits, cl/shared/features.h;
- * PROGRAM_FEATURES_ALL keeps every feature): the kernel cache keys on them with the options. On
- * failure prints the full build log and returns ERR_KERNEL_BUILD. */
+ * PROGRAM_FEATURES_ALL keeps every feature): the kernel cache keys on them with the options. Without
+ * extra_source only the CORE part is built now, the others by device_kernel when a kernel of
+ * theirs is first asked for. On failure prints the full build log and returns ERR_KERNEL_BUILD. */
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err);
 
@@ -83,6 +102,8 @@ void program_features_options(ProgramFeatures features, char out[PROGRAM_FEATURE
 #define PROGRAM_FEATURE_SUMMARY_SIZE (sizeof("none") PROGRAM_FEATURES(PT_FEATURE_WORD_LENGTH))
 void program_features_summary(ProgramFeatures features, char out[PROGRAM_FEATURE_SUMMARY_SIZE]);
 
+/* The kernel called name, building its part first if it is not yet built (a failed build of a
+ * part prints its log and ends the process, as a kernel that is not there does). */
 cl_kernel device_kernel(Device *dev, const char *name);
 /* The kernel, or NULL where the program's options compiled it out (#if around the kernel). */
 cl_kernel device_kernel_if_built(Device *dev, const char *name);

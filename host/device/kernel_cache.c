@@ -6,9 +6,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <unistd.h>
 
+#include "base/env.h"
 #include "base/error.h"
 #include "base/fs.h"
 
@@ -122,7 +125,78 @@ bool kernel_cache_load(uint64_t key, unsigned char **data, size_t *size)
     *size = got - sizeof(EntryHeader);
     memmove(bytes, bytes + sizeof(EntryHeader), *size);
     *data = bytes;
+    utimes(path, NULL); /* used now: the last to go when the cache is pruned */
     return true;
+}
+
+/* ---- The size bound ------------------------------------------------------------------------ */
+
+typedef struct {
+    char name[64];
+    off_t size;
+    time_t used;
+} CachedEntry;
+
+static int oldest_first(const void *a, const void *b)
+{
+    time_t x = ((const CachedEntry *)a)->used, y = ((const CachedEntry *)b)->used;
+    return (x > y) - (x < y);
+}
+
+/* Entries are the binaries of every scene's feature set, part and device a user ever rendered
+ * with, and each new driver or pt version makes new ones: without a bound the folder only grows.
+ * Over the limit (PT_KERNEL_CACHE_MB, default KERNEL_CACHE_DEFAULT_MB), the least recently used
+ * entries go (a load touches its entry) until the rest fill three quarters of it. Another process
+ * may be pruning at once: a file already gone is fine. */
+static void prune(const char *dir)
+{
+    long limit_mb = KERNEL_CACHE_DEFAULT_MB;
+    Error err = {0};
+    if (!env_int("PT_KERNEL_CACHE_MB", 1, 1 << 20, KERNEL_CACHE_DEFAULT_MB, &limit_mb, &err)) {
+        warn("%s", err.message);
+        return;
+    }
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    CachedEntry *entries = NULL;
+    size_t count = 0, room = 0;
+    off_t total = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "kernels-", 8) != 0 || n >= sizeof entries->name || n < 4 ||
+            strcmp(e->d_name + n - 4, ".bin") != 0)
+            continue;
+        char path[1400];
+        struct stat st;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+            continue;
+        if (count == room) {
+            room = room ? 2 * room : 64;
+            CachedEntry *grown = realloc(entries, room * sizeof *grown);
+            if (!grown)
+                break;
+            entries = grown;
+        }
+        snprintf(entries[count].name, sizeof entries[count].name, "%s", e->d_name);
+        entries[count].size = st.st_size;
+        entries[count].used = st.st_mtime;
+        total += st.st_size;
+        count++;
+    }
+    closedir(d);
+    off_t limit = (off_t)limit_mb << 20;
+    if (total > limit) {
+        qsort(entries, count, sizeof *entries, oldest_first);
+        for (size_t i = 0; i < count && total > limit / 4 * 3; i++) {
+            char path[1400];
+            snprintf(path, sizeof path, "%s/%s", dir, entries[i].name);
+            if (unlink(path) == 0 || errno == ENOENT)
+                total -= entries[i].size;
+        }
+    }
+    free(entries);
 }
 
 /* mkdir -p for the cache folder (base/fs.h), and a folder this process may write into. */
@@ -192,4 +266,6 @@ void kernel_cache_store(uint64_t key, const unsigned char *data, size_t size)
     ok = (fclose(f) == 0) && ok;
     if (!ok || rename(tmp, path) != 0)
         unlink(tmp);
+    else
+        prune(dir);
 }

@@ -8,6 +8,10 @@
 #ifndef PT_KERNEL_CACHE_H
 #define PT_KERNEL_CACHE_H
 
+/* The cache's size bound (kernel_cache.c prune; PT_KERNEL_CACHE_MB overrides): a few hundred
+ * feature sets' parts. */
+#define KERNEL_CACHE_DEFAULT_MB 512
+
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -23,7 +27,10 @@ void kernel_cache_prepare(void);
 /* *data is malloc'ed (the program binary, header removed); false when there is no usable entry
  * (a present but unusable one is also warned about). */
 bool kernel_cache_load(uint64_t key, unsigned char **data, size_t *size);
-/* Best effort: a cache that cannot be written is a warning (once), not an error. */
+/* Best effort: a cache that cannot be written is a warning (once), not an error. Entries are
+ * written to a temporary name and renamed, so processes storing one key at once both succeed and
+ * leave one whole entry; then the least recently used entries are removed while the folder is over
+ * its size bound. */
 void kernel_cache_store(uint64_t key, const unsigned char *data, size_t size);
 
 #endif

@@ -75,30 +75,58 @@ bool device_choose_program_options(Device *dev, Error *err)
 
 const char *device_build_options(const Device *dev) { return dev->build_options; }
 
+/* The parts: each one's -DPT_PARTS bit and the kernels only it has. */
+typedef struct {
+    const char *name;
+    unsigned bit;
+    const char *kernels;
+} ProgramPart;
+
+#define PROGRAM_PART_ROW(id, kernel_list) {#id, PT_PART_BIT_##id, kernel_list},
+static const ProgramPart program_parts[PROGRAM_PART_COUNT] = {PROGRAM_PARTS(PROGRAM_PART_ROW)};
+#undef PROGRAM_PART_ROW
+
+/* The part that has kernel `name`: the one whose list names it, else CORE. */
+static int part_of_kernel(const char *name)
+{
+    size_t n = strlen(name);
+    for (int i = 0; i < PROGRAM_PART_COUNT; i++)
+        for (const char *k = program_parts[i].kernels; *k;) {
+            size_t len = strcspn(k, " ");
+            if (len == n && strncmp(k, name, n) == 0)
+                return i;
+            k += len;
+            k += strspn(k, " ");
+        }
+    return PROGRAM_PART_CORE;
+}
+
 /* Prints the build log of a failed build and records the error. */
-static bool build_failed(Device *dev, const char *options, cl_int status, Error *err)
+static bool build_failed(Device *dev, cl_program program, const char *options, cl_int status,
+                         Error *err)
 {
     size_t log_size = 0;
-    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
+    CL_CHECK(clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
     char *log = malloc(log_size + 1);
     if (!log)
         die("out of memory");
-    CL_CHECK(clGetProgramBuildInfo(dev->program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
+    CL_CHECK(clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
     log[log_size] = '\0';
     fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name, options, log);
     free(log);
+    clReleaseProgram(program);
     error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
               dev->name, cl_error_name(status));
     return false;
 }
 
-/* A program from a cached binary; false (and nothing kept) when the entry is missing or unusable. */
-static bool build_from_cache(Device *dev, const char *options, uint64_t key)
+/* A program from a cached binary; NULL when the entry is missing or unusable. */
+static cl_program build_from_cache(Device *dev, const char *options, uint64_t key)
 {
     unsigned char *binary = NULL;
     size_t size = 0;
     if (!kernel_cache_load(key, &binary, &size))
-        return false;
+        return NULL;
     cl_int status, binary_status;
     const unsigned char *binaries[1] = {binary};
     cl_program program = clCreateProgramWithBinary(dev->context, 1, &dev->device, &size, binaries,
@@ -109,78 +137,109 @@ static bool build_from_cache(Device *dev, const char *options, uint64_t key)
             clReleaseProgram(program);
         warn("the driver refused the cached kernels (%s): rebuilding",
              cl_error_name(status != CL_SUCCESS ? status : binary_status));
-        return false;
+        return NULL;
     }
     if (clBuildProgram(program, 1, &dev->device, options, NULL, NULL) != CL_SUCCESS) {
         warn("the cached kernels do not build on %s: rebuilding", dev->name);
         clReleaseProgram(program);
-        return false;
+        return NULL;
     }
-    dev->program = program;
-    return true;
+    return program;
 }
 
-static void store_in_cache(Device *dev, uint64_t key)
+static void store_in_cache(cl_program program, uint64_t key)
 {
     size_t size = 0;
-    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL));
+    CL_CHECK(clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL));
     if (size == 0)
         return;
     unsigned char *binary = malloc(size);
     if (!binary)
         return;
     unsigned char *binaries[1] = {binary};
-    CL_CHECK(clGetProgramInfo(dev->program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL));
+    CL_CHECK(clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL));
     kernel_cache_store(key, binary, size);
     free(binary);
+}
+
+/* Builds part `part` (or the whole program: dev->whole_program) from the kernel cache or the
+ * source into dev->programs[part], adding its time to dev->build_seconds. */
+static bool build_part(Device *dev, int part, Error *err)
+{
+    char options[sizeof dev->build_options + PROGRAM_FEATURE_OPTIONS_SIZE + 32];
+    if (dev->whole_program)
+        snprintf(options, sizeof options, "%s", dev->options);
+    else
+        snprintf(options, sizeof options, "%s -DPT_PARTS=%uu", dev->options, program_parts[part].bit);
+    double start = seconds_now();
+    const char *key_parts[] = {dev->source, options, dev->name, dev->platform_name,
+                               dev->driver_version};
+    uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
+    cl_program program = dev->use_cache ? build_from_cache(dev, options, key) : NULL;
+    if (!program) {
+        dev->cache_hit = false;
+        cl_int status;
+        const char *sources[1] = {dev->source};
+        program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
+        CL_CHECK_ERR(status, "clCreateProgramWithSource");
+        status = clBuildProgram(program, 1, &dev->device, options, NULL, NULL);
+        if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS)
+            return build_failed(dev, program, options, status, err);
+        CL_CHECK_ERR(status, "clBuildProgram");
+        if (dev->use_cache)
+            store_in_cache(program, key);
+    }
+    dev->programs[part] = program;
+    dev->build_seconds += seconds_now() - start;
+    return true;
 }
 
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err)
 {
     /* The features are the program's specialisation: part of its options, so of the cache key. */
-    char options[sizeof dev->build_options + PROGRAM_FEATURE_OPTIONS_SIZE];
     size_t used = strlen(device_build_options(dev));
-    memcpy(options, device_build_options(dev), used);
-    program_features_options(features, options + used);
-    dev->features = features;
-
-    char *source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
-    if (!source)
+    dev->options = malloc(used + PROGRAM_FEATURE_OPTIONS_SIZE);
+    dev->source = malloc(pt_kernel_source_length + (extra_source ? strlen(extra_source) : 0) + 600);
+    if (!dev->options || !dev->source)
         die("out of memory");
-    memcpy(source, pt_kernel_source, pt_kernel_source_length + 1);
+    memcpy(dev->options, device_build_options(dev), used);
+    program_features_options(features, dev->options + used);
+    dev->features = features;
+    memcpy(dev->source, pt_kernel_source, pt_kernel_source_length + 1);
     if (extra_source)
-        sprintf(source + pt_kernel_source_length, "\n#line 1 \"%.500s\"\n%s",
+        sprintf(dev->source + pt_kernel_source_length, "\n#line 1 \"%.500s\"\n%s",
                 extra_name ? extra_name : "extra", extra_source);
+    /* A program with kernels of its own is built whole: its kernels are in no part's list. */
+    bool parts = true;
+    if (!env_flag("PT_PROGRAM_PARTS", true, &parts, err))
+        return false;
+    dev->whole_program = extra_source != NULL || !parts;
+    dev->build_seconds = 0.0;
+    dev->cache_hit = true;
+    /* Now: the part of the device's own way to render (a CPU's megakernel, a GPU's wavefront:
+     * render/megakernel.c), so that the time reported with the scene is the wait for it. */
+    bool cpu = (dev->type & CL_DEVICE_TYPE_CPU) != 0;
+    return build_part(dev, cpu && !dev->whole_program ? PROGRAM_PART_MEGAKERNEL : PROGRAM_PART_CORE,
+                      err);
+}
 
-    double start = seconds_now();
-    const char *key_parts[] = {source, options, dev->name, dev->platform_name,
-                               dev->driver_version};
-    uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
-    dev->cache_hit = dev->use_cache && build_from_cache(dev, options, key);
-    if (!dev->cache_hit) {
-        cl_int status;
-        const char *sources[1] = {source};
-        dev->program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
-        CL_CHECK_ERR(status, "clCreateProgramWithSource");
-        status = clBuildProgram(dev->program, 1, &dev->device, options, NULL, NULL);
-        if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS) {
-            free(source);
-            return build_failed(dev, options, status, err);
-        }
-        CL_CHECK_ERR(status, "clBuildProgram");
-        if (dev->use_cache)
-            store_in_cache(dev, key);
+/* The program that has kernel `name`, its part built first if need be. */
+static cl_program program_of_kernel(Device *dev, const char *name)
+{
+    int part = dev->whole_program ? 0 : part_of_kernel(name);
+    if (!dev->programs[part]) {
+        Error err = {0};
+        if (!build_part(dev, part, &err))
+            die("%s", err.message);
     }
-    dev->build_seconds = seconds_now() - start;
-    free(source);
-    return true;
+    return dev->programs[part];
 }
 
 cl_kernel device_kernel_if_built(Device *dev, const char *name)
 {
     cl_int status;
-    cl_kernel kernel = clCreateKernel(dev->program, name, &status);
+    cl_kernel kernel = clCreateKernel(program_of_kernel(dev, name), name, &status);
     if (status == CL_INVALID_KERNEL_NAME)
         return NULL;
     if (status != CL_SUCCESS)
@@ -191,7 +250,7 @@ cl_kernel device_kernel_if_built(Device *dev, const char *name)
 cl_kernel device_kernel(Device *dev, const char *name)
 {
     cl_int status;
-    cl_kernel kernel = clCreateKernel(dev->program, name, &status);
+    cl_kernel kernel = clCreateKernel(program_of_kernel(dev, name), name, &status);
     if (status != CL_SUCCESS) {
         fprintf(stderr, "pt: kernel '%s' not found\n", name);
         cl_fail(status, "clCreateKernel", __FILE__, __LINE__);

@@ -164,11 +164,14 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
      * around it also counted the blocking count read). */
     if (s->profile)
         compactor_set_profile(w->compactor, &stats->stage_ms[STAGE_COMPACT_PATHS]);
-    for (int k = 0; k < STAGE_COUNT; k++)
-        if (stage_kinds[k].made == STAGE_MADE_INIT)
-            w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
     if (!black_holes_init(w, &scene->desc, &scene->data, err) || !megakernel_init(w, err))
         return false;
+    /* The megakernel replaces every stage but the film's: their kernels are not asked for, so
+     * their part of the program is never built (device_kernel builds parts on demand). */
+    for (int k = 0; k < STAGE_COUNT; k++)
+        if (stage_kinds[k].made == STAGE_MADE_INIT &&
+            (!w->kernels[STAGE_TRACE_PATHS] || k == STAGE_ACCUMULATE_FILM))
+            w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
     /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
     if (s->sort_materials && !stats->config.megakernel) {
         w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
@@ -232,15 +235,16 @@ static void set_all_args(Wavefront *w)
         own[st] = KERNEL_ARGS(w->kernels[st], i, KARG(list), KARG(zero));
     }
     cl_kernel generate = w->kernels[STAGE_GENERATE_CAMERA_RAYS];
-    i = wavefront_set_path_args(w, generate, false);
-    w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
-
-    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
-                KARG(w->counters));
-    KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE], KARG(w->shadow_queue),
-                KARG(w->shadow_count));
-    KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW], KARG(w->counters),
-                KARG(w->shadow_queue), KARG(w->shadow_count));
+    if (generate) { /* the wavefront's stages (the megakernel has none of them) */
+        i = wavefront_set_path_args(w, generate, false);
+        w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
+        KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
+                    KARG(w->counters));
+        KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE],
+                    KARG(w->shadow_queue), KARG(w->shadow_count));
+        KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
+                    KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
+    }
     cl_kernel geodesic = w->kernels[STAGE_INTEGRATE_GEODESIC];
     if (geodesic)
         KERNEL_ARGS(geodesic, own[STAGE_INTEGRATE_GEODESIC], KARG(w->black_holes),

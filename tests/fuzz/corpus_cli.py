@@ -65,6 +65,8 @@ def env_cases():
     settings = [("PT_BVH_WIDTH", ["0", "1", "3", "16", "abc", "", "-2", "8", "2x"]),
                 ("PT_BVH_QUANTIZED", ["2", "x", "", "0", "1"]),
                 ("PT_NO_CACHE", ["1", "0", "yes", ""]),
+                ("PT_KERNEL_CACHE_MB", ["0", "-1", "abc", "1", "", "99999999999"]),
+                ("PT_PROGRAM_PARTS", ["2", "x", ""]),
                 ("PT_MEGAKERNEL", ["0", "1", "2", "on", ""]),
                 ("PT_PACKETS", ["0", "1", "2", "off", ""]),
                 ("PT_LOCAL_SIZE", ["0", "-1", "abc", "1", "3", "100000", "99999999999"]),

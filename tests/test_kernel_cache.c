@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+/* The kernel cache and the program's parts (issue 39): the cache key follows every build option;
+ * two processes building one entry at once both succeed and leave one whole entry; the cache stays
+ * under its size bound by dropping the least recently used entries; the program is built in parts,
+ * the device's own part first and the others when a kernel of theirs is first asked for. */
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "device/device.h"
+#include "device/kernel_cache.h"
+#include "support.h"
+
+static const char *fresh_cache(void)
+{
+    const char *dir = test_temp_dir();
+    setenv("XDG_CACHE_HOME", dir, 1);
+    unsetenv("PT_NO_CACHE");
+    unsetenv("PT_CL_OPTIONS");
+    unsetenv("PT_KERNEL_CACHE_MB");
+    unsetenv("PT_PROGRAM_PARTS");
+    return dir;
+}
+
+/* Files named kernels-*.bin in the cache folder. */
+static int count_entries(void)
+{
+    DIR *d = opendir(kernel_cache_dir());
+    int n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += strncmp(e->d_name, "kernels-", 8) == 0 && strstr(e->d_name, ".bin") &&
+             !strstr(e->d_name, ".tmp");
+    if (d)
+        closedir(d);
+    return n;
+}
+
+static bool build_probe(Device *dev, const char *extra, Error *err)
+{
+    return device_open(dev, "cpu", err) &&
+           device_build(dev, PROGRAM_FEATURES_ALL, extra, "probe.cl", err);
+}
+
+/* A build option the user changes (PT_CL_OPTIONS) or a changed source is another entry, never the
+ * old binary. */
+Test(kernel_cache, key_follows_options_and_source, .timeout = 600)
+{
+    fresh_cache();
+    const char *extra = "kernel void cache_key_probe(global int *x) { x[0] = 1; }";
+    Error err = {0};
+    Device a, b, c, d;
+    cr_assert(build_probe(&a, extra, &err), "%s", err.message);
+    cr_expect_not(a.cache_hit);
+    setenv("PT_CL_OPTIONS", "-cl-mad-enable", 1);
+    cr_assert(build_probe(&b, extra, &err), "%s", err.message);
+    cr_expect_not(b.cache_hit, "other build options must not load the first binary");
+    unsetenv("PT_CL_OPTIONS");
+    cr_assert(build_probe(&c, "kernel void cache_key_probe(global int *x) { x[0] = 2; }", &err),
+              "%s", err.message);
+    cr_expect_not(c.cache_hit, "another source must not load the first binary");
+    cr_assert(build_probe(&d, extra, &err), "%s", err.message);
+    cr_expect(d.cache_hit, "the first program again comes from the cache");
+    cr_expect_eq(count_entries(), 3);
+    device_close(&a), device_close(&b), device_close(&c), device_close(&d);
+}
+
+/* Two processes that build the same program into an empty cache at the same moment (they wait on
+ * one pipe, then build) both succeed, and leave one whole entry that a third build loads. */
+Test(kernel_cache, two_processes_build_one_entry, .timeout = 900)
+{
+    fresh_cache();
+    const char *extra = "kernel void cache_race_probe(global int *x) { x[0] = 3; }";
+    int go[2];
+    cr_assert_eq(pipe(go), 0);
+    pid_t children[2];
+    for (int i = 0; i < 2; i++) {
+        children[i] = fork();
+        cr_assert(children[i] >= 0);
+        if (children[i] == 0) {
+            close(go[1]);
+            char byte;
+            if (read(go[0], &byte, 1) != 1)
+                _exit(3);
+            Device dev;
+            Error err = {0};
+            bool ok = build_probe(&dev, extra, &err);
+            if (!ok)
+                fprintf(stderr, "child %d: %s\n", i, err.message);
+            _exit(ok ? 0 : 1);
+        }
+    }
+    close(go[0]);
+    cr_assert_eq(write(go[1], "gg", 2), 2); /* both start now */
+    close(go[1]);
+    for (int i = 0; i < 2; i++) {
+        int status = 0;
+        cr_assert_eq(waitpid(children[i], &status, 0), children[i]);
+        cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 0, "child %d failed (status %d)", i,
+                  status);
+    }
+    cr_expect_eq(count_entries(), 1, "one entry, no temporary files left");
+    Device third;
+    Error err = {0};
+    cr_assert(build_probe(&third, extra, &err), "%s", err.message);
+    cr_expect(third.cache_hit, "the entry the two wrote is whole");
+    device_close(&third);
+}
+
+static void store_entry(uint64_t key, size_t size, time_t used)
+{
+    unsigned char *data = calloc(size, 1);
+    cr_assert(data);
+    data[0] = (unsigned char)key;
+    kernel_cache_store(key, data, size);
+    free(data);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/kernels-%016llx-v2.bin", kernel_cache_dir(),
+             (unsigned long long)key);
+    struct timeval times[2] = {{.tv_sec = used}, {.tv_sec = used}};
+    cr_assert_eq(utimes(path, times), 0, "%s", path);
+}
+
+static bool entry_exists(uint64_t key)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/kernels-%016llx-v2.bin", kernel_cache_dir(),
+             (unsigned long long)key);
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* Over PT_KERNEL_CACHE_MB the least recently used entries go, and a load counts as a use. */
+Test(kernel_cache, size_bound_drops_least_recently_used)
+{
+    fresh_cache();
+    setenv("PT_KERNEL_CACHE_MB", "1", 1);
+    const size_t size = 300 << 10; /* four of these are over 1 MiB, three are not */
+    store_entry(1, size, 1000);
+    store_entry(2, size, 2000);
+    store_entry(3, size, 3000);
+    cr_expect(entry_exists(1) && entry_exists(2) && entry_exists(3), "under the bound: all kept");
+    unsigned char *data;
+    size_t got;
+    cr_assert(kernel_cache_load(1, &data, &got)); /* entry 1 is used now: the newest */
+    cr_expect_eq(got, size);
+    free(data);
+    store_entry(4, size, time(NULL));
+    /* 1.2 MiB > 1 MiB: drop the oldest until at most 768 KiB remain, i.e. two entries. */
+    cr_expect_not(entry_exists(2), "the least recently used entry is dropped");
+    cr_expect_not(entry_exists(3), "then the next");
+    cr_expect(entry_exists(1), "an entry just loaded stays");
+    cr_expect(entry_exists(4), "the entry just stored stays");
+    unsetenv("PT_KERNEL_CACHE_MB");
+}
+
+/* Without kernels of its own the program is built in parts: on a CPU the megakernel's first, the
+ * wavefront's when one of its kernels is asked for; each part lacks the other's big kernels; the
+ * second part's build time adds to the total. PT_PROGRAM_PARTS=0 builds it whole. */
+Test(kernel_cache, program_parts_built_when_needed, .timeout = 900)
+{
+    fresh_cache();
+    Device dev;
+    Error err = {0};
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    dev.use_cache = false;
+    cr_assert(device_build(&dev, 0, NULL, NULL, &err), "%s", err.message);
+    cr_expect_not_null(dev.programs[PROGRAM_PART_MEGAKERNEL], "the CPU's own part first");
+    cr_expect_null(dev.programs[PROGRAM_PART_CORE], "the wavefront's part is not built yet");
+    cr_expect_null(dev.programs[PROGRAM_PART_AOV]);
+    double first = dev.build_seconds;
+    cl_int status;
+    cl_kernel missing = clCreateKernel(dev.programs[PROGRAM_PART_MEGAKERNEL], "shade_surface", &status);
+    cr_expect_eq(status, CL_INVALID_KERNEL_NAME, "the megakernel's part has no shade_surface");
+    if (missing)
+        clReleaseKernel(missing);
+    cl_kernel shade = device_kernel(&dev, "shade_surface");
+    cr_expect_not_null(dev.programs[PROGRAM_PART_CORE], "asking for shade_surface built its part");
+    cr_expect_gt(dev.build_seconds, first);
+    cl_kernel trace = device_kernel(&dev, "trace_paths");
+    cr_expect_not_null(trace);
+    cr_expect_null(dev.programs[PROGRAM_PART_AOV], "no render_aov was asked for");
+    clReleaseKernel(shade);
+    clReleaseKernel(trace);
+    device_close(&dev);
+
+    setenv("PT_PROGRAM_PARTS", "0", 1);
+    Device whole;
+    cr_assert(device_open(&whole, "cpu", &err), "%s", err.message);
+    whole.use_cache = false;
+    cr_assert(device_build(&whole, 0, NULL, NULL, &err), "%s", err.message);
+    cl_kernel aov = device_kernel(&whole, "render_aov");
+    cr_expect_not_null(aov);
+    cr_expect_null(whole.programs[PROGRAM_PART_AOV], "a whole program is programs[0] alone");
+    clReleaseKernel(aov);
+    device_close(&whole);
+    unsetenv("PT_PROGRAM_PARTS");
+}

@@ -1,0 +1,42 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# bench_build.sh [PT_A [PT_B]]: kernel build times per scene (feature set), cold (an empty kernel
+# cache) and warm (the cache just filled), as pt reports them ("kernels N s"), for one or two pt
+# builds interleaved (A, B, A, B per scene) so both see the same machine. A cold build is what a
+# first render of a scene waits for: issue 39's goal is <= 10 s on the H200, <= 5 s on PoCL idle.
+# Prints a table and writes OUT (default bench-build.csv): build,scene,features,cold_s,warm_s.
+# Environment: DEVICE (default gpu if pt sees one, else cpu), SCENES (space-separated paths),
+# PT_CL_OPTIONS etc. pass through.
+set -eu
+a=${1:-build/pt}; b=${2:-}
+out=${OUT:-bench-build.csv}
+dev=${DEVICE:-}
+scenes=${SCENES:-"scenes/cornell-box scenes/bench-materials/materials.json scenes/bench-materials/env.json
+tests/scenes/conductors tests/scenes/normalmap tests/scenes/textured tests/scenes/envmap
+tests/scenes/glass tests/scenes/mix scenes/black-hole scenes/bench/dragon.json"}
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+seconds() { # BIN SCENE CACHE -> "seconds features" of the kernels line
+    XDG_CACHE_HOME=$3 "$1" render "$2" ${dev:+--device $dev} --width 32 --height 24 --spp 1 \
+        --max-depth 2 -o "$tmp/o.exr" 2>&1 |
+        sed -n 's/.*kernels \([0-9.]*\) s ([^;]*; features: \([^)]*\)).*/\1 \2/p'
+}
+echo "build,scene,features,cold_s,warm_s" >"$out"
+i=0
+for s in $scenes; do
+    for side in A B; do
+        if [ $side = A ]; then bin=$a; else bin=$b; fi
+        [ -n "$bin" ] || continue
+        i=$((i + 1)); cache=$tmp/cache$i
+        cold=$(seconds "$bin" "$s" "$cache"); warm=$(seconds "$bin" "$s" "$cache")
+        features=$(echo "$cold" | cut -d' ' -f2- | tr ',' ' ')
+        echo "$side,$s,$features,${cold%% *},${warm%% *}" >>"$out"
+    done
+done
+python3 - "$out" "$a" "$b" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print(f"A = {sys.argv[2]}" + (f"\nB = {sys.argv[3]}" if sys.argv[3] else ""))
+print(f"{'scene':42} {'side':>4} {'cold s':>8} {'warm s':>8}  features")
+for r in rows:
+    print(f"{r['scene']:42} {r['build']:>4} {r['cold_s']:>8} {r['warm_s']:>8}  {r['features']}")
+PY
