@@ -217,11 +217,12 @@ bool device_build(Device *dev, ProgramFeatures features, const char *extra_sourc
     dev->whole_program = extra_source != NULL || !parts;
     dev->build_seconds = 0.0;
     dev->cache_hit = true;
-    /* Now: the part of the device's own way to render (a CPU's megakernel, a GPU's wavefront:
-     * render/megakernel.c), so that the time reported with the scene is the wait for it. */
-    bool cpu = (dev->type & CL_DEVICE_TYPE_CPU) != 0;
-    return build_part(dev, cpu && !dev->whole_program ? PROGRAM_PART_MEGAKERNEL : PROGRAM_PART_CORE,
-                      err);
+    /* Now: the part of the device's own way to render (a CPU's megakernel, a GPU's wavefront, and
+     * the wavefront for bent rays everywhere: render/megakernel.c), so that the time reported
+     * with the scene is the wait for it. */
+    bool megakernel = (dev->type & CL_DEVICE_TYPE_CPU) && !(features & FEATURE_BLACK_HOLES);
+    return build_part(dev, megakernel && !dev->whole_program ? PROGRAM_PART_MEGAKERNEL
+                                                             : PROGRAM_PART_CORE, err);
 }
 
 /* The program that has kernel `name`, its part built first if need be. */
