@@ -224,13 +224,13 @@ Test(cli_options, unknown_scene_key_has_its_line_and_the_accepted_keys)
 Test(cli_options, unsupported_scene_formats_name_the_readable_ones)
 {
     const char *dir = test_temp_dir();
-    const char *names[] = {"model.fbx", "MODEL.STL", "scene.usda", "scene.blend", "model.dae"};
+    const char *names[] = {"scene.usda", "MODEL.USDZ", "scene.abc", "model.c4d", "building.ifc"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         const char *path = test_write_file(dir, names[i], "not a scene\n");
         char args[700];
         snprintf(args, sizeof args, "render '%s' --quiet", path);
         expect_clean_error(run_pt(NULL, args), names[i], strrchr(names[i], '.'),
-                           "pt reads .json scenes, .obj, .ply, .gltf and .glb");
+                           "pt reads .json scenes, .obj, .ply, .gltf, .glb");
     }
 }
 

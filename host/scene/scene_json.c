@@ -145,9 +145,19 @@ static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
          * says how to read it. */
         const cJSON *obj = json_member(e, "obj"), *ply = json_member(e, "ply"),
                     *gltf = json_member(e, "gltf"), *mesh = json_member(e, "mesh");
-        if (!!obj + !!ply + !!gltf + !!mesh > 1)
-            return json_fail(p, ERR_JSON_VALUE, key, "names more than one of \"obj\", \"ply\", "
-                             "\"gltf\" and \"mesh\" (give one)");
+        if (!!obj + !!ply + !!gltf + !!mesh > 1) {
+            const char *named[4], **n = named;
+            if (obj)
+                *n++ = "obj";
+            if (ply)
+                *n++ = "ply";
+            if (gltf)
+                *n++ = "gltf";
+            if (mesh)
+                *n++ = "mesh";
+            return json_fail(p, ERR_JSON_VALUE, key, "has both \"%s\" and \"%s\" (give one)",
+                             named[0], named[1]);
+        }
         if (mesh) {
             if (!parse_imported_object(p, e, mesh, i, has_shutter, d))
                 return false;
