@@ -226,7 +226,8 @@ RenderDesc cli_render_desc(const Options *o)
     return (RenderDesc){.scene = o->scene, .device = o->device, .width = o->width,
                         .height = o->height, .spp = o->spp, .max_depth = o->max_depth,
                         .no_cache = o->no_cache, .no_default_light = o->no_default_light,
-                        .instancing = o->instancing, .camera_json = o->camera_json};
+                        .instancing = o->instancing, .camera_json = o->camera_json,
+                        .no_ground = o->no_ground, .frame = o->frame, .up_axis = o->up_axis};
 }
 
 /* The one place the options become render settings: pt render, pt bench (its modes then vary

@@ -74,6 +74,17 @@ static bool parse_seed(const char *arg, const char *value, Options *o, Error *er
     return true;
 }
 
+static bool parse_up(const char *arg, const char *v, Options *o, Error *err)
+{
+    if (!strcmp(v, "y") || !strcmp(v, "Y")) o->up_axis = UP_AXIS_Y;
+    else if (!strcmp(v, "z") || !strcmp(v, "Z")) o->up_axis = UP_AXIS_Z;
+    else {
+        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not y or z", arg, v);
+        return false;
+    }
+    return true;
+}
+
 static bool parse_instancing(const char *arg, const char *v, Options *o, Error *err)
 {
     (void)arg;
@@ -255,9 +266,18 @@ const CliOption cli_options[] = {
      "compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
      "                     default ~/.cache/pt) holds them"},
     {"no-default-light", 0, FLAG(no_default_light), SCENE_COMMANDS, HELP_OPTIONS, "--no-default-light",
-     "a scene without any light (no emissive triangles, lights,\n"
-     "                     environment or background) stays black; by default it gets a\n"
-     "                     uniform white sky (background [1, 1, 1]) and a warning"},
+     "no default rig: a scene without any light (no emissive triangles,\n"
+     "                     lights, environment or background) stays black, a bare model\n"
+     "                     with tiny emitters keeps only them. By default they get the\n"
+     "                     default rig (a sky, a sun, and under a bare model a ground;\n"
+     "                     README \"The first image\") and a warning"},
+    {"no-ground", 0, FLAG(no_ground), SCENE_COMMANDS, HELP_OPTIONS, "--no-ground",
+     "the default rig without its ground"},
+    {"up", 0, CUSTOM(parse_up), SCENE_COMMANDS, HELP_OPTIONS, "--up y|z",
+     "which axis of a bare model is up, for its framing and the default\n"
+     "                     rig (default y; z for Blender or CAD exports in Z-up)"},
+    {"frame", 0, FLAG(frame), SCENE_COMMANDS, HELP_OPTIONS, "--frame",
+     "ignore the file's own camera: frame the model in a 3/4 view"},
     {"quiet", 'q', CUSTOM_FLAG(parse_quiet), EVERY_COMMAND, HELP_OPTIONS, "--quiet",
      "no progress output (and no summary)"},
     {"progress", 0, FLAG(progress), RENDER, HELP_OPTIONS, "--progress",
