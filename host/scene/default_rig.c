@@ -92,24 +92,38 @@ static bool one_static_mesh(const SceneData *data)
            data->meshes[0].num_triangles == data->num_triangles;
 }
 
-bool rig_add_ground(SceneData *data, const ViewBasis *b, Error *err)
+/* The scene's bounding radius and its lowest and highest points along up. */
+static float extent_along(const SceneData *data, const ViewBasis *b, float *lowest, float *highest)
 {
-    float lowest = INFINITY, highest = -INFINITY, center[3], radius = 0.0f;
+    float radius = 0.0f;
+    *lowest = INFINITY, *highest = -INFINITY;
     for (int i = 0; i < 3; i++) {
-        center[i] = 0.5f * (data->bounds_min[i] + data->bounds_max[i]);
         float half = 0.5f * (data->bounds_max[i] - data->bounds_min[i]);
         radius += half * half;
     }
-    radius = sqrtf(radius);
     for (int k = 0; k < 8; k++) {
         float c[3] = {k & 1 ? data->bounds_max[0] : data->bounds_min[0],
                       k & 2 ? data->bounds_max[1] : data->bounds_min[1],
                       k & 4 ? data->bounds_max[2] : data->bounds_min[2]};
-        lowest = fminf(lowest, dot3(c, b->up));
-        highest = fmaxf(highest, dot3(c, b->up));
+        *lowest = fminf(*lowest, dot3(c, b->up));
+        *highest = fmaxf(*highest, dot3(c, b->up));
     }
-    if (!(highest - lowest > 1e-3f * radius) || !isfinite(radius))
-        return true; /* flat: the model is its own ground */
+    return sqrtf(radius);
+}
+
+bool rig_model_is_flat(const SceneData *data, const ViewBasis *b)
+{
+    float lowest, highest, radius = extent_along(data, b, &lowest, &highest);
+    return !(highest - lowest > 1e-3f * radius) || !isfinite(radius);
+}
+
+bool rig_add_ground(SceneData *data, const ViewBasis *b, Error *err)
+{
+    if (rig_model_is_flat(data, b))
+        return true; /* the model is its own ground */
+    float lowest, highest, center[3], radius = extent_along(data, b, &lowest, &highest);
+    for (int i = 0; i < 3; i++)
+        center[i] = 0.5f * (data->bounds_min[i] + data->bounds_max[i]);
     Mesh mesh = {0};
     ObjMaterial *ground = calloc(1, sizeof *ground);
     if (!ground || !mesh_rectangle(&mesh)) {

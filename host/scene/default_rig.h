@@ -43,5 +43,7 @@ bool rig_add_sun(SceneData *data, const ViewBasis *b, const CameraDesc *camera, 
  * none when the bounds have no height along the up axis (a flat model is its own
  * ground: nothing is added). Call before the BVH is built. False: out of memory (err set). */
 bool rig_add_ground(SceneData *data, const ViewBasis *b, Error *err);
+/* Whether the scene has no height along up (less than a thousandth of its bounding radius). */
+bool rig_model_is_flat(const SceneData *data, const ViewBasis *b);
 
 #endif

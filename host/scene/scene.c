@@ -370,7 +370,8 @@ bool scene_add_default_rig(Scene *scene, const RigOptions *options, Error *err)
     RigChoice choice = scene_default_rig_choice(scene);
     if (choice == RIG_NONE)
         return true;
-    bool ground = choice == RIG_WITH_GROUND && !options->no_ground;
+    ViewBasis basis = view_basis(options->up);
+    bool ground = choice == RIG_WITH_GROUND && !options->no_ground && !rig_model_is_flat(&scene->data, &basis);
     const char *path = scene->desc.path;
     if (scene->data.num_emissive > 0)
         warn("%s: its %u emissive triangles are too weak to light it (less than a tenth of a sky): "
@@ -381,7 +382,6 @@ bool scene_add_default_rig(Scene *scene, const RigOptions *options, Error *err)
              "background): lit by the default rig (a sky, a sun%s; README \"The first image\"); "
              "%s--no-default-light keeps it dark", path, ground ? ", a ground at its lowest point" : "",
              ground ? "--no-ground drops the ground, " : "");
-    ViewBasis basis = view_basis(options->up);
     return rig_add_sky(&scene->data, &basis, err) && rig_add_sun(&scene->data, &basis, &scene->desc.camera, err) &&
            (!ground || rig_add_ground(&scene->data, &basis, err));
 }
