@@ -149,7 +149,7 @@ Test(exr_layers, pt_render_aov_all_writes_every_layer_and_the_metadata, .timeout
     ExrInspect f, plain;
     exr_inspect_open(&f, with);
     exr_inspect_open(&plain, without);
-    const char *expected[] = {"B",        "G",        "R",        "albedo.B", "albedo.G",
+    const char *expected[] = {"A",        "B",        "G",        "R",        "albedo.B", "albedo.G",
                               "albedo.R", "depth.Z",  "normal.X", "normal.Y", "normal.Z",
                               "spp.Y",    "variance.B", "variance.G", "variance.R"};
     int count = (int)(sizeof expected / sizeof expected[0]);
@@ -158,7 +158,7 @@ Test(exr_layers, pt_render_aov_all_writes_every_layer_and_the_metadata, .timeout
         cr_expect_str_eq(f.names[i], expected[i]);
         cr_expect_eq(f.types[i], EXR_PIXEL_FLOAT, "%s is not FLOAT", f.names[i]);
     }
-    cr_expect_eq(plain.channel_count, 3, "without --aov: R, G, B only");
+    cr_expect_eq(plain.channel_count, 4, "without --aov: R, G, B and the coverage A only");
 
     /* The AOVs must not change the beauty: the same bits as the render without them. */
     const char *beauty[] = {"R", "G", "B"};

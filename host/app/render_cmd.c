@@ -164,6 +164,32 @@ static void aov_pass(const Options *o, RenderImages *images, Session *session,
                 seconds_now() - start);
 }
 
+/* The two silent failures of a first image, named (README "The first image"): the camera sees no
+ * geometry at all (a file's camera looking away, a model far off), or it sees geometry that no
+ * light reaches (the file's lights hidden from it: a closed room seen from outside). A scene of sky
+ * alone (no objects) sees none on purpose. */
+static void warn_when_empty(const RenderImages *images, const Session *session)
+{
+    const SceneDesc *desc = &session->scene.desc;
+    size_t n = (size_t)desc->width * (size_t)desc->height;
+    double coverage = 0.0, light = 0.0;
+    for (size_t p = 0; p < n; p++) {
+        coverage += images->alpha[p];
+        light += images->rgb[3 * p] + images->rgb[3 * p + 1] + images->rgb[3 * p + 2];
+    }
+    if (desc->num_objects > 0 && coverage == 0.0)
+        warn("%s: the camera sees no geometry (every camera ray missed it): %s", desc->path,
+             desc->camera_given ? "the scene's camera looks away from the model; --frame frames it "
+                                  "in a 3/4 view"
+                                : "--camera places the camera");
+    else if (coverage > 0.0 && light == 0.0)
+        warn("%s: the image is black: no light reaches the camera (%u emissive triangles, %u lights, "
+             "%s; they light nothing the camera sees, e.g. a closed room seen from outside): "
+             "--camera to look from elsewhere", desc->path, session->scene.data.num_emissive,
+             session->scene.data.num_analytic,
+             session->scene.data.environment.width > 0 ? "an environment" : "no environment");
+}
+
 /* The EXR (linear, every layer, the record in its header), then the PNG (bloom and the display
  * curve applied to the beauty after the EXR was written). */
 static void write_outputs(const Options *o, const OutputPaths *out, RenderImages *images,
@@ -275,6 +301,7 @@ int command_render(const Options *o)
         return stop_exit_status();
     }
     aov_pass(o, &images, &session, &settings, spp_done);
+    warn_when_empty(&images, &session);
     write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)
         render_cmd_units_remove_checkpoint(o, base);

@@ -37,6 +37,7 @@ typedef struct {
 /* The beauty (rgb, RGB_CHANNELS floats a pixel) with its layers and attributes. */
 typedef struct {
     const float *rgb;
+    const float *alpha; /* the beauty's A channel (one float a pixel); NULL: none */
     int width, height;
     const ImageLayer *layers;
     int layer_count;

@@ -242,6 +242,17 @@ static bool load_json_materials(Scene *s, const char ***names, Error *err)
     return ok;
 }
 
+/* A scene of sky alone (scene_json.c) still needs one triangle for the BVH and the buffers: a
+ * degenerate one at the origin, which no ray hits (zero area) and which emits nothing. */
+static bool add_sky_placeholder(SceneData *data, Error *err)
+{
+    float positions[9] = {0};
+    int32_t corners[9] = {0, -1, -1, 1, -1, -1, 2, -1, -1}, material = -1;
+    Mesh mesh = {.positions = positions, .num_positions = 3, .corners = corners,
+                 .material_ids = &material, .num_triangles = 1, .num_faces = 1};
+    return scene_data_append_mesh(data, &mesh, "the sky's placeholder", err);
+}
+
 bool scene_load(const char *path, Scene *out, Error *err)
 {
     return scene_load_with(path, INSTANCING_AUTO, out, err);
@@ -260,7 +271,8 @@ bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Er
         return false;
     }
     NamedMaterials named = {names, out->data.num_materials};
-    if (!scene_load_objects(&out->data, &out->desc, instancing, &named, err)) {
+    if (out->desc.num_objects == 0 ? !add_sky_placeholder(&out->data, err)
+                                   : !scene_load_objects(&out->data, &out->desc, instancing, &named, err)) {
         free(names);
         scene_free(out);
         return false;
