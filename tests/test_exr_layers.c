@@ -34,7 +34,7 @@ Test(exr_layers, writer_sorts_channels_keeps_values_and_sets_attributes)
         {.name = "render_time", .type = IMAGE_ATTR_FLOAT, .float_value = 1.5f},
         {.name = "scene", .type = IMAGE_ATTR_STRING, .string_value = "scenes/x.json"},
     };
-    ExrImage image = {rgb, W, H, layers, 3, attributes, 3};
+    ExrImage image = {rgb, W, H, layers, 3, attributes, 3, NULL};
     const char *path = test_write_file(test_temp_dir(), "layers.exr", "");
     Error err = {0};
     cr_assert(image_write_exr_layers(path, &image, &err), "%s", err.message);
@@ -81,7 +81,7 @@ Test(exr_layers, tall_images_keep_every_line_across_encoding_batches)
     for (int i = 0; i < N; i++)
         depth[i] = (float)(N - i);
     const ImageLayer layers[] = {{"depth", "Z", depth}};
-    ExrImage image = {rgb, W, H, layers, 1, NULL, 0};
+    ExrImage image = {rgb, W, H, layers, 1, NULL, 0, NULL};
     const char *path = test_write_file(test_temp_dir(), "tall.exr", "");
     Error err = {0};
     cr_assert(image_write_exr_layers(path, &image, &err), "%s", err.message);

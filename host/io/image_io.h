@@ -37,12 +37,12 @@ typedef struct {
 /* The beauty (rgb, RGB_CHANNELS floats a pixel) with its layers and attributes. */
 typedef struct {
     const float *rgb;
-    const float *alpha; /* the beauty's A channel (one float a pixel); NULL: none */
     int width, height;
     const ImageLayer *layers;
     int layer_count;
     const ImageAttribute *attributes;
     int attribute_count;
+    const float *alpha; /* the beauty's A channel (one float a pixel); NULL: none */
 } ExrImage;
 
 /* One scanline part, 32-bit float channels (beauty R, G, B and every layer's), ZIP; non-finite
