@@ -173,7 +173,8 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
 #define VIEW CMD_BIT(CMD_VIEW)
 #define BENCH CMD_BIT(CMD_BENCH)
 #define SCENE_COMMANDS (RENDER | VIEW | BENCH)
-#define EVERY_COMMAND (SCENE_COMMANDS | CMD_BIT(CMD_DEVICES))
+#define TONEMAP CMD_BIT(CMD_TONEMAP)
+#define EVERY_COMMAND (SCENE_COMMANDS | CMD_BIT(CMD_DEVICES) | TONEMAP)
 
 /* In `pt help` order. */
 const CliOption cli_options[] = {
@@ -188,7 +189,7 @@ const CliOption cli_options[] = {
     {"seed", 0, CUSTOM(parse_seed), SCENE_COMMANDS, HELP_OPTIONS, "--seed S",
      "random seed (default 0); the image is a pure function of scene,\n"
      "                     settings, seed and spp"},
-    {"device", 0, TEXT(device), SCENE_COMMANDS, HELP_OPTIONS, "--device gpu|cpu|P:D",
+    {"device", 0, TEXT(device), SCENE_COMMANDS | TONEMAP, HELP_OPTIONS, "--device gpu|cpu|P:D",
      "OpenCL device (default: first GPU, else first CPU)"},
     {"device", 0, HELP_ONLY, 0, HELP_OPTIONS, "--device all|P:D,P:D,...",
      "render on several devices at once (all: every GPU, or\n"
@@ -207,17 +208,17 @@ const CliOption cli_options[] = {
      "                     for every unit size"},
     {"unit-rows", 0, INT(unit_rows, 1, FILM_SIZE_LIMIT), RENDER | BENCH, HELP_OPTIONS, "--unit-rows N",
      NULL},
-    {"output", 'o', TEXT(output), RENDER, HELP_OPTIONS, "-o FILE",
+    {"output", 'o', TEXT(output), RENDER | TONEMAP, HELP_OPTIONS, "-o FILE",
      "output .exr (linear) or .png (sRGB); overwrites FILE. Without -o:\n"
      "                     out/<scene>.exr and .png, numbered so nothing is overwritten"},
     {"preview", 0, FLAG(preview), RENDER, HELP_OPTIONS, "--preview", "with -o FILE.exr, also write FILE.png"},
-    {"exposure", 0, FLOAT(exposure, -64.0, 64.0), RENDER | VIEW, HELP_OPTIONS, "--exposure EV",
+    {"exposure", 0, FLOAT(exposure, -64.0, 64.0), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--exposure EV",
      "exposure in stops for PNG output and the viewer (default 0)"},
-    {"tonemap", 0, CUSTOM(parse_tonemap), RENDER | VIEW, HELP_OPTIONS, "--tonemap NAME",
+    {"tonemap", 0, CUSTOM(parse_tonemap), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--tonemap NAME",
      "display curve for PNG output and the viewer (EXR stays linear):\n"
      "                     agx (default, Blender's look), aces (Hill's fit), filmic (Hable),\n"
      "                     pbr-neutral (Khronos), reinhard (per channel), clamp (hard clip)"},
-    {"bloom", 0, CUSTOM(parse_bloom), RENDER | VIEW, HELP_OPTIONS, "--bloom S[,R]",
+    {"bloom", 0, CUSTOM(parse_bloom), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--bloom S[,R]",
      "glow around bright areas for PNG and the viewer (the EXR stays\n"
      "                     linear, without it): a share S in [0, 1] of the light above\n"
      "                     luminance 1 spread by a Gaussian of radius R pixels (3 sigma;\n"

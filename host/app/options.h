@@ -9,7 +9,7 @@
 
 #include "io/tonemap.h"
 
-typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
+typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH, CMD_TONEMAP } Command;
 
 typedef struct {
     Command command;

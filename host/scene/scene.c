@@ -135,9 +135,28 @@ static bool load_bare_gltf(SceneDesc *d, Error *err)
     return gltf_scene_add(d, d->path, &options, &identity, -1, err);
 }
 
+/* An image given as SCENE (a render's EXR, an HDR map) is refused by name with what to do with
+ * it, rather than parsed as JSON ("malformed JSON", "NUL byte"). */
+static bool refuse_image(const char *path, Error *err)
+{
+    static const char *const images[] = {".exr", ".hdr", ".png", ".jpg", ".jpeg", ".tga", ".bmp",
+                                         ".tif", ".tiff", ".webp", ".gif", ".psd", ".pic"};
+    for (size_t i = 0; i < sizeof images / sizeof images[0]; i++)
+        if (fs_has_suffix(path, images[i])) {
+            error_set(err, ERR_FILE_READ, path, 0,
+                      "%s: that is an image, not a scene: pt tonemap %s -o OUT.png displays an EXR "
+                      "again; as a sky, name it in a scene's \"environment\": {\"file\": ...}",
+                      path, path);
+            return true;
+        }
+    return false;
+}
+
 bool scene_desc_load(const char *path, SceneDesc *out, Error *err)
 {
     set_defaults(out);
+    if (refuse_image(path, err))
+        return false;
     const ForeignFormat *named = foreign_format(path);
     if (named && !named->import) /* refused by name, whether or not the file is there */
         return refuse_format(path, named, err);
