@@ -143,6 +143,7 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     o->quiet = true;
     obj_loader_set_quiet(true);  /* MTL statements pt does not use: no warnings */
     gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
+    device_set_build_notice(false); /* nor the first-time kernel build */
     return true;
 }
 

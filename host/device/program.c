@@ -135,6 +135,28 @@ static void store_in_cache(Device *dev, uint64_t key)
     free(binary);
 }
 
+static bool build_notice = true;
+
+void device_set_build_notice(bool on) { build_notice = on; }
+
+/* Before a compile the kernel cache cannot spare: one line, so that a first run's wait (up to
+ * 47 s on PoCL) is explained before it starts, not after. */
+static void announce_build(const Device *dev, ProgramFeatures features)
+{
+    if (!build_notice)
+        return;
+    char summary[PROGRAM_FEATURE_SUMMARY_SIZE];
+    program_features_summary(features, summary);
+    const char *dir = kernel_cache_dir();
+    if (dev->use_cache && dir[0])
+        fprintf(stderr, "pt: compiling kernels for this scene's features (%s) on %s, first time only "
+                "(then from the kernel cache, %s) ...\n", summary, dev->name, dir);
+    else
+        fprintf(stderr, "pt: compiling kernels for this scene's features (%s) on %s (no kernel cache) ...\n",
+                summary, dev->name);
+    fflush(stderr);
+}
+
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err)
 {
@@ -159,6 +181,7 @@ bool device_build(Device *dev, ProgramFeatures features, const char *extra_sourc
     uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
     dev->cache_hit = dev->use_cache && build_from_cache(dev, options, key);
     if (!dev->cache_hit) {
+        announce_build(dev, features);
         cl_int status;
         const char *sources[1] = {source};
         dev->program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
