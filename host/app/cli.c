@@ -212,6 +212,15 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             return false;
         }
     }
+    /* Adaptive sampling asked for here with a checkpoint: refused before the scene loads (a
+     * scene's own noise_threshold is refused once read, app/render_cmd_units.c). */
+    if (o->command == CMD_RENDER && o->noise_threshold > 0.0f && (o->checkpoint_seconds > 0 || o->resume)) {
+        const char *unit = o->checkpoint_seconds > 0 ? "--checkpoint" : "--resume";
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "%s with --noise-threshold: adaptive sampling decides over the whole film and keeps "
+                  "no checkpoint; drop %s, or --noise-threshold to sample every pixel alike", unit, unit);
+        return false;
+    }
     /* (A scene's spp below --min-spp is the render's to refuse: the scene is not read yet.) */
     if (o->min_spp && o->spp && o->min_spp > o->spp) {
         error_set(err, ERR_USAGE, NULL, 0, "--min-spp %d is more than --spp %d", o->min_spp, o->spp);
