@@ -253,3 +253,24 @@ Test(cli, numbered_outputs_never_overwrite_the_last_name, .timeout = 120)
     snprintf(path, sizeof path, "%s/out/cornell-box-10000.exr", dir);
     cr_expect(stat(path, &st) != 0, "out/cornell-box-10000.exr was written");
 }
+
+/* pt bench prints no empty section: no stage row of a stage never launched, no heading without
+ * lines under it (the megakernel keeps no live-path counts). */
+Test(cli, bench_prints_no_empty_sections, .timeout = 600)
+{
+    Run r = run_pt(NULL, "bench scenes/cornell-box --spp 1 --width 16 --height 16");
+    cr_assert_eq(r.exit_code, 0, "%s", r.err);
+    const char *all[] = {r.out, r.err};
+    for (int k = 0; k < 2; k++) {
+        const char *line = all[k];
+        while (*line) {
+            size_t n = strcspn(line, "\n");
+            cr_expect(n == 0 || line[n - 1] != ':', "an empty section: %.*s", (int)n, line);
+            char name[64];
+            unsigned launches;
+            if (sscanf(line, "%63s %u", name, &launches) == 2 && strchr(name, '_'))
+                cr_expect(launches > 0, "a stage never launched: %.*s", (int)n, line);
+            line += n + (line[n] == '\n');
+        }
+    }
+}
