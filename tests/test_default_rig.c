@@ -57,6 +57,10 @@ Test(default_rig, choice_follows_the_rule)
     s = load(box_obj(dir, "lamp.obj", "mtllib lamp.mtl\nusemtl lamp\nv -1 5 -1\nv 1 5 -1\nv 1 5 1\n"
                                      "v -1 5 1\nf 9 11 10\nf 9 12 11\n"));
     cr_expect_eq(scene_default_rig_choice(&s), RIG_NONE, "a lamp lights the model");
+    /* A set lit by its own lamp is framed straight from its front (+z), as the Cornell box. */
+    const CameraDesc *c = &s.desc.camera;
+    cr_expect(fabsf(c->eye[0] - c->target[0]) < 1e-4f && fabsf(c->eye[1] - c->target[1]) < 1e-4f &&
+                  c->eye[2] > c->target[2], "eye %g %g %g", c->eye[0], c->eye[1], c->eye[2]);
     scene_free(&s);
 
     /* A JSON scene: the sky and the sun without a ground when it has no light; nothing when it has

@@ -80,11 +80,11 @@ bool camera_box_is_long(const float min[3], const float max[3], const ViewBasis 
 
 CameraDesc camera_frame_model(const float min[3], const float max[3], float aspect, const ViewBasis *b)
 {
-    return camera_frame_model_from(min, max, aspect, b, false);
+    return camera_frame_model_from(min, max, aspect, b, FRAME_THREE_QUARTER);
 }
 
 CameraDesc camera_frame_model_from(const float min[3], const float max[3], float aspect,
-                                   const ViewBasis *b, bool from_back)
+                                   const ViewBasis *b, FrameSide side)
 {
     const float fov_y = 40.0f, margin = 1.05f;
     float center[3], radius = 0.0f;
@@ -98,10 +98,13 @@ CameraDesc camera_frame_model_from(const float min[3], const float max[3], float
     /* A model much deeper (along the front axis) than wide is seen from its side's 3/4 instead,
      * so a rifle or a cow lying along the front axis is not seen end-on. */
     float azimuth = camera_box_is_long(min, max, b) ? 90.0f - VIEW_AZIMUTH : VIEW_AZIMUTH;
-    if (from_back)
+    float elevation = VIEW_ELEVATION;
+    if (side == FRAME_BACK)
         azimuth = 180.0f - azimuth;
+    if (side == FRAME_FRONT)
+        azimuth = elevation = 0.0f;
     float back[3], right[3], up[3];
-    view_direction(b, azimuth, VIEW_ELEVATION, back); /* from the centre toward the eye */
+    view_direction(b, azimuth, elevation, back); /* from the centre toward the eye */
     cross3(b->up, back, right);
     normalize3(right);
     cross3(back, right, up);

@@ -46,9 +46,12 @@ void view_direction(const ViewBasis *b, float azimuth, float elevation, float ou
 #define VIEW_AZIMUTH 35.0f
 #define VIEW_ELEVATION 15.0f
 CameraDesc camera_frame_model(const float min[3], const float max[3], float aspect, const ViewBasis *b);
-/* The same seen from the front's opposite side (the model's front is -front, as Spot's head). */
+/* The same from another side: FRAME_BACK from the front's opposite side (the model's front is
+ * -front, as Spot's head), FRAME_FRONT straight from the front at the centre's height (a set lit
+ * by its own lamps and open to the front, as the Cornell box). */
+typedef enum { FRAME_THREE_QUARTER, FRAME_BACK, FRAME_FRONT } FrameSide;
 CameraDesc camera_frame_model_from(const float min[3], const float max[3], float aspect,
-                                   const ViewBasis *b, bool from_back);
+                                   const ViewBasis *b, FrameSide side);
 /* Whether a box is long along the front axis (VIEW_LONG_RATIO). */
 bool camera_box_is_long(const float min[3], const float max[3], const ViewBasis *b);
 

@@ -348,8 +348,13 @@ void scene_frame_camera(Scene *scene, UpAxis up)
 {
     ViewBasis basis = view_basis(up);
     float aspect = (float)scene->desc.width / (float)scene->desc.height;
+    /* A scene lit by its own lights (no rig) is a set built to be seen from its front, as the
+     * Cornell box's open side: straight on. A model for the rig: the 3/4 view. */
+    FrameSide side = scene_default_rig_choice(scene) == RIG_NONE ? FRAME_FRONT
+                     : top_is_behind(&scene->data, &basis)        ? FRAME_BACK
+                                                                  : FRAME_THREE_QUARTER;
     scene->desc.camera = camera_frame_model_from(scene->data.bounds_min, scene->data.bounds_max, aspect,
-                                                 &basis, top_is_behind(&scene->data, &basis));
+                                                 &basis, side);
     scene->desc.camera_given = false;
 }
 
