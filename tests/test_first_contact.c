@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /* The first image's silent failures, named or fixed (issue 36): a closed room seen from outside
  * (black: a warning that no light reaches the camera), a file's camera looking away (a warning
- * naming --frame; --frame finds the model), a bare model whose only emitters are tiny labels
+ * naming --frame, before the render starts; --frame finds the model), a bare model whose only emitters are tiny labels
  * (Khronos ClearCoatTest's trait: lit by the default rig, not black), a scene of sky alone (it
  * renders the sky), and the beauty's coverage A (1 on geometry, 0 on the sky, the fraction of the
  * samples at an edge). */
@@ -81,9 +81,11 @@ Test(first_contact, camera_looking_away_is_named_and_frame_finds_the_model, .tim
     const char *scene = test_write_file(dir, "away.json",
                                         "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0.5, 9]},"
                                         " \"objects\": [{\"obj\": \"quad.obj\"}], \"background\": [0.5, 0.5, 0.5]}");
-    Run r = render(dir, scene, "");
+    Run r = render(dir, scene, "--progress");
     cr_assert_eq(r.exit_code, 0, "%s", r.err);
-    cr_expect(strstr(r.err, "the camera sees no geometry") && strstr(r.err, "--frame"), "stderr: %s", r.err);
+    const char *warning = strstr(r.err, "the camera sees no geometry"), *progress = strstr(r.err, "pt: progress:");
+    cr_expect(warning && strstr(r.err, "--frame"), "stderr: %s", r.err);
+    cr_expect(warning && progress && warning < progress, "said before the render: %s", r.err);
     cr_expect(channel_mean(r.exr, "A") == 0.0);
     r = render(dir, scene, "--frame");
     cr_assert_eq(r.exit_code, 0, "%s", r.err);

@@ -19,6 +19,7 @@
 #include "base/clock.h"
 #include "base/fs.h"
 #include "io/image_io.h"
+#include "render/aov.h"
 #include "render/aov_layers.h"
 #include "render/bloom.h"
 #include "render/session.h"
@@ -164,11 +165,35 @@ static void aov_pass(const Options *o, RenderImages *images, Session *session,
                 seconds_now() - start);
 }
 
-/* The two silent failures of a first image, named (README "The first image"): the camera sees no
- * geometry at all (a file's camera looking away, a model far off), or it sees geometry that no
- * light reaches (the file's lights hidden from it: a closed room seen from outside). A scene of sky
- * alone (no objects) sees none on purpose. */
-static void warn_when_empty(const RenderImages *images, const Session *session)
+/* The camera sees no geometry at all (a file's camera looking away, a model far off): said before
+ * the render, from one camera ray per pixel (the AOV pass's first sample: W x H rays, nothing
+ * beside a render). A scene of sky alone (no objects) sees none on purpose. */
+static void warn_when_nothing_in_view(Session *session, const RenderSettings *settings)
+{
+    const SceneDesc *desc = &session->scene.desc;
+    size_t n = (size_t)desc->width * (size_t)desc->height;
+    float *coverage = desc->num_objects > 0 ? malloc(n * sizeof *coverage) : NULL;
+    if (!coverage)
+        return;
+    AovSettings probe = {.spp = 1, .max_depth = 1, .seed = settings->seed,
+                         .first_sample = settings->first_sample};
+    AovImages images = {.coverage = coverage};
+    Error err = {0};
+    double hits = 0.0;
+    bool probed = aov_render_layers(&session->dev, &session->scene, &session->buffers, &probe, &images, &err);
+    for (size_t p = 0; probed && p < n; p++)
+        hits += coverage[p];
+    free(coverage);
+    if (probed && hits == 0.0)
+        warn("%s: the camera sees no geometry (every camera ray missed it): %s", desc->path,
+             desc->camera_given ? "the scene's camera looks away from the model; --frame frames it "
+                                  "in a 3/4 view"
+                                : "--camera places the camera");
+}
+
+/* The camera sees geometry that no light reaches (the file's lights hidden from it: a closed room
+ * seen from outside): said after the render, from the image and its coverage. */
+static void warn_when_black(const RenderImages *images, const Session *session)
 {
     const SceneDesc *desc = &session->scene.desc;
     size_t n = (size_t)desc->width * (size_t)desc->height;
@@ -177,12 +202,7 @@ static void warn_when_empty(const RenderImages *images, const Session *session)
         coverage += images->alpha[p];
         light += images->rgb[3 * p] + images->rgb[3 * p + 1] + images->rgb[3 * p + 2];
     }
-    if (desc->num_objects > 0 && coverage == 0.0)
-        warn("%s: the camera sees no geometry (every camera ray missed it): %s", desc->path,
-             desc->camera_given ? "the scene's camera looks away from the model; --frame frames it "
-                                  "in a 3/4 view"
-                                : "--camera places the camera");
-    else if (coverage > 0.0 && light == 0.0)
+    if (coverage > 0.0 && light == 0.0)
         warn("%s: the image is black: no light reaches the camera (%u emissive triangles, %u lights, "
              "%s; they light nothing the camera sees, e.g. a closed room seen from outside): "
              "--camera to look from elsewhere", desc->path, session->scene.data.num_emissive,
@@ -271,6 +291,8 @@ int command_render(const Options *o)
     fs_set_before_rename_hook(raise_at_write_point);
     RenderSettings settings = cli_render_settings(o);
     session_settle_settings(&session, &settings, o->sort_materials);
+    if (root)
+        warn_when_nothing_in_view(&session, &settings);
     RenderStats stats;
     RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
     bool rendered;
@@ -301,7 +323,7 @@ int command_render(const Options *o)
         return stop_exit_status();
     }
     aov_pass(o, &images, &session, &settings, spp_done);
-    warn_when_empty(&images, &session);
+    warn_when_black(&images, &session);
     write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)
         render_cmd_units_remove_checkpoint(o, base);
