@@ -202,7 +202,11 @@ static void warn_when_black(const RenderImages *images, const Session *session)
         coverage += images->alpha[p];
         light += images->rgb[3 * p] + images->rgb[3 * p + 1] + images->rgb[3 * p + 2];
     }
-    if (coverage > 0.0 && light == 0.0)
+    /* A scene with no light at all is black on purpose (--no-default-light). */
+    const SceneData *d = &session->scene.data;
+    bool lit = d->num_emissive > 0 || d->num_analytic > 0 || d->environment.width > 0 ||
+               desc->background[0] > 0.0f || desc->background[1] > 0.0f || desc->background[2] > 0.0f;
+    if (lit && coverage > 0.0 && light == 0.0)
         warn("%s: the image is black: no light reaches the camera (%u emissive triangles, %u lights, "
              "%s; they light nothing the camera sees, e.g. a closed room seen from outside): "
              "--camera to look from elsewhere", desc->path, session->scene.data.num_emissive,
