@@ -7,6 +7,7 @@
 #include "app/cli.h"
 #include "dist/mpi_link.h"
 #include "app/render_cmd.h"
+#include "app/tonemap_cmd.h"
 #include "base/error.h"
 #include "base/version.h"
 #include "device/device.h"
@@ -35,6 +36,8 @@ static int run_command(const Options *o)
     }
     case CMD_BENCH:
         return command_bench(o);
+    case CMD_TONEMAP:
+        return command_tonemap(o);
     }
     return 0;
 }

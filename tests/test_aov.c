@@ -59,7 +59,7 @@ static void render_layers(int max_depth, Layers *out)
     RenderFixture f;
     render_fixture_open(&f, write_scene(max_depth), WIDTH, HEIGHT);
     AovSettings settings = {.spp = 4, .max_depth = max_depth, .seed = 3};
-    AovImages images = {out->albedo, out->normal, out->depth};
+    AovImages images = {out->albedo, out->normal, out->depth, NULL};
     Error err = {0};
     cr_assert(aov_render_layers(f.dev, &f.scene, &f.buffers, &settings, &images, &err), "%s",
               err.message);

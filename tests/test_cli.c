@@ -253,3 +253,48 @@ Test(cli, numbered_outputs_never_overwrite_the_last_name, .timeout = 120)
     snprintf(path, sizeof path, "%s/out/cornell-box-10000.exr", dir);
     cr_expect(stat(path, &st) != 0, "out/cornell-box-10000.exr was written");
 }
+
+/* pt bench prints no empty section: no stage row of a stage never launched, no heading without
+ * lines under it (the megakernel keeps no live-path counts). */
+Test(cli, bench_prints_no_empty_sections, .timeout = 600)
+{
+    Run r = run_pt(NULL, "bench scenes/cornell-box --spp 1 --width 16 --height 16");
+    cr_assert_eq(r.exit_code, 0, "%s", r.err);
+    const char *all[] = {r.out, r.err};
+    for (int k = 0; k < 2; k++) {
+        const char *line = all[k];
+        while (*line) {
+            size_t n = strcspn(line, "\n");
+            cr_expect(n == 0 || line[n - 1] != ':', "an empty section: %.*s", (int)n, line);
+            char name[64];
+            unsigned launches;
+            if (sscanf(line, "%63s %u", name, &launches) == 2 && strchr(name, '_'))
+                cr_expect(launches > 0, "a stage never launched: %.*s", (int)n, line);
+            line += n + (line[n] == '\n');
+        }
+    }
+}
+
+/* Adaptive sampling says how it spent the samples; with a checkpoint it is refused before the
+ * scene is read (the scene here does not exist: the refusal comes first), naming what to drop. */
+Test(cli, adaptive_reports_spp_and_refuses_a_checkpoint_first, .timeout = 300)
+{
+    Run r = run_pt(NULL, "render /nonexistent/scene.json --noise-threshold 0.1 --checkpoint 5");
+    cr_expect_eq(r.exit_code, 1);
+    cr_expect(strstr(r.err, "drop --checkpoint") && !strstr(r.err, "nonexistent"), "%s", r.err);
+    r = run_pt(NULL, "render /nonexistent/scene.json --noise-threshold 0.1 --resume");
+    cr_expect(strstr(r.err, "drop --resume"), "%s", r.err);
+    const char *dir = test_temp_dir();
+    char args[1024];
+    snprintf(args, sizeof args, "render scenes/cornell-box --width 16 --height 16 --spp 8 --min-spp 2 "
+             "--noise-threshold 0.5 -o '%s/a.exr'", dir);
+    r = run_pt(NULL, args);
+    cr_assert_eq(r.exit_code, 0, "%s", r.err);
+    const char *line = strstr(r.err, "pt: adaptive sampling (noise threshold 0.5): ");
+    cr_assert(line, "%s", r.err);
+    double mean;
+    int lo, hi;
+    cr_assert_eq(sscanf(line, "pt: adaptive sampling (noise threshold 0.5): %lf spp per pixel on average, %d to %d",
+                        &mean, &lo, &hi), 3, "%s", line);
+    cr_expect(lo >= 2 && hi <= 8 && lo <= mean && mean <= hi, "%g %d %d", mean, lo, hi);
+}

@@ -275,7 +275,7 @@ Test(cli_options, commands_refuse_the_options_they_do_not_use)
         {"bench", "--min-spp", "4", "pt render and pt view do"},
         {"bench", "--no-compaction", NULL, "pt render and pt view do"},
         {"view", "--aov", "all", "pt render does"},
-        {"view", "-o", "x.png", "pt render does"},
+        {"view", "-o", "x.png", "pt render and pt tonemap do"},
         {"view", "--time-limit", "2", "pt render does"},
         {"render", "--frames", "3", "pt view does"},
         {"render", "--csv", "x.csv", "pt bench does"},

@@ -34,7 +34,7 @@ Test(exr_layers, writer_sorts_channels_keeps_values_and_sets_attributes)
         {.name = "render_time", .type = IMAGE_ATTR_FLOAT, .float_value = 1.5f},
         {.name = "scene", .type = IMAGE_ATTR_STRING, .string_value = "scenes/x.json"},
     };
-    ExrImage image = {rgb, W, H, layers, 3, attributes, 3};
+    ExrImage image = {rgb, W, H, layers, 3, attributes, 3, NULL};
     const char *path = test_write_file(test_temp_dir(), "layers.exr", "");
     Error err = {0};
     cr_assert(image_write_exr_layers(path, &image, &err), "%s", err.message);
@@ -81,7 +81,7 @@ Test(exr_layers, tall_images_keep_every_line_across_encoding_batches)
     for (int i = 0; i < N; i++)
         depth[i] = (float)(N - i);
     const ImageLayer layers[] = {{"depth", "Z", depth}};
-    ExrImage image = {rgb, W, H, layers, 1, NULL, 0};
+    ExrImage image = {rgb, W, H, layers, 1, NULL, 0, NULL};
     const char *path = test_write_file(test_temp_dir(), "tall.exr", "");
     Error err = {0};
     cr_assert(image_write_exr_layers(path, &image, &err), "%s", err.message);
@@ -149,7 +149,7 @@ Test(exr_layers, pt_render_aov_all_writes_every_layer_and_the_metadata, .timeout
     ExrInspect f, plain;
     exr_inspect_open(&f, with);
     exr_inspect_open(&plain, without);
-    const char *expected[] = {"B",        "G",        "R",        "albedo.B", "albedo.G",
+    const char *expected[] = {"A",        "B",        "G",        "R",        "albedo.B", "albedo.G",
                               "albedo.R", "depth.Z",  "normal.X", "normal.Y", "normal.Z",
                               "spp.Y",    "variance.B", "variance.G", "variance.R"};
     int count = (int)(sizeof expected / sizeof expected[0]);
@@ -158,7 +158,7 @@ Test(exr_layers, pt_render_aov_all_writes_every_layer_and_the_metadata, .timeout
         cr_expect_str_eq(f.names[i], expected[i]);
         cr_expect_eq(f.types[i], EXR_PIXEL_FLOAT, "%s is not FLOAT", f.names[i]);
     }
-    cr_expect_eq(plain.channel_count, 3, "without --aov: R, G, B only");
+    cr_expect_eq(plain.channel_count, 4, "without --aov: R, G, B and the coverage A only");
 
     /* The AOVs must not change the beauty: the same bits as the render without them. */
     const char *beauty[] = {"R", "G", "B"};

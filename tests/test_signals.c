@@ -236,7 +236,7 @@ static void raise_mid_render_with_aovs(const char *env, const char *name, int st
     expect_header(&c, 1, held, atoi(ENDLESS_SPP), true);
     ExrInspect f;
     exr_inspect_open(&f, c.output);
-    cr_expect_eq(f.channel_count, 14, "beauty and every layer's channels");
+    cr_expect_eq(f.channel_count, 15, "beauty (with A) and every layer's channels");
     cr_expect_geq(exr_inspect_find(&f, "albedo.R"), 0);
     exr_inspect_close(&f);
     expect_image_and_no_temporary_file(&c);

@@ -38,6 +38,9 @@ void cli_print_help(void)
          "                              (no image written; --csv FILE appends a row per mode, the\n"
          "                              profile to FILE_stages.csv, FILE_live.csv, the devices to\n"
          "                              FILE_units.csv)\n"
+         "  pt tonemap IN.exr -o OUT.png\n"
+         "                              display an EXR again (--tonemap, --exposure, --bloom)\n"
+         "                              without rendering it again\n"
          "  pt devices                  list OpenCL platforms and devices\n"
          "  pt help                     this text\n"
          "  pt --version                the version\n"
@@ -102,12 +105,12 @@ static bool check_command_takes(const CliOption *c, const char *arg, Command com
     if (command == CMD_HELP || command == CMD_VERSION || (c->commands & CMD_BIT(command)))
         return true;
     static const char *const names[] = {[CMD_RENDER] = "pt render", [CMD_VIEW] = "pt view",
-                                        [CMD_BENCH] = "pt bench"};
+                                        [CMD_BENCH] = "pt bench", [CMD_TONEMAP] = "pt tonemap"};
     char takers[64] = "";
     int count = 0, total = 0;
-    for (int k = CMD_RENDER; k <= CMD_BENCH; k++)
+    for (int k = CMD_RENDER; k <= CMD_TONEMAP; k++)
         total += names[k] && (c->commands & CMD_BIT(k));
-    for (int k = CMD_RENDER; k <= CMD_BENCH; k++)
+    for (int k = CMD_RENDER; k <= CMD_TONEMAP; k++)
         if (names[k] && (c->commands & CMD_BIT(k)))
             snprintf(takers + strlen(takers), sizeof takers - strlen(takers), "%s%s",
                      count == 0 ? "" : count == total - 1 ? " and " : ", ", names[k]), count++;
@@ -128,6 +131,7 @@ static bool parse_command(const char *cmd, Options *o, Error *err)
     else if (!strcmp(cmd, "view")) o->command = CMD_VIEW;
     else if (!strcmp(cmd, "devices")) o->command = CMD_DEVICES;
     else if (!strcmp(cmd, "bench")) o->command = CMD_BENCH;
+    else if (!strcmp(cmd, "tonemap")) o->command = CMD_TONEMAP;
     else if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) o->command = CMD_HELP;
     else if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) o->command = CMD_VERSION;
     else {
@@ -209,9 +213,22 @@ bool cli_parse(int argc, char **argv, Options *o, Error *err)
             return false;
         }
     }
+    /* Adaptive sampling asked for here with a checkpoint: refused before the scene loads (a
+     * scene's own noise_threshold is refused once read, app/render_cmd_units.c). */
+    if (o->command == CMD_RENDER && o->noise_threshold > 0.0f && (o->checkpoint_seconds > 0 || o->resume)) {
+        const char *unit = o->checkpoint_seconds > 0 ? "--checkpoint" : "--resume";
+        error_set(err, ERR_USAGE, NULL, 0,
+                  "%s with --noise-threshold: adaptive sampling decides over the whole film and keeps "
+                  "no checkpoint; drop %s, or --noise-threshold to sample every pixel alike", unit, unit);
+        return false;
+    }
     /* (A scene's spp below --min-spp is the render's to refuse: the scene is not read yet.) */
     if (o->min_spp && o->spp && o->min_spp > o->spp) {
         error_set(err, ERR_USAGE, NULL, 0, "--min-spp %d is more than --spp %d", o->min_spp, o->spp);
+        return false;
+    }
+    if (o->command == CMD_TONEMAP && (!o->scene || !o->output)) {
+        error_set(err, ERR_USAGE, NULL, 0, "'pt tonemap' needs an EXR and -o OUT.png (pt tonemap IN.exr -o OUT.png)");
         return false;
     }
     if ((o->command == CMD_RENDER || o->command == CMD_VIEW || o->command == CMD_BENCH) && !o->scene) {
@@ -226,7 +243,8 @@ RenderDesc cli_render_desc(const Options *o)
     return (RenderDesc){.scene = o->scene, .device = o->device, .width = o->width,
                         .height = o->height, .spp = o->spp, .max_depth = o->max_depth,
                         .no_cache = o->no_cache, .no_default_light = o->no_default_light,
-                        .instancing = o->instancing, .camera_json = o->camera_json};
+                        .instancing = o->instancing, .camera_json = o->camera_json,
+                        .no_ground = o->no_ground, .frame = o->frame, .up_axis = o->up_axis};
 }
 
 /* The one place the options become render settings: pt render, pt bench (its modes then vary

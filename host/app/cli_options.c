@@ -74,6 +74,17 @@ static bool parse_seed(const char *arg, const char *value, Options *o, Error *er
     return true;
 }
 
+static bool parse_up(const char *arg, const char *v, Options *o, Error *err)
+{
+    if (!strcmp(v, "y") || !strcmp(v, "Y")) o->up_axis = UP_AXIS_Y;
+    else if (!strcmp(v, "z") || !strcmp(v, "Z")) o->up_axis = UP_AXIS_Z;
+    else {
+        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not y or z", arg, v);
+        return false;
+    }
+    return true;
+}
+
 static bool parse_instancing(const char *arg, const char *v, Options *o, Error *err)
 {
     (void)arg;
@@ -132,6 +143,7 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     o->quiet = true;
     obj_loader_set_quiet(true);  /* MTL statements pt does not use: no warnings */
     gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
+    device_set_build_notice(false); /* nor the first-time kernel build */
     return true;
 }
 
@@ -162,7 +174,8 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
 #define VIEW CMD_BIT(CMD_VIEW)
 #define BENCH CMD_BIT(CMD_BENCH)
 #define SCENE_COMMANDS (RENDER | VIEW | BENCH)
-#define EVERY_COMMAND (SCENE_COMMANDS | CMD_BIT(CMD_DEVICES))
+#define TONEMAP CMD_BIT(CMD_TONEMAP)
+#define EVERY_COMMAND (SCENE_COMMANDS | CMD_BIT(CMD_DEVICES) | TONEMAP)
 
 /* In `pt help` order. */
 const CliOption cli_options[] = {
@@ -177,7 +190,7 @@ const CliOption cli_options[] = {
     {"seed", 0, CUSTOM(parse_seed), SCENE_COMMANDS, HELP_OPTIONS, "--seed S",
      "random seed (default 0); the image is a pure function of scene,\n"
      "                     settings, seed and spp"},
-    {"device", 0, TEXT(device), SCENE_COMMANDS, HELP_OPTIONS, "--device gpu|cpu|P:D",
+    {"device", 0, TEXT(device), SCENE_COMMANDS | TONEMAP, HELP_OPTIONS, "--device gpu|cpu|P:D",
      "OpenCL device (default: first GPU, else first CPU)"},
     {"device", 0, HELP_ONLY, 0, HELP_OPTIONS, "--device all|P:D,P:D,...",
      "render on several devices at once (all: every GPU, or\n"
@@ -196,17 +209,17 @@ const CliOption cli_options[] = {
      "                     for every unit size"},
     {"unit-rows", 0, INT(unit_rows, 1, FILM_SIZE_LIMIT), RENDER | BENCH, HELP_OPTIONS, "--unit-rows N",
      NULL},
-    {"output", 'o', TEXT(output), RENDER, HELP_OPTIONS, "-o FILE",
+    {"output", 'o', TEXT(output), RENDER | TONEMAP, HELP_OPTIONS, "-o FILE",
      "output .exr (linear) or .png (sRGB); overwrites FILE. Without -o:\n"
      "                     out/<scene>.exr and .png, numbered so nothing is overwritten"},
     {"preview", 0, FLAG(preview), RENDER, HELP_OPTIONS, "--preview", "with -o FILE.exr, also write FILE.png"},
-    {"exposure", 0, FLOAT(exposure, -64.0, 64.0), RENDER | VIEW, HELP_OPTIONS, "--exposure EV",
+    {"exposure", 0, FLOAT(exposure, -64.0, 64.0), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--exposure EV",
      "exposure in stops for PNG output and the viewer (default 0)"},
-    {"tonemap", 0, CUSTOM(parse_tonemap), RENDER | VIEW, HELP_OPTIONS, "--tonemap NAME",
+    {"tonemap", 0, CUSTOM(parse_tonemap), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--tonemap NAME",
      "display curve for PNG output and the viewer (EXR stays linear):\n"
      "                     agx (default, Blender's look), aces (Hill's fit), filmic (Hable),\n"
      "                     pbr-neutral (Khronos), reinhard (per channel), clamp (hard clip)"},
-    {"bloom", 0, CUSTOM(parse_bloom), RENDER | VIEW, HELP_OPTIONS, "--bloom S[,R]",
+    {"bloom", 0, CUSTOM(parse_bloom), RENDER | VIEW | TONEMAP, HELP_OPTIONS, "--bloom S[,R]",
      "glow around bright areas for PNG and the viewer (the EXR stays\n"
      "                     linear, without it): a share S in [0, 1] of the light above\n"
      "                     luminance 1 spread by a Gaussian of radius R pixels (3 sigma;\n"
@@ -255,9 +268,18 @@ const CliOption cli_options[] = {
      "compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"
      "                     default ~/.cache/pt) holds them"},
     {"no-default-light", 0, FLAG(no_default_light), SCENE_COMMANDS, HELP_OPTIONS, "--no-default-light",
-     "a scene without any light (no emissive triangles, lights,\n"
-     "                     environment or background) stays black; by default it gets a\n"
-     "                     uniform white sky (background [1, 1, 1]) and a warning"},
+     "no default rig: a scene without any light (no emissive triangles,\n"
+     "                     lights, environment or background) stays black, a bare model\n"
+     "                     with tiny emitters keeps only them. By default they get the\n"
+     "                     default rig (a sky, a sun, and under a bare model a ground;\n"
+     "                     README \"The first image\") and a warning"},
+    {"no-ground", 0, FLAG(no_ground), SCENE_COMMANDS, HELP_OPTIONS, "--no-ground",
+     "the default rig without its ground"},
+    {"up", 0, CUSTOM(parse_up), SCENE_COMMANDS, HELP_OPTIONS, "--up y|z",
+     "which axis of a bare model is up, for its framing and the default\n"
+     "                     rig (default y; z for Blender or CAD exports in Z-up)"},
+    {"frame", 0, FLAG(frame), SCENE_COMMANDS, HELP_OPTIONS, "--frame",
+     "ignore the file's own camera: frame the model in a 3/4 view"},
     {"quiet", 'q', CUSTOM_FLAG(parse_quiet), EVERY_COMMAND, HELP_OPTIONS, "--quiet",
      "no progress output (and no summary)"},
     {"progress", 0, FLAG(progress), RENDER, HELP_OPTIONS, "--progress",

@@ -9,7 +9,7 @@
 
 #include "io/tonemap.h"
 
-typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH } Command;
+typedef enum { CMD_NONE, CMD_HELP, CMD_VERSION, CMD_RENDER, CMD_VIEW, CMD_DEVICES, CMD_BENCH, CMD_TONEMAP } Command;
 
 typedef struct {
     Command command;
@@ -39,6 +39,9 @@ typedef struct {
     int sort_materials; /* SORT_MATERIALS_* (render/session.h); AUTO unless asked */
     bool no_cache;   /* compile the kernels even if the kernel cache has them */
     bool no_default_light; /* a scene without any light stays dark */
+    bool no_ground;  /* --no-ground: the default rig without its ground */
+    bool frame;      /* --frame: ignore the file's camera, frame the model */
+    int up_axis;     /* --up: UpAxis (scene/camera.h), UP_AXIS_Y unless asked */
     int instancing;  /* --instancing: InstancingMode (scene/scene.h), AUTO unless asked */
     const char *csv; /* pt bench: append results to this CSV file */
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */

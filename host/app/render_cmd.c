@@ -19,6 +19,7 @@
 #include "base/clock.h"
 #include "base/fs.h"
 #include "io/image_io.h"
+#include "render/aov.h"
 #include "render/aov_layers.h"
 #include "render/bloom.h"
 #include "render/session.h"
@@ -164,6 +165,55 @@ static void aov_pass(const Options *o, RenderImages *images, Session *session,
                 seconds_now() - start);
 }
 
+/* The camera sees no geometry at all (a file's camera looking away, a model far off): said before
+ * the render, from one camera ray per pixel (the AOV pass's first sample: W x H rays, nothing
+ * beside a render). A scene of sky alone (no objects) sees none on purpose. */
+static void warn_when_nothing_in_view(Session *session, const RenderSettings *settings)
+{
+    const SceneDesc *desc = &session->scene.desc;
+    size_t n = (size_t)desc->width * (size_t)desc->height;
+    float *coverage = desc->num_objects > 0 ? malloc(n * sizeof *coverage) : NULL;
+    if (!coverage)
+        return;
+    AovSettings probe = {.spp = 1, .max_depth = 1, .seed = settings->seed,
+                         .first_sample = settings->first_sample};
+    AovImages images = {.coverage = coverage};
+    Error err = {0};
+    double hits = 0.0;
+    bool probed = aov_render_layers(&session->dev, &session->scene, &session->buffers, &probe, &images, &err);
+    for (size_t p = 0; probed && p < n; p++)
+        hits += coverage[p];
+    free(coverage);
+    if (probed && hits == 0.0)
+        warn("%s: the camera sees no geometry (every camera ray missed it): %s", desc->path,
+             desc->camera_given ? "the scene's camera looks away from the model; --frame frames it "
+                                  "in a 3/4 view"
+                                : "--camera places the camera");
+}
+
+/* The camera sees geometry that no light reaches (the file's lights hidden from it: a closed room
+ * seen from outside): said after the render, from the image and its coverage. */
+static void warn_when_black(const RenderImages *images, const Session *session)
+{
+    const SceneDesc *desc = &session->scene.desc;
+    size_t n = (size_t)desc->width * (size_t)desc->height;
+    double coverage = 0.0, light = 0.0;
+    for (size_t p = 0; p < n; p++) {
+        coverage += images->alpha[p];
+        light += images->rgb[3 * p] + images->rgb[3 * p + 1] + images->rgb[3 * p + 2];
+    }
+    /* A scene with no light at all is black on purpose (--no-default-light). */
+    const SceneData *d = &session->scene.data;
+    bool lit = d->num_emissive > 0 || d->num_analytic > 0 || d->environment.width > 0 ||
+               desc->background[0] > 0.0f || desc->background[1] > 0.0f || desc->background[2] > 0.0f;
+    if (lit && coverage > 0.0 && light == 0.0)
+        warn("%s: the image is black: no light reaches the camera (%u emissive triangles, %u lights, "
+             "%s; they light nothing the camera sees, e.g. a closed room seen from outside): "
+             "--camera to look from elsewhere", desc->path, session->scene.data.num_emissive,
+             session->scene.data.num_analytic,
+             session->scene.data.environment.width > 0 ? "an environment" : "no environment");
+}
+
 /* The EXR (linear, every layer, the record in its header), then the PNG (bloom and the display
  * curve applied to the beauty after the EXR was written). */
 static void write_outputs(const Options *o, const OutputPaths *out, RenderImages *images,
@@ -245,6 +295,8 @@ int command_render(const Options *o)
     fs_set_before_rename_hook(raise_at_write_point);
     RenderSettings settings = cli_render_settings(o);
     session_settle_settings(&session, &settings, o->sort_materials);
+    if (root)
+        warn_when_nothing_in_view(&session, &settings);
     RenderStats stats;
     RenderLoopDesc loop = {.progress = progress_style(o), .time_limit = o->time_limit};
     bool rendered;
@@ -275,6 +327,7 @@ int command_render(const Options *o)
         return stop_exit_status();
     }
     aov_pass(o, &images, &session, &settings, spp_done);
+    warn_when_black(&images, &session);
     write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)
         render_cmd_units_remove_checkpoint(o, base);

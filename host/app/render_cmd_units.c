@@ -39,7 +39,8 @@ static bool check_supported(const Options *o, const RenderSettings *s, Error *er
     if (s->noise_threshold > 0.0f) {
         error_set(err, ERR_USAGE, NULL, 0,
                   "%s: adaptive sampling (--noise-threshold or the scene's render.noise_threshold) "
-                  "decides over the whole film and runs on one device without work units", what);
+                  "decides over the whole film and runs on one device without work units: drop %s "
+                  "(or the scene's noise_threshold)", what, what);
         return false;
     }
     if (s->moments) {

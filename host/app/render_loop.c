@@ -3,6 +3,7 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "app/stop_signals.h"
 #include "base/clock.h"
@@ -44,6 +45,27 @@ void render_loop_print_progress(ProgressStyle style, int spp_done, int spp, uint
                 100.0 * fraction, spp_done, spp, rate * 1e-6, elapsed, eta);
     }
     fflush(stderr);
+}
+
+/* How adaptive sampling spent the samples: the mean, least and most per pixel. */
+static void print_adaptive_spp(Wavefront *w, size_t pixels, float threshold)
+{
+    float *spp = malloc(pixels * sizeof *spp);
+    if (!spp || pixels == 0) {
+        free(spp);
+        return;
+    }
+    wavefront_read_spp(w, spp);
+    double sum = 0.0;
+    float lo = spp[0], hi = spp[0];
+    for (size_t i = 0; i < pixels; i++) {
+        sum += spp[i];
+        lo = spp[i] < lo ? spp[i] : lo;
+        hi = spp[i] > hi ? spp[i] : hi;
+    }
+    fprintf(stderr, "pt: adaptive sampling (noise threshold %g): %.1f spp per pixel on average, "
+            "%.0f to %.0f\n", threshold, sum / (double)pixels, lo, hi);
+    free(spp);
 }
 
 bool render_loop_run(Session *session, const RenderSettings *settings, const RenderLoopDesc *desc,
@@ -93,6 +115,10 @@ bool render_loop_run(Session *session, const RenderSettings *settings, const Ren
         fprintf(stderr, "pt: time limit of %g s reached: stopping with %d of %d spp done\n",
                 desc->time_limit, wavefront_spp_done(w), settings->spp);
     }
+    float threshold = settings->noise_threshold > 0.0f ? settings->noise_threshold
+                                                        : session->scene.desc.noise_threshold;
+    if (threshold > 0.0f && progress != PROGRESS_NONE)
+        print_adaptive_spp(w, (size_t)pixels, threshold);
     wavefront_read_film(w, images->rgb);
     render_images_read_film(images, w);
     *stats = *wavefront_stats(w);

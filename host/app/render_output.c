@@ -35,7 +35,8 @@ bool render_images_alloc(RenderImages *images, unsigned mask, size_t num_pixels)
     memset(images, 0, sizeof *images);
     images->mask = mask;
     images->rgb = malloc(num_pixels * 3 * sizeof *images->rgb);
-    bool ok = images->rgb != NULL;
+    images->alpha = calloc(num_pixels, sizeof *images->alpha);
+    bool ok = images->rgb != NULL && images->alpha != NULL;
     for (int l = 0; l < AOV_LAYER_COUNT; l++) {
         if (!(mask & AOV_MASK(l)))
             continue;
@@ -50,6 +51,7 @@ bool render_images_alloc(RenderImages *images, unsigned mask, size_t num_pixels)
 void render_images_free(RenderImages *images)
 {
     free(images->rgb);
+    free(images->alpha);
     for (int l = 0; l < AOV_LAYER_COUNT; l++)
         free(images->layer[l]);
     memset(images, 0, sizeof *images);
@@ -75,11 +77,14 @@ bool render_images_aov_pass(RenderImages *images, Session *session, const Render
 {
     AovImages aovs = {.albedo = images->layer[AOV_LAYER_ALBEDO],
                       .normal = images->layer[AOV_LAYER_NORMAL],
-                      .depth = images->layer[AOV_LAYER_DEPTH]};
-    if (!aovs.albedo && !aovs.normal && !aovs.depth)
+                      .depth = images->layer[AOV_LAYER_DEPTH],
+                      .coverage = images->alpha};
+    if (!aovs.coverage && !aovs.albedo && !aovs.normal && !aovs.depth)
         return true;
+    /* The coverage alone needs only the camera rays' first hits. */
+    bool walk = aovs.albedo || aovs.normal || aovs.depth;
     AovSettings aov = {.spp = aov_pass_spp(spp_done),
-                       .max_depth = settings->max_depth,
+                       .max_depth = walk ? settings->max_depth : 1,
                        .seed = settings->seed,
                        .first_sample = settings->first_sample};
     return aov_render_layers(&session->dev, &session->scene, &session->buffers, &aov, &aovs, err);
@@ -120,6 +125,7 @@ bool render_write_exr(const char *path, const RenderImages *images, const Sessio
         {.name = "partial", .type = IMAGE_ATTR_INT, .int_value = record->partial ? 1 : 0},
     };
     ExrImage image = {.rgb = images->rgb,
+                      .alpha = images->alpha,
                       .width = desc->width,
                       .height = desc->height,
                       .layers = layers,

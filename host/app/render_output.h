@@ -16,6 +16,9 @@
 typedef struct {
     unsigned mask;     /* AOV_MASK bits of the layers held */
     float *rgb;        /* the beauty, 3 floats a pixel */
+    float *alpha;      /* the beauty's coverage (EXR A): the fraction of the AOV pass's camera
+                        * samples that hit geometry; exact (hits / samples, one work item a
+                        * pixel), so no order of samples can change it */
     float *layer[AOV_LAYER_COUNT]; /* indexed by AovLayer, its channel count floats a pixel */
 } RenderImages;
 
@@ -26,8 +29,9 @@ void render_images_free(RenderImages *images);
 /* The film's layers (spp, variance), read before the wavefront is released. */
 void render_images_read_film(RenderImages *images, Wavefront *w);
 
-/* Runs the AOV pass for the albedo, normal and depth layers held, over the first aov_pass_spp
- * samples of the render's camera samples. */
+/* Runs the AOV pass for the albedo, normal and depth layers held and the beauty's alpha, over
+ * the first aov_pass_spp samples of the render's camera samples (only the camera rays when no
+ * layer is asked for). */
 bool render_images_aov_pass(RenderImages *images, Session *session, const RenderSettings *settings,
                             int spp_done, Error *err);
 

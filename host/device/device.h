@@ -83,6 +83,9 @@ bool device_spec_list(const char *spec, DeviceSpecList *list, Error *err);
  * PROGRAM_FEATURES_ALL keeps every feature): the kernel cache keys on them with the options. Without
  * extra_source only the CORE part is built now, the others by device_kernel when a kernel of
  * theirs is first asked for. On failure prints the full build log and returns ERR_KERNEL_BUILD. */
+/* Whether device_build announces a compile the kernel cache does not spare, on stderr (default
+ * on; pt --quiet turns it off). */
+void device_set_build_notice(bool on);
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err);
 

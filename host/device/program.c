@@ -8,6 +8,7 @@
 #include "base/clock.h"
 #include "base/env.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -162,6 +163,37 @@ static void store_in_cache(cl_program program, uint64_t key)
     free(binary);
 }
 
+static bool build_notice = true;
+
+void device_set_build_notice(bool on) { build_notice = on; }
+
+/* Before a compile the kernel cache cannot spare: one line, so that a first run's wait is
+ * explained before it starts, not after. The parts built later (a first megakernel, AOV or
+ * ablation run) say which they are. */
+static void announce_build(const Device *dev, int part)
+{
+    if (!build_notice)
+        return;
+    char summary[PROGRAM_FEATURE_SUMMARY_SIZE], which[64] = "";
+    program_features_summary(dev->features, summary);
+    bool later = false; /* another part came first: say which this one is */
+    for (int i = 0; i < PROGRAM_PART_COUNT; i++)
+        later = later || dev->programs[i];
+    if (later) {
+        snprintf(which, sizeof which, " of the %s part", program_parts[part].name);
+        for (char *c = which; *c; c++)
+            *c = (char)tolower((unsigned char)*c);
+    }
+    const char *dir = kernel_cache_dir();
+    if (dev->use_cache && dir[0])
+        fprintf(stderr, "pt: compiling kernels%s for this scene's features (%s) on %s, first time "
+                "only (then from the kernel cache, %s) ...\n", which, summary, dev->name, dir);
+    else
+        fprintf(stderr, "pt: compiling kernels%s for this scene's features (%s) on %s (no kernel "
+                "cache) ...\n", which, summary, dev->name);
+    fflush(stderr);
+}
+
 /* Builds part `part` (or the whole program: dev->whole_program) from the kernel cache or the
  * source into dev->programs[part], adding its time to dev->build_seconds. */
 static bool build_part(Device *dev, int part, Error *err)
@@ -178,6 +210,7 @@ static bool build_part(Device *dev, int part, Error *err)
     cl_program program = dev->use_cache ? build_from_cache(dev, options, key) : NULL;
     if (!program) {
         dev->cache_hit = false;
+        announce_build(dev, part);
         cl_int status;
         const char *sources[1] = {dev->source};
         program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);

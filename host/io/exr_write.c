@@ -34,7 +34,7 @@ typedef struct {
 static bool collect_channels(const ExrImage *image, const char *path, ChannelSource **sources,
                              int *count, Error *err)
 {
-    int total = RGB_CHANNELS;
+    int total = RGB_CHANNELS + (image->alpha ? 1 : 0);
     for (int l = 0; l < image->layer_count; l++)
         total += (int)strlen(image->layers[l].channels ? image->layers[l].channels : "");
     *sources = calloc((size_t)total, sizeof **sources);
@@ -47,6 +47,10 @@ static bool collect_channels(const ExrImage *image, const char *path, ChannelSou
     for (int c = 0; c < RGB_CHANNELS; c++, n++) {
         (*sources)[n] = (ChannelSource){.pixels = image->rgb + c, .stride = RGB_CHANNELS};
         snprintf((*sources)[n].name, EXR_CHANNEL_NAME_MAX, "%s", beauty[c]);
+    }
+    if (image->alpha) {
+        (*sources)[n] = (ChannelSource){.pixels = image->alpha, .stride = 1};
+        snprintf((*sources)[n++].name, EXR_CHANNEL_NAME_MAX, "A");
     }
     for (int l = 0; l < image->layer_count; l++) {
         const ImageLayer *layer = &image->layers[l];

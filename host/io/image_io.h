@@ -42,6 +42,7 @@ typedef struct {
     int layer_count;
     const ImageAttribute *attributes;
     int attribute_count;
+    const float *alpha; /* the beauty's A channel (one float a pixel); NULL: none */
 } ExrImage;
 
 /* One scanline part, 32-bit float channels (beauty R, G, B and every layer's), ZIP; non-finite

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <set>
 #include <sstream>
+#include <sys/stat.h>
 
 extern "C" {
 #include "io/input_file.h"
@@ -29,6 +30,11 @@ const std::set<std::string> &used_statements()
         "map_Kd", "map_Ke", "map_Pr", "map_Pm", "map_d", "norm", "map_Bump", "map_bump", "bump"};
     return used;
 }
+
+/* Statements pt does not use but that need no word: the ambient colour and its map (Ka, map_Ka)
+ * are a rasterizer's fill that nearly every exporter writes; a path tracer's ambient is the light
+ * itself. Warning about them on almost every MTL hid the warnings that matter. */
+bool is_harmless_statement(const std::string &name) { return name == "Ka" || name == "map_Ka"; }
 
 bool is_texture_statement(const std::string &name)
 {
@@ -136,7 +142,7 @@ std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const 
         std::istringstream words(record);
         std::string name;
         words >> name;
-        if (!used_statements().count(name))
+        if (!used_statements().count(name) && !is_harmless_statement(name))
             unused->statements[name]++;
         else if (is_texture_statement(name))
             note_texture_options(name, words, unused);
@@ -235,6 +241,21 @@ bool MaterialLibraryReader::operator()(const std::string &name,
     return true;
 }
 
+/* A map written on Windows (`map_Kd .\\SpiderTex.jpg`, `textures\\wood.png`): when the path as
+ * written names no file, its backslashes are taken as separators (a file name with a backslash
+ * in it is rare; an MTL exported on Windows is not). */
+static std::string windows_separators(const std::string &path, const std::string &folder,
+                                      const std::string &name)
+{
+    struct stat st;
+    if (name.find('\\') == std::string::npos || stat(path.c_str(), &st) == 0)
+        return path;
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    std::string candidate = join_path(folder, slashed);
+    return stat(candidate.c_str(), &st) == 0 ? candidate : path;
+}
+
 /* A texture path resolved against the MTL's folder into a 1024-byte field ("" when none). */
 static void copy_path(const char *material, const char *statement, const std::string &folder,
                       const std::string &name, char out[1024])
@@ -242,7 +263,7 @@ static void copy_path(const char *material, const char *statement, const std::st
     out[0] = '\0';
     if (name.empty())
         return;
-    std::string path = join_path(folder, name);
+    std::string path = windows_separators(join_path(folder, name), folder, name);
     if (path.size() >= 1024)
         warn("material %s: %s path longer than 1023 characters ignored", material, statement);
     else

@@ -50,6 +50,8 @@ bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buff
             }
             if (out->depth)
                 out->depth[p] = normal[p].s[3] > 0.0f ? albedo[p].s[3] : AOV_DEPTH_MISS;
+            if (out->coverage)
+                out->coverage[p] = normal[p].s[3];
         }
     } else if (!error_is_set(err)) {
         error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for the AOVs of a %dx%d film",

@@ -31,6 +31,7 @@ typedef struct {
     float *normal; /* xyz: its shading normal toward the viewer, world space, mean (0: miss) */
     float *depth;  /* the camera ray's distance to its first hit, mean over the samples that hit;
                     * AOV_DEPTH_MISS where none did */
+    float *coverage; /* the fraction of the samples whose camera ray hit geometry (EXR's A) */
 } AovImages;
 
 /* Runs render_aov; false with the device's error (e.g. out of memory). */

@@ -9,8 +9,15 @@
 #include "base/error.h"
 #include "scene/camera_json.h"
 
-static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
+static bool apply_overrides(const RenderDesc *o, Scene *scene, Error *err)
 {
+    SceneDesc *d = &scene->desc;
+    if (o->width) d->width = o->width;
+    if (o->height) d->height = o->height;
+    /* A camera the file does not give (or --frame) is framed for the film's aspect as it is now,
+     * before the rig's ground joins the bounds. */
+    if (!d->camera_given || o->frame)
+        scene_frame_camera(scene, (UpAxis)o->up_axis);
     /* --camera: the keys it has replace the scene's (or the framed default camera's), read by
      * the scene's own camera reader, so a render with it equals one of a scene file with it. */
     if (o->camera_json) {
@@ -18,8 +25,6 @@ static bool apply_overrides(const RenderDesc *o, SceneDesc *d, Error *err)
             return false;
         d->camera_given = true;
     }
-    if (o->width) d->width = o->width;
-    if (o->height) d->height = o->height;
     if (o->spp) d->spp = o->spp;
     if (o->max_depth) d->max_depth = o->max_depth;
     /* Pixel indices are 32-bit in the kernels. */
@@ -103,12 +108,12 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
     double t0 = seconds_now();
     if (!scene_load_with(o->scene, (InstancingMode)o->instancing, &s->scene, err))
         return false;
-    if (!apply_overrides(o, &s->scene.desc, err)) {
+    RigOptions rig = {.up = (UpAxis)o->up_axis, .no_ground = o->no_ground};
+    if (!apply_overrides(o, &s->scene, err) ||
+        (!o->no_default_light && !scene_add_default_rig(&s->scene, &rig, err))) {
         scene_free(&s->scene);
         return false;
     }
-    if (!o->no_default_light)
-        scene_add_default_light(&s->scene);
     s->load_seconds = seconds_now() - t0;
     if (!open_on_device(&s->dev, &s->bvh, &s->buffers, &s->scene, o->device, o->no_cache,
                         &s->bvh_seconds, err)) {

@@ -20,6 +20,9 @@ typedef struct {
     bool no_default_light; /* leave a scene without any light dark (scene_add_default_light) */
     int instancing;     /* InstancingMode (scene/scene.h); 0 = INSTANCING_AUTO */
     const char *camera_json; /* pt render --camera: replaces the scene's camera; NULL = keep it */
+    bool no_ground;     /* the default rig without its ground (--no-ground) */
+    bool frame;         /* frame the model even when the file has a camera (--frame) */
+    int up_axis;        /* UpAxis (scene/camera.h) of the framing and the rig (--up) */
 } RenderDesc;
 
 typedef struct {

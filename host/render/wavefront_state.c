@@ -282,10 +282,15 @@ void render_stats_print_profile(FILE *out, const RenderStats *stats, const char 
     double total = 0.0;
     for (int k = 0; k < STAGE_COUNT; k++)
         total += stats->stage_ms[k];
+    /* Only what ran: a stage never launched (the megakernel's, a black hole's) and a live-path
+     * count the run did not record (the megakernel keeps none) would be empty rows. */
     fprintf(out, "%-22s %9s %11s %7s\n", title, "launches", "total ms", "share");
     for (int k = 0; k < STAGE_COUNT; k++)
-        fprintf(out, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
-                stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
+        if (stats->stage_launches[k] > 0)
+            fprintf(out, "%-22s %9u %11.2f %6.1f%%\n", stage_names[k], stats->stage_launches[k],
+                    stats->stage_ms[k], total > 0 ? 100.0 * stats->stage_ms[k] / total : 0.0);
+    if (stats->live_per_step[0] == 0)
+        return;
     fprintf(out, "live paths per step (all windows):");
     for (int b = 0; b < RENDER_LIVE_STEPS && stats->live_per_step[b]; b++)
         fprintf(out, " %llu", (unsigned long long)stats->live_per_step[b]);

@@ -39,6 +39,25 @@ static bool read_angle(JsonParser *p, const cJSON *e, const char *name, const ch
     return json_read_member_in_range(p, e, prefix, name, def, lo, open_lo, hi, out);
 }
 
+AnalyticLight analytic_light_sun(const float direction[3], const float irradiance[3], float angle)
+{
+    AnalyticLight l = {.type = angle > 0.0f ? LIGHT_SUN : LIGHT_DIRECTIONAL};
+    l.position = (float4){{direction[0], direction[1], direction[2], 0.0f}};
+    l.color = (float4){{irradiance[0], irradiance[1], irradiance[2], luminance3(irradiance)}};
+    double half = 0.5 * angle * PI / 180.0;
+    if (half > 0.0) {
+        /* Radiance L over the disc with L x pi sin^2(half) = E: a surface facing the sun
+         * receives exactly E (the cosine-weighted integral over the cone). */
+        double s = sin(half);
+        l.params.s[0] = (float)cos(half);
+        l.params.s[1] = (float)(1.0 / (PI * s * s));
+        l.params.s[2] = (float)(1.0 / (2.0 * PI * (1.0 - cos(half))));
+    } else {
+        l.params.s[0] = 1.0f;
+    }
+    return l;
+}
+
 static bool parse_light(JsonParser *p, const cJSON *e, const char *prefix, AnalyticLight *l)
 {
     static const char *const point_keys[] = {"type", "position", "intensity", NULL};
@@ -100,21 +119,13 @@ static bool parse_light(JsonParser *p, const cJSON *e, const char *prefix, Analy
         l->position = (float4){{v[0], v[1], v[2], 0.0f}};
         if (!read_color(p, e, "irradiance", prefix, v))
             return false;
-        l->color = (float4){{v[0], v[1], v[2], luminance3(v)}};
+        float irradiance[3] = {v[0], v[1], v[2]};
         float angle = 0.0f;
         if (sun && !read_angle(p, e, "angle", prefix, 0.0f, 0.0f, false, 180.0f, &angle))
             return false;
-        double half = 0.5 * angle * PI / 180.0;
-        if (half > 0.0) {
-            /* Radiance L over the disc with L x pi sin^2(half) = E: a surface facing the sun
-             * receives exactly E (the cosine-weighted integral over the cone). */
-            double s = sin(half);
-            l->params.s[0] = (float)cos(half);
-            l->params.s[1] = (float)(1.0 / (PI * s * s));
-            l->params.s[2] = (float)(1.0 / (2.0 * PI * (1.0 - cos(half))));
-        } else {
-            l->params.s[0] = 1.0f;
-        }
+        float direction[3] = {l->position.s[0], l->position.s[1], l->position.s[2]};
+        *l = analytic_light_sun(direction, irradiance, angle);
+        l->type = sun ? LIGHT_SUN : LIGHT_DIRECTIONAL;
         return true;
     }
     return json_fail(p, ERR_JSON_VALUE, key, "unknown light type \"%s\" (point, spot, directional or sun)", t);

@@ -16,6 +16,10 @@
  * intensity or irradiance, falloff_angle > cone_angle, angles out of range. */
 bool analytic_lights_from_json(JsonParser *p, const cJSON *array, AnalyticLight **out, int *count);
 
+/* A sun (angle > 0: a disc of that diameter in degrees) or, with angle 0, a directional light:
+ * direction (unit) is where the light travels, irradiance on a surface facing it. */
+AnalyticLight analytic_light_sun(const float direction[3], const float irradiance[3], float angle);
+
 /* The light's weight in the light table, in the triangles' unit (power / pi: a triangle weighs
  * area x luminance): point 4 I, spot I x (the profile's solid-angle integral) / pi, directional and
  * sun E x R^2 (E through the scene's bounding disc, pi R^2, over pi); I and E as luminance. */

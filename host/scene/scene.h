@@ -28,9 +28,29 @@ bool scene_load(const char *path, Scene *out, Error *err);
 bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Error *err);
 void scene_free(Scene *scene);
 
-/* A scene with no light at all (no emissive triangle, no "lights", no environment map and a black
- * background) gets a uniform white sky, background [1, 1, 1], with one warning naming what is
- * missing; true when it did. */
+/* Frames the camera on the scene's bounds (camera/camera_frame_model) for the film's aspect, with
+ * the given up axis; the camera counts as not given. */
+void scene_frame_camera(Scene *scene, UpAxis up);
+/* Whether path is a model file given bare (OBJ, PLY, glTF) rather than a scene description. */
+bool scene_is_bare_model(const char *path);
+
+/* The default rig (scene/default_rig.h; README "The first image") a scene gets:
+ *   - none when the scene brings "lights", an environment map or a non-black background;
+ *   - a bare model file (OBJ, PLY, glTF) without emitters, or whose emitters are tiny (less than a
+ *     tenth of what the rig's sky gives its bounding disc: glowing labels, indicator lamps): the
+ *     sky, the sun and a ground (as Blender keeps its world whatever a model emits);
+ *   - a JSON scene without any light (no emitters either): the sky and the sun, no ground (its
+ *     author placed its objects); a JSON scene with emitters keeps its own light only. */
+typedef enum { RIG_NONE, RIG_SKY_AND_KEY, RIG_WITH_GROUND } RigChoice;
+typedef struct {
+    UpAxis up;      /* pt --up */
+    bool no_ground; /* pt --no-ground */
+} RigOptions;
+RigChoice scene_default_rig_choice(const Scene *scene);
+/* Adds the rig scene_default_rig_choice picks, with one warning naming why; call before the BVH
+ * is built. False: out of memory (err set). */
+bool scene_add_default_rig(Scene *scene, const RigOptions *options, Error *err);
+/* scene_add_default_rig with Y up and the ground; true when it added a rig. */
 bool scene_add_default_light(Scene *scene);
 
 #endif

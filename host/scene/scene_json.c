@@ -273,5 +273,12 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
     if ((item = json_member(root, "materials")) &&
         !materials_from_json(p, item, d->textures, d->num_textures, &d->materials, &d->num_materials))
         return false;
-    return parse_objects(p, json_member(root, "objects"), d);
+    /* A sky alone (an environment, or a background that is not black) is a scene without
+     * objects: it renders the sky (scene.c gives it a placeholder that no ray hits). */
+    const cJSON *objects = json_member(root, "objects");
+    bool sky = d->environment[0] || d->background[0] > 0.0f || d->background[1] > 0.0f ||
+               d->background[2] > 0.0f;
+    if (sky && (!objects || (cJSON_IsArray(objects) && cJSON_GetArraySize(objects) == 0)))
+        return true;
+    return parse_objects(p, objects, d);
 }

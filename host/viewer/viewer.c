@@ -262,7 +262,10 @@ static void run_frames(Viewer *v)
         double display = now - start - v->last_sampling_seconds;
         v->display_seconds = v->stats.frames > 1 ? 0.9 * v->display_seconds + 0.1 * display : display;
         update_title(v, now, frame_ms);
-        if (v->options->frames && v->stats.frames >= v->options->frames)
+        /* --frames N --screenshot: past N frames, on until every pixel has a whole sample, so
+         * the picture saved has no band still black (a frame's budget may cover part of the film). */
+        bool whole = !v->options->screenshot || wavefront_spp_done(v->wavefront) >= 1;
+        if (v->options->frames && v->stats.frames >= v->options->frames && whole)
             break;
     }
 }
