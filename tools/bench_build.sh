@@ -4,7 +4,9 @@
 # cache) and warm (the cache just filled), as pt reports them ("kernels N s"), for one or two pt
 # builds interleaved (A, B, A, B per scene) so both see the same machine. A cold build is what a
 # first render of a scene waits for: issue 39's goal is <= 10 s on the H200, <= 5 s on PoCL idle.
-# Prints a table and writes OUT (default bench-build.csv): build,scene,features,cold_s,warm_s.
+# Prints a table and writes OUT (default bench-build.csv): build,scene,features,cold_s,warm_s,
+# cold_wall_s,warm_wall_s: the kernels line covers the parts built before the render starts; the
+# difference of the whole runs' wall times also counts parts built later (the AOV pass's).
 # Environment: DEVICE (default gpu if pt sees one, else cpu), SCENES (space-separated paths),
 # PT_CL_OPTIONS etc. pass through.
 set -eu
@@ -15,12 +17,15 @@ scenes=${SCENES:-"scenes/cornell-box scenes/bench-materials/materials.json scene
 tests/scenes/conductors tests/scenes/normalmap tests/scenes/textured tests/scenes/envmap
 tests/scenes/glass tests/scenes/mix scenes/black-hole scenes/bench/dragon.json"}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-seconds() { # BIN SCENE CACHE -> "seconds features" of the kernels line
-    XDG_CACHE_HOME=$3 "$1" render "$2" ${dev:+--device $dev} --width 32 --height 24 --spp 1 \
+seconds() { # BIN SCENE CACHE -> "seconds wall features" of the kernels line and the whole run
+    t0=$(date +%s.%N)
+    line=$(XDG_CACHE_HOME=$3 "$1" render "$2" ${dev:+--device $dev} --width 32 --height 24 --spp 1 \
         --max-depth 2 -o "$tmp/o.exr" 2>&1 |
-        sed -n 's/.*kernels \([0-9.]*\) s ([^;]*; features: \([^)]*\)).*/\1 \2/p'
+        sed -n 's/.*kernels \([0-9.]*\) s ([^;]*; features: \([^)]*\)).*/\1 \2/p')
+    t1=$(date +%s.%N)
+    echo "${line%% *} $(echo "$t1 - $t0" | bc) ${line#* }"
 }
-echo "build,scene,features,cold_s,warm_s" >"$out"
+echo "build,scene,features,cold_s,warm_s,cold_wall_s,warm_wall_s" >"$out"
 i=0
 for s in $scenes; do
     for side in A B; do
@@ -28,15 +33,16 @@ for s in $scenes; do
         [ -n "$bin" ] || continue
         i=$((i + 1)); cache=$tmp/cache$i
         cold=$(seconds "$bin" "$s" "$cache"); warm=$(seconds "$bin" "$s" "$cache")
-        features=$(echo "$cold" | cut -d' ' -f2- | tr ',' ' ')
-        echo "$side,$s,$features,${cold%% *},${warm%% *}" >>"$out"
+        features=$(echo "$cold" | cut -d' ' -f3- | tr ',' ' ')
+        echo "$side,$s,$features,$(echo "$cold" | cut -d' ' -f1),$(echo "$warm" | cut -d' ' -f1),$(echo "$cold" | cut -d' ' -f2),$(echo "$warm" | cut -d' ' -f2)" >>"$out"
     done
 done
 python3 - "$out" "$a" "$b" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 print(f"A = {sys.argv[2]}" + (f"\nB = {sys.argv[3]}" if sys.argv[3] else ""))
-print(f"{'scene':42} {'side':>4} {'cold s':>8} {'warm s':>8}  features")
+print(f"{'scene':42} {'side':>4} {'cold s':>8} {'warm s':>8} {'cold run':>9} {'warm run':>9}  features")
 for r in rows:
-    print(f"{r['scene']:42} {r['build']:>4} {r['cold_s']:>8} {r['warm_s']:>8}  {r['features']}")
+    print(f"{r['scene']:42} {r['build']:>4} {r['cold_s']:>8} {r['warm_s']:>8} {float(r['cold_wall_s']):9.2f} "
+          f"{float(r['warm_wall_s']):9.2f}  {r['features']}")
 PY

@@ -30,6 +30,15 @@ inline float3 aov_delta_direction(const Bsdf *b, float3 wo, bool front)
     return normalize((float3)(-wo.x / eta, -wo.y / eta, -cos_t));
 }
 
+/* The beauty's closest hit for the AOV walk's segment `bounce` (its cut-out stream too). */
+inline Hit aov_trace(const SceneView *scene, float3 origin, float3 dir, float time, RngKey key,
+                     uint bounce)
+{
+    return PT_FEATURE(CUTOUT) ? trace_closest_through(scene, 0u, origin, dir, 0.0f, INFINITY, time,
+                                                      false, rng_bounce_bits(key, bounce, DIM_OPACITY))
+                              : scene_closest(scene, 0u, origin, dir, 0.0f, INFINITY, time);
+}
+
 #if PT_PART(AOV)
 kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global float4 *albedo,
                        global float4 *normal)
@@ -49,10 +58,7 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
         float time = PT_FEATURE(MOTION) ? camera_time(p, pixel, sample) : 0.0f;
         RngKey key = rng_path_key(pixel, sample, p->seed);
         for (uint bounce = 0u; bounce < max_segments; bounce++) {
-            Hit hit = PT_FEATURE(CUTOUT)
-                          ? trace_closest_through(&scene, 0u, origin, dir, 0.0f, INFINITY, time,
-                                                  false, rng_bounce_bits(key, bounce, DIM_OPACITY))
-                          : scene_closest(&scene, 0u, origin, dir, 0.0f, INFINITY, time);
+            Hit hit = aov_trace(&scene, origin, dir, time, key, bounce);
             if (hit.prim == HIT_NONE)
                 break;
             if (bounce == 0u) {
@@ -76,5 +82,36 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
     float n = (float)max(spp, 1u);
     albedo[pixel] = (float4)(albedo_sum / n, hits ? depth_sum / (float)hits : 0.0f);
     normal[pixel] = (float4)(normal_sum / n, (float)hits / n);
+}
+#endif
+
+/* render_coverage: render_aov's first hits alone, for the beauty's alpha (coverage) and the depth
+ * AOV: the same camera samples and the same writes to albedo.w and normal.w, the rest 0, without
+ * the shading that makes render_aov as slow to compile as shade_surface (every render writes the
+ * alpha; only --aov albedo,normal needs render_aov). */
+#if PT_PART(COVERAGE)
+kernel void render_coverage(constant RenderParams *p, SCENE_PARAMS uint spp, global float4 *albedo,
+                            global float4 *normal)
+{
+    SceneView scene = SCENE_VIEW;
+    uint pixel = get_global_id(0);
+    if (pixel >= p->width * p->height)
+        return;
+    float depth_sum = 0.0f;
+    uint hits = 0u;
+    for (uint s = 0; s < spp; s++) {
+        uint sample = p->sample_index + s;
+        float3 origin, dir;
+        camera_sample(p, pixel, sample, &origin, &dir);
+        float time = PT_FEATURE(MOTION) ? camera_time(p, pixel, sample) : 0.0f;
+        Hit hit = aov_trace(&scene, origin, dir, time, rng_path_key(pixel, sample, p->seed), 0u);
+        if (hit.prim != HIT_NONE) {
+            depth_sum += hit.t;
+            hits++;
+        }
+    }
+    float n = (float)max(spp, 1u);
+    albedo[pixel] = (float4)(0.0f, 0.0f, 0.0f, hits ? depth_sum / (float)hits : 0.0f);
+    normal[pixel] = (float4)(0.0f, 0.0f, 0.0f, (float)hits / n);
 }
 #endif

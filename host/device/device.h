@@ -20,7 +20,8 @@
     X(CORE, "")                                                                                    \
     X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
     X(AOV, "render_aov")                                                                           \
-    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")
+    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                      \
+    X(COVERAGE, "render_coverage")
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
 #undef PROGRAM_PART_ENUM

@@ -32,7 +32,10 @@ bool aov_render_layers(Device *dev, const Scene *scene, const SceneBuffers *buff
     cl_float4 *normal = malloc(num_pixels * sizeof *normal);
     bool ok = !error_is_set(err) && albedo && normal;
     if (ok) {
-        cl_kernel kernel = device_kernel(dev, "render_aov");
+        /* The alpha and depth need only the first hits: render_coverage, whose part of the
+         * program builds in a fraction of render_aov's time. */
+        bool shaded = out->albedo || out->normal;
+        cl_kernel kernel = device_kernel(dev, shaded ? "render_aov" : "render_coverage");
         cl_uint spp = (cl_uint)(settings->spp > 0 ? settings->spp : 1);
         cl_uint i = KERNEL_ARGS(kernel, 0, KARG(params_buf));
         i = scene_buffers_set_args(buffers, kernel, i);
