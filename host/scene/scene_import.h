@@ -49,7 +49,7 @@ typedef bool (*SceneImporter)(const char *path, ImportedScene *out, Error *err);
 #define SCENE_IMPORTERS(X)                                                                         \
     X(".dae", NULL, "COLLADA")                                                                     \
     X(".xml", NULL, "Mitsuba 3 XML")                                                               \
-    X(".pbrt", NULL, "pbrt-v4")                                                                    \
+    X(".pbrt", import_pbrt, "pbrt-v4")                                                             \
     X(".fbx", NULL, "FBX")                                                                         \
     X(".stl", NULL, "STL")                                                                         \
     X(".3ds", NULL, "3DS")                                                                         \
