@@ -170,7 +170,7 @@ static bool read_numbers(PbrtImport *imp, const char *directive, double *out, in
             if (!pbrt_next(imp->reader, &t, imp->err))
                 return false;
         if (t.kind != PBRT_TOKEN_NUMBER)
-            return pbrt_fail(imp, t.line, "%s: expected %d numbers", directive, n);
+            return pbrt_fail(imp, imp->line, "%s: expected %d numbers", directive, n);
         out[i] = t.number;
     }
     if (n == 16) { /* the optional closing bracket */

@@ -191,7 +191,41 @@ static double world_area(const Mesh *m, const Affine *ctm)
     return area;
 }
 
-/* The same mesh facing the other way (an emitter's back side for "twosided"). */
+/* Moves each point of a (flipped) mesh a hair along its front normal (the face normals around it,
+ * area-weighted): 1e-4 of the mesh's size. A copy exactly on top of the original would tie with
+ * it on every ray, and ties go to the lower triangle index (tests/test_accel_hit_ties.c), so one
+ * copy would hide the other from both sides. */
+static void offset_behind(Mesh *m)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double *n = calloc(3 * m->num_positions, sizeof *n);
+    if (!n)
+        return;
+    for (size_t i = 0; i < m->num_positions; i++)
+        for (int k = 0; k < 3; k++)
+            lo[k] = fmin(lo[k], m->positions[3 * i + k]), hi[k] = fmax(hi[k], m->positions[3 * i + k]);
+    double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    for (size_t t = 0; t < m->num_triangles; t++) {
+        const int32_t *c = &m->corners[9 * t];
+        const float *p0 = &m->positions[3 * c[0]], *p1 = &m->positions[3 * c[3]], *p2 = &m->positions[3 * c[6]];
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++)
+            e1[k] = p1[k] - p0[k], e2[k] = p2[k] - p0[k];
+        double f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                n[3 * c[3 * v] + k] += f[k];
+    }
+    for (size_t i = 0; i < m->num_positions; i++) {
+        double len = sqrt(n[3 * i] * n[3 * i] + n[3 * i + 1] * n[3 * i + 1] + n[3 * i + 2] * n[3 * i + 2]);
+        for (int k = 0; k < 3 && len > 0.0; k++)
+            m->positions[3 * i + k] += (float)(1e-4 * size * n[3 * i + k] / len);
+    }
+    free(n);
+}
+
+/* The same mesh facing the other way (an emitter's back side for "twosided"), a hair behind it. */
 static bool flipped_copy(const Mesh *m, Mesh *out)
 {
     memset(out, 0, sizeof *out);
@@ -218,6 +252,7 @@ static bool flipped_copy(const Mesh *m, Mesh *out)
     out->num_triangles = out->num_faces = m->num_triangles;
     for (size_t t = 0; t < m->num_triangles; t++)
         swap_corners(out, t);
+    offset_behind(out);
     return true;
 }
 
@@ -353,5 +388,10 @@ bool pbrt_shape(PbrtImport *imp, const char *type, PbrtParams *p)
         return pbrt_fail(imp, imp->line, "Shape \"%s\": out of memory", type);
     }
     /* pt's emitters are one-sided: a two-sided pbrt light is its shape twice, back to back. */
-    return add_mesh_object(imp, &m, material) && (!twosided || add_mesh_object(imp, &back, material));
+    if (!add_mesh_object(imp, &m, material)) {
+        if (twosided)
+            mesh_free(&back);
+        return false;
+    }
+    return !twosided || add_mesh_object(imp, &back, material);
 }
