@@ -358,13 +358,18 @@ bool pbrt_shape(PbrtImport *imp, const char *type, PbrtParams *p)
             pbrt_warn_once(imp, "S", "Shape \"%s\": \"S\" (tangents) is not imported: pt takes its "
                            "tangents from the uvs", type);
         (void)pbrt_param(p, "faceIndices");
+    } else if (strcmp(type, "loopsubdiv") == 0) {
+        /* Its control mesh: coarser than pbrt's limit surface, but the shape is there. */
+        pbrt_warn_once(imp, type, "Shape \"loopsubdiv\": rendered as its control mesh (not subdivided)");
+        ok = polygon_mesh(imp, p, 3, &m);
+        (void)pbrt_param(p, "levels");
     } else if (strcmp(type, "sphere") == 0) {
         ok = sphere(imp, p, &m);
     } else if (strcmp(type, "disk") == 0) {
         ok = disk(imp, p, &m);
     } else {
         pbrt_warn_once(imp, type, "Shape \"%s\": not imported (pt reads trianglemesh, plymesh, "
-                       "bilinearmesh, sphere, disk)", type);
+                       "bilinearmesh, loopsubdiv, sphere, disk)", type);
         for (int i = 0; i < p->count; i++)
             p->items[i].used = true;
         return true;
