@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: MIT
+/* The pbrt-v4 importer's mapping of each element (host/scene/import_pbrt_*.c) onto pt's scene
+ * description, read back from the SceneDesc: materials (roughness remapping, anisotropy, named
+ * metals, the nearest-model mappings, mix), textures, lights (units, power, directions mirrored
+ * into pt's world), shapes (sphere and disk uvs and fronts, ReverseOrientation, bilinear patches,
+ * alpha), and pbrt's defaults. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene.h"
+#include "support.h"
+
+#define PI 3.14159265358979323846
+
+static void load_desc(const char *world, SceneDesc *d)
+{
+    char text[8192];
+    snprintf(text, sizeof text, "Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
+             "WorldBegin\n%s", world);
+    const char *path = test_write_file(test_temp_dir(), "scene.pbrt", text);
+    Error err = {0};
+    cr_assert(scene_desc_load(path, d, &err), "%s", err.message);
+}
+
+static const Material *material(const SceneDesc *d, const char *name)
+{
+    int i = material_desc_find(d->materials, d->num_materials, name);
+    cr_assert(i >= 0, "no material %s", name);
+    return &d->materials[i].m;
+}
+
+static const char *const tri = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n";
+
+Test(pbrt_elements, conductor_roughness_named_metals_and_anisotropy)
+{
+    SceneDesc d;
+    char world[2048];
+    snprintf(world, sizeof world,
+             "MakeNamedMaterial \"au\" \"string type\" \"conductor\" \"spectrum eta\" \"metal-Au-eta\"\n"
+             "  \"spectrum k\" \"metal-Au-k\" \"float roughness\" 0.0625\n"
+             "MakeNamedMaterial \"raw\" \"string type\" \"conductor\" \"float roughness\" 0.25 \"bool remaproughness\" false\n"
+             "MakeNamedMaterial \"aniso\" \"string type\" \"conductor\" \"float uroughness\" 0.16 \"float vroughness\" 0.01\n"
+             "MakeNamedMaterial \"cu\" \"string type\" \"conductor\"\n"
+             "NamedMaterial \"au\" %s", tri);
+    load_desc(world, &d);
+    const Material *au = material(&d, "au");
+    cr_expect(au->type == MATERIAL_CONDUCTOR);
+    cr_expect(au->eta.s[0] == 0.143f && au->eta.s[2] == 1.442f && au->k.s[0] == 3.983f, "metal-Au RGB");
+    cr_expect(fabsf(au->roughness - 0.5f) < 1e-6f, "remapped: alpha = sqrt(0.0625) = 0.25 = r^2 -> r 0.5, "
+              "not %g", au->roughness);
+    cr_expect(fabsf(material(&d, "raw")->roughness - 0.5f) < 1e-6f, "not remapped: alpha 0.25 -> r 0.5");
+    const Material *an = material(&d, "aniso");
+    /* alpha_u = 0.4, alpha_v = 0.1: r^4 = 0.04, alpha_v / alpha_u = 0.25 = 1 - 0.9 a */
+    cr_expect(fabsf(an->roughness - powf(0.04f, 0.25f)) < 1e-6f, "%g", an->roughness);
+    cr_expect(fabsf(an->anisotropy - 0.75f / 0.9f) < 1e-6f, "%g", an->anisotropy);
+    cr_expect(material(&d, "cu")->eta.s[1] == 0.924f, "pbrt's default conductor is copper");
+    scene_desc_free(&d);
+}
+
+Test(pbrt_elements, dielectrics_coated_and_mix)
+{
+    SceneDesc d;
+    char world[2048];
+    snprintf(world, sizeof world,
+             "MakeNamedMaterial \"glass\" \"string type\" \"dielectric\" \"float eta\" 1.33 \"float roughness\" 0.01\n"
+             "MakeNamedMaterial \"thin\" \"string type\" \"thindielectric\" \"float eta\" 1.5\n"
+             "MakeNamedMaterial \"coat\" \"string type\" \"coateddiffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\n"
+             "MakeNamedMaterial \"mix\" \"string type\" \"mix\" \"string materials\" [\"glass\" \"coat\"] \"float amount\" 0.25\n"
+             "MakeNamedMaterial \"none\" \"string type\" \"interface\"\n"
+             "NamedMaterial \"mix\" %s", tri);
+    load_desc(world, &d);
+    const Material *g = material(&d, "glass");
+    cr_expect(g->type == MATERIAL_DIELECTRIC && fabsf(g->ior - 1.33f) < 1e-6f);
+    cr_expect(fabsf(g->roughness - powf(0.01f, 0.25f)) < 1e-6f);
+    const Material *t = material(&d, "thin");
+    cr_expect(t->type == MATERIAL_CONDUCTOR && (t->flags & MATERIAL_FLAG_FRESNEL_ONE), "a mirror");
+    cr_expect(fabsf(t->opacity - 2.0f * 0.04f / 1.04f) < 1e-6f, "opacity = R_thin = 2R/(1+R), %g", t->opacity);
+    const Material *c = material(&d, "coat");
+    cr_expect(c->type == MATERIAL_PRINCIPLED && c->metallic == 0.0f && c->base.s[2] == 0.3f);
+    cr_expect(fabsf(c->ior - 1.5f) < 1e-6f, "the coat's Fresnel: eta 1.5");
+    const Material *m = material(&d, "mix");
+    cr_expect(m->type == MATERIAL_MIX && m->weight == 0.25f, "pbrt picks materials[1] with probability amount");
+    cr_expect(m->mix_a == (uint32_t)material_desc_find(d.materials, d.num_materials, "glass"));
+    cr_expect(m->mix_b == (uint32_t)material_desc_find(d.materials, d.num_materials, "coat"));
+    cr_expect(material(&d, "none")->opacity == 0.0f, "interface: invisible");
+    scene_desc_free(&d);
+}
+
+Test(pbrt_elements, textures_imagemap_scale_and_constant)
+{
+    SceneDesc d;
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "t.png", "not read by scene_desc_load");
+    char world[2048];
+    snprintf(world, sizeof world,
+             "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\" \"float uscale\" 4\n"
+             "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"img\" \"float scale\" 0.5\n"
+             "Texture \"k\" \"float\" \"constant\" \"float value\" 0.3\n"
+             "Material \"diffuse\" \"texture reflectance\" \"half\"\n%s"
+             "Material \"diffuse\" \"texture reflectance\" \"k\"\n%s", tri, tri);
+    load_desc(world, &d);
+    cr_assert_eq(d.num_textures, 2, "the image and its scaled copy");
+    const Material *a = &d.materials[0].m, *b = &d.materials[1].m;
+    cr_assert(a->tex[MATERIAL_TEX_BASE] != NO_TEXTURE);
+    const TextureDesc *t = &d.textures[a->tex[MATERIAL_TEX_BASE]];
+    cr_expect(strstr(t->path, "t.png") && t->sampling.has_scale && t->sampling.scale == 0.5f);
+    cr_expect(t->sampling.has_transform && t->sampling.transform[0] == 4.0f, "uscale 4");
+    cr_expect(b->tex[MATERIAL_TEX_BASE] == NO_TEXTURE && fabsf(b->base.s[1] - 0.3f) < 1e-6f,
+              "a float constant texture is its value");
+    scene_desc_free(&d);
+}
+
+Test(pbrt_elements, lights_units_and_directions)
+{
+    SceneDesc d;
+    char world[2048];
+    snprintf(world, sizeof world,
+             "LightSource \"point\" \"rgb I\" [1 2 3] \"point3 from\" [1 2 3]\n"
+             "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n"
+             "Translate 1 0 0 LightSource \"spot\" \"rgb I\" [1 1 1] \"point3 to\" [0 -1 0] \"float coneangle\" 30 \"float conedelta\" 10\n"
+             "LightSource \"distant\" \"rgb L\" [2 2 2] \"float scale\" 3 \"point3 from\" [1 0 0] \"point3 to\" [0 0 0]\n"
+             "LightSource \"infinite\" \"rgb L\" [0.1 0.2 0.3] \"float scale\" 2\n%s", tri);
+    load_desc(world, &d);
+    cr_assert_eq(d.num_lights, 4);
+    const AnalyticLight *l = d.lights;
+    cr_expect(l[0].type == LIGHT_POINT && l[0].position.s[0] == -1.0f && l[0].position.s[1] == 2.0f,
+              "pbrt x is pt -x");
+    cr_expect(l[0].color.s[2] == 3.0f);
+    cr_expect(fabsf(l[1].color.s[0] - 100.0f / (4.0f * (float)PI)) < 1e-4f, "power / 4 pi");
+    cr_expect(l[2].type == LIGHT_SPOT && l[2].position.s[0] == -1.0f && l[2].axis.s[1] < -0.99f);
+    cr_expect(fabsf(l[2].params.s[0] - 30.0f * (float)PI / 180.0f) < 1e-5f, "cone 30");
+    cr_expect(fabsf(l[2].params.s[1] - 20.0f * (float)PI / 180.0f) < 1e-5f, "falloff 30 - 10");
+    cr_expect(l[3].type == LIGHT_DIRECTIONAL && l[3].position.s[0] > 0.99f && l[3].color.s[0] == 6.0f,
+              "distant from pbrt +x travels toward pbrt -x = pt +x; irradiance L x scale");
+    cr_expect(fabsf(d.background[2] - 0.6f) < 1e-6f, "infinite L x scale is the background");
+    scene_desc_free(&d);
+}
+
+/* Shapes read back through the flattened scene. */
+static void load_scene(const char *world, Scene *s)
+{
+    char text[8192];
+    snprintf(text, sizeof text, "WorldBegin\n%s", world);
+    const char *path = test_write_file(test_temp_dir(), "scene.pbrt", text);
+    Error err = {0};
+    cr_assert(scene_load_with(path, INSTANCING_NEVER, s, &err), "%s", err.message);
+}
+
+/* The geometric normal of triangle t (counter-clockwise front, pt's convention). */
+static void face_normal(const SceneData *d, uint32_t t, float n[3])
+{
+    const float *p0 = d->positions[d->triangles[t].v.s[0]].s, *p1 = d->positions[d->triangles[t].v.s[1]].s,
+                *p2 = d->positions[d->triangles[t].v.s[2]].s;
+    float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+Test(pbrt_elements, disk_faces_plus_z_and_reverse_orientation_flips_it)
+{
+    Scene s;
+    load_scene("Shape \"disk\" \"float height\" 2 \"float radius\" 3\n"
+               "ReverseOrientation Shape \"disk\" \"float height\" -2\n", &s);
+    const SceneData *d = &s.data;
+    float n[3];
+    face_normal(d, 0, n);
+    cr_expect(n[2] > 0.0f, "pbrt's disk faces +z");
+    face_normal(d, d->num_triangles - 1, n);
+    cr_expect(n[2] < 0.0f, "ReverseOrientation flips it");
+    float zmax = -1e9f, rmax = 0.0f;
+    for (uint32_t v = 0; v < d->num_vertices; v++) {
+        zmax = fmaxf(zmax, d->positions[v].s[2]);
+        rmax = fmaxf(rmax, hypotf(d->positions[v].s[0], d->positions[v].s[1]));
+    }
+    cr_expect(zmax == 2.0f && fabsf(rmax - 3.0f) < 1e-5f, "height and radius");
+    scene_free(&s);
+}
+
+Test(pbrt_elements, sphere_uv_v_grows_toward_plus_z)
+{
+    Scene s;
+    load_scene("Shape \"sphere\" \"float radius\" 2\n", &s);
+    const SceneData *d = &s.data;
+    for (uint32_t v = 0; v < d->num_vertices; v += 97) {
+        float z = d->positions[v].s[2];
+        float expected = 1.0f - acosf(fmaxf(-1.0f, fminf(1.0f, z / 2.0f))) / (float)PI;
+        cr_expect(fabsf(d->uvs[v].s[1] - expected) < 1e-3f, "pbrt v = (theta - pi) / -pi at z %g: %g", z,
+                  d->uvs[v].s[1]);
+    }
+    scene_free(&s);
+}
+
+Test(pbrt_elements, bilinear_patch_two_triangles_and_alpha_opacity)
+{
+    Scene s;
+    load_scene("Shape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0] \"float alpha\" 0.25\n", &s);
+    const SceneData *d = &s.data;
+    cr_expect_eq(d->num_triangles, 2);
+    float n[3];
+    for (uint32_t t = 0; t < 2; t++) {
+        face_normal(d, t, n);
+        /* pbrt: n = dpdu x dpdv = +z; the mirror (x -> -x) keeps a +z normal (and the front) */
+        cr_expect(n[2] > 0.0f, "triangle %u faces %g", t, n[2]);
+    }
+    cr_expect(d->materials[d->material_ids[0]].opacity == 0.25f, "alpha 0.25 is opacity 0.25");
+    scene_free(&s);
+}
