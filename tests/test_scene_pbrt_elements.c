@@ -3,12 +3,14 @@
  * description, read back from the SceneDesc: materials (roughness remapping, anisotropy, named
  * metals, the nearest-model mappings, mix), textures, lights (units, power, directions mirrored
  * into pt's world), shapes (sphere and disk uvs and fronts, ReverseOrientation, bilinear patches,
- * alpha), and pbrt's defaults. */
+ * alpha), the equal-area environment conversion, and pbrt's defaults. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "io/image_io.h"
 #include "scene/scene.h"
 #include "support.h"
 
@@ -207,4 +209,59 @@ Test(pbrt_elements, bilinear_patch_two_triangles_and_alpha_opacity)
     }
     cr_expect(d->materials[d->material_ids[0]].opacity == 0.25f, "alpha 0.25 is opacity 0.25");
     scene_free(&s);
+}
+
+/* An equal-area map whose octants are coloured by the light-space signs (red: +x, green: +y, blue:
+ * +z), under the usual z-up-to-y-up "Rotate -90 1 0 0": the converted lat-long map must show each
+ * colour where pbrt would (pt direction -> pbrt world (x -> -x) -> light space). */
+Test(pbrt_elements, equal_area_environment_is_converted_with_its_orientation)
+{
+    const char *dir = test_temp_dir();
+    char cache[1100];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    setenv("XDG_CACHE_HOME", cache, 1);
+    enum { N = 64 };
+    static float square[N * N * 3];
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) {
+            double u = 2.0 * (x + 0.5) / N - 1.0, v = 2.0 * (y + 0.5) / N - 1.0;
+            float *t = &square[3 * (y * N + x)];
+            t[0] = u > 0.0, t[1] = v > 0.0, t[2] = fabs(u) + fabs(v) < 1.0;
+        }
+    char exr[1100];
+    snprintf(exr, sizeof exr, "%s/sky.exr", dir);
+    Error err = {0};
+    cr_assert(image_write_exr(exr, square, N, N, &err), "%s", err.message);
+    SceneDesc d;
+    char world[512];
+    snprintf(world, sizeof world, "AttributeBegin Rotate -90 1 0 0\n"
+             "LightSource \"infinite\" \"string filename\" \"sky.exr\" \"float scale\" 2\nAttributeEnd\n%s", tri);
+    char text[1024];
+    snprintf(text, sizeof text, "WorldBegin\n%s", world);
+    cr_assert(scene_desc_load(test_write_file(dir, "scene.pbrt", text), &d, &err), "%s", err.message);
+    cr_assert(strstr(d.environment, "/cache/pt/pbrt-env/"), "converted into the cache: %s", d.environment);
+    cr_expect(d.environment_scale == 2.0f);
+    float *map;
+    int w, h;
+    cr_assert(image_read_exr(d.environment, &map, &w, &h, &err), "%s", err.message);
+    cr_expect(w == 2 * N && h == N);
+    static const struct { double d[3]; float rgb[3]; } probes[] = {
+        {{0.8, 0.3, -0.5}, {0, 1, 1}},  /* light (-0.8, 0.5, 0.3) */
+        {{-0.5, -0.4, 0.6}, {1, 0, 0}}, /* light (0.5, -0.6, -0.4) */
+        {{0.0, 1.0, 0.0}, {0, 0, 1}},   /* up is light +z (the diamond's centre) */
+    };
+    for (int i = 0; i < 3; i++) {
+        const double *p = probes[i].d;
+        double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        double u = 0.5 + atan2(p[0] / len, -p[2] / len) / (2.0 * PI), v = acos(p[1] / len) / PI;
+        int x = (int)(u * w), y = (int)(v * h);
+        y = y >= h ? h - 1 : y;
+        const float *t = &map[3 * (y * w + x)];
+        for (int k = 0; k < 3 && i < 2; k++)
+            cr_expect(fabsf(t[k] - probes[i].rgb[k]) < 0.01f, "probe %d channel %d: %g", i, k, t[k]);
+        if (i == 2)
+            cr_expect(t[2] > 0.99f, "up: blue %g", t[2]);
+    }
+    free(map);
+    scene_desc_free(&d);
 }

@@ -8,7 +8,7 @@
  *   = coneangle - conedelta; pbrt's falloff is a smoothstep in cos, pt's linear in angle, so the
  *   rim differs slightly), distant (L x scale is the irradiance, along to - from); "power" as
  *   pbrt-v4 (4 pi for a point, 2 pi (1 - (cos_start + cos_end) / 2) for a spot).
- * - infinite: L -> background; filename -> environment (import_pbrt_environment.c).
+ * - infinite: L -> background; filename -> a converted environment (import_pbrt_environment.c).
  * - Camera "perspective": pbrt's fov spans the shorter image axis; pt's fov_y the vertical one.
  *   lensradius r -> aperture 2 r (a diameter); focaldistance -> focus_distance. */
 #include <math.h>
