@@ -265,3 +265,35 @@ Test(pbrt_elements, equal_area_environment_is_converted_with_its_orientation)
     free(map);
     scene_desc_free(&d);
 }
+
+/* Spectra: a flat sampled spectrum keeps its value in every channel; a spectrum file (.spd) that is
+ * high in the blue and zero in the red gives a blue RGB; blackbody light colours are normalised to
+ * luminance 1. */
+Test(pbrt_elements, sampled_spectra_files_and_blackbody)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "blue.spd", "# blue only\n380 1\n480 1\n520 0\n780 0\n");
+    char text[2048];
+    snprintf(text, sizeof text, "WorldBegin\n"
+             "MakeNamedMaterial \"flat\" \"string type\" \"diffuse\" \"spectrum reflectance\" [300 .4 800 .4]\n"
+             "MakeNamedMaterial \"blue\" \"string type\" \"diffuse\" \"spectrum reflectance\" \"blue.spd\"\n"
+             "LightSource \"point\" \"blackbody I\" 2700\n%s", tri);
+    SceneDesc d;
+    Error err = {0};
+    cr_assert(scene_desc_load(test_write_file(dir, "scene.pbrt", text), &d, &err), "%s", err.message);
+    const Material *flat = material(&d, "flat"), *blue = material(&d, "blue");
+    for (int k = 0; k < 3; k++)
+        cr_expect(fabsf(flat->base.s[k] - 0.4f) < 1e-4f, "flat channel %d: %g", k, flat->base.s[k]);
+    cr_expect(blue->base.s[2] > 0.8f && blue->base.s[0] < 0.05f, "blue: %g %g %g", blue->base.s[0],
+              blue->base.s[1], blue->base.s[2]);
+    const float *c = d.lights[0].color.s;
+    cr_expect(fabsf(0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2] - 1.0f) < 1e-3f, "luminance 1");
+    cr_expect(c[0] > c[1] && c[1] > c[2], "2700 K is warm: %g %g %g", c[0], c[1], c[2]);
+    scene_desc_free(&d);
+    Error e = {0};
+    Scene s;
+    snprintf(text, sizeof text, "WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"nope.spd\"\n%s", tri);
+    cr_expect_not(scene_load(test_write_file(dir, "bad.pbrt", text), &s, &e));
+    cr_expect(strstr(e.message, "bad.pbrt:2: \"reflectance\": not a named spectrum") && strstr(e.message, "nope.spd"),
+              "%s", e.message);
+}

@@ -9,12 +9,16 @@
  * - sampled reflectance / eta / k spectra: each channel the spectrum's mean weighted by that
  *   channel's colour-matching function (a flat spectrum stays flat);
  * - the named metal spectra (metal-Au-eta, ...): a table of RGB eta / k (the values Mitsuba and
- *   most RGB renderers use); named glasses: their index at the sodium d line (587.6 nm).
+ *   most RGB renderers use); named glasses: their index at the sodium d line (587.6 nm);
+ * - any other string names a spectrum file (.spd pairs), integrated as a sampled spectrum.
  * CIE 1931 matching functions: the multi-lobe fit of Wyman, Sloan and Shirley (JCGT 2013). */
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "io/input_file.h"
 #include "scene/import_pbrt_internal.h"
 
 static double lobe(double x, double mu, double s1, double s2)
@@ -93,6 +97,50 @@ static const NamedSpectrum named[] = {
     {"glass-F11", {1.6209f, 1.6209f, 1.6209f}},
 };
 
+/* A spectrum file (pbrt's .spd: wavelength, value pairs, # comments), named relative to the main
+ * file and kept inside its folder. */
+static bool spectrum_file(PbrtImport *imp, PbrtParam *q, bool light, float out[3])
+{
+    char path[1024];
+    Error e = {0};
+    if (!fs_resolve_inside(imp->path, q->strings[0], q->name, path, sizeof path, &e))
+        return pbrt_check_path(imp, q->strings[0], q->name, q->line);
+    char *text;
+    size_t size;
+    if (!input_file_read(path, "a spectrum file", (size_t)1 << 20, &text, &size, &e)) {
+        error_set(imp->err, e.code, imp->file, q->line, "%s:%d: \"%s\": not a named spectrum, and %.800s",
+                  imp->file, q->line, q->name, e.message);
+        return false;
+    }
+    double pairs[2 * 4096];
+    int n = 0;
+    bool ok = true;
+    for (char *c = text; *c && ok;) {
+        if (*c == '#') {
+            while (*c && *c != '\n')
+                c++;
+        } else if (isspace((unsigned char)*c)) {
+            c++;
+        } else {
+            char *end;
+            double v = strtod(c, &end);
+            ok = end != c && isfinite(v) && n < 2 * 4096;
+            if (ok)
+                pairs[n++] = v;
+            c = end;
+        }
+    }
+    free(text);
+    ok = ok && n >= 2 && n % 2 == 0;
+    for (int i = 1; ok && i < n / 2; i++)
+        ok = pairs[2 * i] > pairs[2 * i - 2];
+    if (!ok)
+        return pbrt_fail(imp, q->line, "\"%s\": \"%s\" is not a spectrum file (increasing "
+                         "wavelength, value pairs)", q->name, q->strings[0]);
+    integrate(pairs, n / 2, 0.0, light, out);
+    return true;
+}
+
 bool pbrt_spectrum_rgb(PbrtImport *imp, PbrtParam *q, const char *kind, float out[3])
 {
     bool light = strcmp(kind, "illuminant") == 0;
@@ -121,14 +169,13 @@ bool pbrt_spectrum_rgb(PbrtImport *imp, PbrtParam *q, const char *kind, float ou
                     memcpy(out, named[i].rgb, sizeof named[i].rgb);
                     return true;
                 }
-            if (strncmp(q->strings[0], "stdillum-", 9) != 0 && strncmp(q->strings[0], "illum-", 6) != 0) {
-                char key[160];
-                snprintf(key, sizeof key, "spectrum %s", q->strings[0]);
-                pbrt_warn_once(imp, key, "\"%s\": spectrum \"%s\" is not imported (pt knows the "
-                               "named metals and glasses): 1 used", q->name, q->strings[0]);
+            if (strncmp(q->strings[0], "stdillum-", 9) == 0 || strncmp(q->strings[0], "illum-", 6) == 0) {
+                out[0] = out[1] = out[2] = 1.0f; /* named illuminants: white at luminance 1 */
+                return true;
             }
-            out[0] = out[1] = out[2] = 1.0f; /* named illuminants: white at luminance 1 */
-            return true;
+            if (!spectrum_file(imp, q, light, out))
+                return false;
+            break;
         }
         for (int i = 1; i < q->count / 2; i++)
             if (!(q->numbers[2 * i] > q->numbers[2 * i - 2]))
@@ -139,6 +186,10 @@ bool pbrt_spectrum_rgb(PbrtImport *imp, PbrtParam *q, const char *kind, float ou
         return pbrt_fail(imp, q->line, "\"%s\": expected rgb, spectrum, blackbody or float, not %s",
                          q->name, pbrt_param_type_name(q->type));
     }
+    /* A sampled reflectance's channels may exceed 1 where the matching functions' negative lobes
+     * fall (a narrow-band blue): pbrt's reflectances stay in [0, 1], so do these. */
+    for (int k = 0; k < 3 && q->type == PBRT_SPECTRUM && strcmp(kind, "reflectance") == 0; k++)
+        out[k] = fminf(out[k], 1.0f);
     for (int k = 0; k < 3; k++)
         if (!isfinite(out[k]) || (out[k] < 0.0f && strcmp(kind, "eta") != 0))
             return pbrt_fail(imp, q->line, "\"%s\": [%g %g %g] must be finite and >= 0", q->name,
