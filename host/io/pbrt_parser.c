@@ -320,11 +320,13 @@ static bool add_value(PbrtParam *p, const PbrtToken *v, Error *err, const char *
         if (v->kind != PBRT_TOKEN_STRING || p->numbers)
             return param_fail(v, err, directive, p->name, "expected a quoted string");
         char **grown = realloc(p->strings, (size_t)(p->count + 1) * sizeof *grown);
-        char *copy = grown ? strdup(v->text) : NULL;
+        size_t len = strlen(v->text) + 1;
+        char *copy = grown ? malloc(len) : NULL;
         if (grown)
             p->strings = grown;
         if (!copy)
             return param_fail(v, err, directive, p->name, "out of memory");
+        memcpy(copy, v->text, len);
         p->strings[p->count++] = copy;
         return true;
     }
