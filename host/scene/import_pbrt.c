@@ -12,151 +12,6 @@
 
 #include "scene/import_pbrt_internal.h"
 
-/* ---- Messages -------------------------------------------------------------------------------- */
-
-bool pbrt_fail(PbrtImport *imp, int line, const char *fmt, ...)
-{
-    char what[768];
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(what, sizeof what, fmt, args);
-    va_end(args);
-    error_set(imp->err, ERR_FILE_READ, imp->file, line, "%s:%d: %s", imp->file, line, what);
-    return false;
-}
-
-void pbrt_warn_once(PbrtImport *imp, const char *key, const char *fmt, ...)
-{
-    for (int i = 0; i < imp->num_warned; i++)
-        if (strcmp(imp->warned[i], key) == 0)
-            return;
-    char (*grown)[160] = realloc(imp->warned, (size_t)(imp->num_warned + 1) * sizeof *grown);
-    if (grown) {
-        imp->warned = grown;
-        snprintf(imp->warned[imp->num_warned++], sizeof *grown, "%s", key);
-    }
-    char what[768];
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(what, sizeof what, fmt, args);
-    va_end(args);
-    warn("%s:%d: %s", imp->file, imp->line, what);
-}
-
-void pbrt_warn_unused(PbrtImport *imp, const char *directive, const char *type, PbrtParams *params)
-{
-    for (int i = 0; i < params->count; i++) {
-        if (params->items[i].used)
-            continue;
-        char key[160];
-        snprintf(key, sizeof key, "%s %s %s", directive, type, params->items[i].name);
-        pbrt_warn_once(imp, key, "%s \"%s\": parameter \"%s\" is not imported (ignored)", directive,
-                       type, params->items[i].name);
-    }
-}
-
-/* ---- Parameters ----------------------------------------------------------------------------- */
-
-static bool numeric(PbrtImport *imp, PbrtParam *q, PbrtParamType type, int count)
-{
-    if (q->type != type && !(type == PBRT_FLOAT && q->type == PBRT_INTEGER))
-        return pbrt_fail(imp, q->line, "\"%s\": expected type %s, not %s", q->name,
-                         pbrt_param_type_name(type), pbrt_param_type_name(q->type));
-    if (q->count != count)
-        return pbrt_fail(imp, q->line, "\"%s\": expected %d value%s, not %d", q->name, count,
-                         count == 1 ? "" : "s", q->count);
-    return true;
-}
-
-bool pbrt_float(PbrtImport *imp, PbrtParams *p, const char *name, float fallback, float *out)
-{
-    PbrtParam *q = pbrt_param(p, name);
-    *out = fallback;
-    if (!q)
-        return true;
-    if (!numeric(imp, q, PBRT_FLOAT, 1))
-        return false;
-    *out = (float)q->numbers[0];
-    if (!isfinite(*out))
-        return pbrt_fail(imp, q->line, "\"%s\": %g is out of range", name, q->numbers[0]);
-    return true;
-}
-
-bool pbrt_int(PbrtImport *imp, PbrtParams *p, const char *name, int fallback, int *out)
-{
-    PbrtParam *q = pbrt_param(p, name);
-    *out = fallback;
-    if (!q)
-        return true;
-    if (!numeric(imp, q, PBRT_INTEGER, 1))
-        return false;
-    *out = (int)q->numbers[0];
-    return true;
-}
-
-bool pbrt_bool(PbrtImport *imp, PbrtParams *p, const char *name, bool fallback, bool *out)
-{
-    PbrtParam *q = pbrt_param(p, name);
-    *out = fallback;
-    if (!q)
-        return true;
-    if (!numeric(imp, q, PBRT_BOOL, 1))
-        return false;
-    *out = q->numbers[0] != 0.0;
-    return true;
-}
-
-const char *pbrt_string(PbrtImport *imp, PbrtParams *p, const char *name, bool *ok)
-{
-    PbrtParam *q = pbrt_param(p, name);
-    if (!q)
-        return NULL;
-    if (q->type != PBRT_STRING || q->count != 1) {
-        *ok = pbrt_fail(imp, q->line, "\"%s\": expected one string", name);
-        return NULL;
-    }
-    return q->strings[0];
-}
-
-bool pbrt_vec3(PbrtImport *imp, PbrtParams *p, const char *name, const float fallback[3], float out[3])
-{
-    PbrtParam *q = pbrt_param(p, name);
-    for (int i = 0; i < 3; i++)
-        out[i] = fallback[i];
-    if (!q)
-        return true;
-    if (!q->numbers || q->count != 3 || q->type == PBRT_SPECTRUM || q->type == PBRT_BOOL)
-        return pbrt_fail(imp, q->line, "\"%s\": expected 3 numbers (point3/vector3)", name);
-    for (int i = 0; i < 3; i++)
-        out[i] = (float)q->numbers[i];
-    return true;
-}
-
-bool pbrt_check_path(PbrtImport *imp, const char *name, const char *what, int line)
-{
-    char resolved[1024];
-    Error e = {0};
-    if (!name[0])
-        return pbrt_fail(imp, line, "%s: empty file name", what);
-    if (fs_resolve_inside(imp->path, name, what, resolved, sizeof resolved, &e))
-        return true;
-    error_set(imp->err, e.code, imp->file, line, "%s:%d: %s", imp->file, line, e.message);
-    return false;
-}
-
-cJSON *pbrt_matrix_json(const PbrtImport *imp, const Affine *ctm)
-{
-    Affine m = affine_mul(&imp->pt_from_pbrt, ctm);
-    double rows[16] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 4; c++)
-            rows[4 * r + c] = m.m[r][c];
-    cJSON *list = cJSON_CreateArray(), *op = cJSON_CreateObject();
-    cJSON_AddItemToObject(op, "matrix", cJSON_CreateDoubleArray(rows, 16));
-    cJSON_AddItemToArray(list, op);
-    return list;
-}
-
 /* ---- Transforms ----------------------------------------------------------------------------- */
 
 /* n numbers following a transform directive. */
@@ -345,6 +200,71 @@ static bool pop_state(PbrtImport *imp, const char *directive, bool transform_onl
     return true;
 }
 
+/* Camera (its parameters kept until the film's size is known), Film, Sampler, Integrator. */
+static bool render_setting(PbrtImport *imp, const char *word, const char *type, PbrtParams *params)
+{
+    bool ok = true;
+    if (strcmp(word, "Camera") == 0) {
+        if (imp->in_world)
+            ok = pbrt_fail(imp, imp->line, "Camera: inside the world block (after WorldBegin)");
+        else {
+            pbrt_params_free(&imp->camera_params);
+            imp->camera_params = *params;
+            memset(params, 0, sizeof *params);
+            imp->camera_from_world = imp->state.ctm;
+            imp->has_camera = true;
+            Affine world_from_camera;
+            if (!affine_invert(&imp->state.ctm, &world_from_camera))
+                return pbrt_fail(imp, imp->line, "Camera: the camera transform is singular");
+            coord_system(imp, "camera", true);
+            imp->coord_systems[imp->num_coord_systems - 1].ctm = world_from_camera;
+            /* A mirroring camera transform already flips the picture (file header comment). */
+            imp->pt_from_pbrt = affine_det(&imp->state.ctm) < 0.0 ? affine_identity()
+                                                                    : affine_scale(-1.0, 1.0, 1.0);
+            if (strcmp(type, "perspective") != 0)
+                pbrt_warn_once(imp, "camera", "Camera \"%s\": imported as \"perspective\"", type);
+        }
+    } else if (strcmp(word, "Film") == 0) {
+        int w, h;
+        ok = pbrt_int(imp, params, "xresolution", 1280, &w) && pbrt_int(imp, params, "yresolution", 720, &h);
+        if (ok && (w < 1 || h < 1 || w > 65536 || h > 65536))
+            ok = pbrt_fail(imp, imp->line, "Film: resolution %d x %d is out of range [1, 65536]", w, h);
+        bool ignored = true;
+        (void)pbrt_string(imp, params, "filename", &ignored);
+        if (ok) {
+            cJSON_DeleteItemFromObject(imp->film, "width");
+            cJSON_DeleteItemFromObject(imp->film, "height");
+            cJSON_AddNumberToObject(imp->film, "width", w);
+            cJSON_AddNumberToObject(imp->film, "height", h);
+        }
+        if (strcmp(type, "rgb") != 0 && strcmp(type, "gbuffer") != 0)
+            pbrt_warn_once(imp, "film", "Film \"%s\": imported as \"rgb\"", type);
+    } else if (strcmp(word, "Sampler") == 0) {
+        int spp;
+        ok = pbrt_int(imp, params, "pixelsamples", 16, &spp);
+        if (ok && spp < 1)
+            ok = pbrt_fail(imp, imp->line, "Sampler: pixelsamples %d must be >= 1", spp);
+        if (ok) {
+            cJSON_DeleteItemFromObject(imp->render, "spp");
+            cJSON_AddNumberToObject(imp->render, "spp", spp);
+        }
+    } else if (strcmp(word, "Integrator") == 0) {
+        /* pbrt's maxdepth counts bounces (0: emitters seen directly, 1: direct light); pt's
+         * max_depth counts path segments from the camera (1: emitters, 2: direct light). */
+        int depth;
+        ok = pbrt_int(imp, params, "maxdepth", 5, &depth);
+        if (ok && (depth < 0 || depth > 1023))
+            ok = pbrt_fail(imp, imp->line, "Integrator: maxdepth %d is out of range [0, 1023]", depth);
+        if (ok) {
+            cJSON_DeleteItemFromObject(imp->render, "max_depth");
+            cJSON_AddNumberToObject(imp->render, "max_depth", depth + 1);
+        }
+        if (strcmp(type, "path") != 0 && strcmp(type, "volpath") != 0)
+            pbrt_warn_once(imp, "integrator", "Integrator \"%s\": pt renders with its path tracer", type);
+    }
+    return ok;
+}
+
 /* Directives with one string argument and a parameter list that belong to the scene. */
 static bool typed_directive(PbrtImport *imp, const char *word, bool *handled)
 {
@@ -392,63 +312,9 @@ static bool typed_directive(PbrtImport *imp, const char *word, bool *handled)
         ok = pbrt_light(imp, args[0], &params);
     else if (strcmp(word, "AreaLightSource") == 0)
         ok = pbrt_area_light(imp, args[0], &params);
-    else if (strcmp(word, "Camera") == 0) {
-        if (imp->in_world)
-            ok = pbrt_fail(imp, imp->line, "Camera: inside the world block (after WorldBegin)");
-        else {
-            pbrt_params_free(&imp->camera_params);
-            imp->camera_params = params;
-            memset(&params, 0, sizeof params);
-            imp->camera_from_world = imp->state.ctm;
-            imp->has_camera = true;
-            Affine world_from_camera;
-            if (!affine_invert(&imp->state.ctm, &world_from_camera))
-                return pbrt_fail(imp, imp->line, "Camera: the camera transform is singular");
-            coord_system(imp, "camera", true);
-            imp->coord_systems[imp->num_coord_systems - 1].ctm = world_from_camera;
-            /* A mirroring camera transform already flips the picture (file header comment). */
-            imp->pt_from_pbrt = affine_det(&imp->state.ctm) < 0.0 ? affine_identity()
-                                                                    : affine_scale(-1.0, 1.0, 1.0);
-            if (strcmp(args[0], "perspective") != 0)
-                pbrt_warn_once(imp, "camera", "Camera \"%s\": imported as \"perspective\"", args[0]);
-        }
-    } else if (strcmp(word, "Film") == 0) {
-        int w, h;
-        ok = pbrt_int(imp, &params, "xresolution", 1280, &w) && pbrt_int(imp, &params, "yresolution", 720, &h);
-        if (ok && (w < 1 || h < 1 || w > 65536 || h > 65536))
-            ok = pbrt_fail(imp, imp->line, "Film: resolution %d x %d is out of range [1, 65536]", w, h);
-        bool ignored = true;
-        (void)pbrt_string(imp, &params, "filename", &ignored);
-        if (ok) {
-            cJSON_DeleteItemFromObject(imp->film, "width");
-            cJSON_DeleteItemFromObject(imp->film, "height");
-            cJSON_AddNumberToObject(imp->film, "width", w);
-            cJSON_AddNumberToObject(imp->film, "height", h);
-        }
-        if (strcmp(args[0], "rgb") != 0 && strcmp(args[0], "gbuffer") != 0)
-            pbrt_warn_once(imp, "film", "Film \"%s\": imported as \"rgb\"", args[0]);
-    } else if (strcmp(word, "Sampler") == 0) {
-        int spp;
-        ok = pbrt_int(imp, &params, "pixelsamples", 16, &spp);
-        if (ok && spp < 1)
-            ok = pbrt_fail(imp, imp->line, "Sampler: pixelsamples %d must be >= 1", spp);
-        if (ok) {
-            cJSON_DeleteItemFromObject(imp->render, "spp");
-            cJSON_AddNumberToObject(imp->render, "spp", spp);
-        }
-    } else if (strcmp(word, "Integrator") == 0) {
-        /* pbrt's maxdepth counts bounces (0: emitters seen directly, 1: direct light); pt's
-         * max_depth counts path segments from the camera (1: emitters, 2: direct light). */
-        int depth;
-        ok = pbrt_int(imp, &params, "maxdepth", 5, &depth);
-        if (ok && (depth < 0 || depth > 1023))
-            ok = pbrt_fail(imp, imp->line, "Integrator: maxdepth %d is out of range [0, 1023]", depth);
-        if (ok) {
-            cJSON_DeleteItemFromObject(imp->render, "max_depth");
-            cJSON_AddNumberToObject(imp->render, "max_depth", depth + 1);
-        }
-        if (strcmp(args[0], "path") != 0 && strcmp(args[0], "volpath") != 0)
-            pbrt_warn_once(imp, "integrator", "Integrator \"%s\": pt renders with its path tracer", args[0]);
+    else if (strcmp(word, "Camera") == 0 || strcmp(word, "Film") == 0 || strcmp(word, "Sampler") == 0 ||
+             strcmp(word, "Integrator") == 0) {
+        ok = render_setting(imp, word, args[0], &params);
     } else {
         pbrt_warn_once(imp, word, "%s \"%s\": not imported (ignored)", word, args[0]);
         for (int i = 0; i < params.count; i++)
