@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "io/pbrt_parser.h"
+#include "scene/scene_import.h"
 #include "scene/scene.h"
 #include "support.h"
 
@@ -305,4 +306,27 @@ Test(pbrt_scene, same_arrays_as_the_pt_json_scene)
     cr_expect(ca->fov_y == cb->fov_y);
     scene_free(&a);
     scene_free(&b);
+}
+
+/* The importers' mesh table (scene/scene_import.c): names found after the index grows, a second
+ * mesh of the same name refused, a name never added not found. */
+Test(pbrt_scene, imported_mesh_names_are_indexed)
+{
+    ImportedScene s = {0};
+    Error err = {0};
+    char name[32];
+    for (int i = 0; i < 300; i++) {
+        Mesh m = {0};
+        snprintf(name, sizeof name, "m%d", i);
+        cr_assert(imported_scene_add_mesh(&s, name, &m, &err), "%s", err.message);
+    }
+    for (int i = 0; i < 300; i++) {
+        snprintf(name, sizeof name, "m%d", i);
+        cr_expect_eq(imported_scene_find_mesh(&s, name), i);
+    }
+    cr_expect_eq(imported_scene_find_mesh(&s, "m300"), -1);
+    Mesh m = {0};
+    cr_expect_not(imported_scene_add_mesh(&s, "m17", &m, &err));
+    cr_expect(strstr(err.message, "two meshes named \"m17\""), "%s", err.message);
+    imported_scene_free(&s);
 }
