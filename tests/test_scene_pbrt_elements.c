@@ -95,15 +95,19 @@ Test(pbrt_elements, textures_imagemap_scale_and_constant)
     SceneDesc d;
     const char *dir = test_temp_dir();
     test_write_file(dir, "t.png", "not read by scene_desc_load");
+    test_write_file(dir, "t.jpg", "not read either");
     char world[2048];
     snprintf(world, sizeof world,
              "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\" \"float uscale\" 4\n"
              "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"img\" \"float scale\" 0.5\n"
              "Texture \"k\" \"float\" \"constant\" \"float value\" 0.3\n"
+             "Texture \"jpg\" \"spectrum\" \"imagemap\" \"string filename\" \"t.jpg\"\n"
              "Material \"diffuse\" \"texture reflectance\" \"half\"\n%s"
              "Material \"diffuse\" \"texture reflectance\" \"k\"\n%s", tri, tri);
     load_desc(world, &d);
-    cr_assert_eq(d.num_textures, 2, "the image and its scaled copy");
+    cr_assert_eq(d.num_textures, 3, "the image, its scaled copy and the JPEG");
+    cr_expect(d.textures[0].encoding == TEXTURE_ENCODING_DEFAULT, "PNG: pt's default, sRGB for 8 bits as pbrt");
+    cr_expect(d.textures[2].encoding == TEXTURE_ENCODING_LINEAR, "pbrt reads other files linear");
     const Material *a = &d.materials[0].m, *b = &d.materials[1].m;
     cr_assert(a->tex[MATERIAL_TEX_BASE] != NO_TEXTURE);
     const TextureDesc *t = &d.textures[a->tex[MATERIAL_TEX_BASE]];

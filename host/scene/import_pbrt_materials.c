@@ -306,8 +306,9 @@ static bool imagemap(PbrtImport *imp, PbrtParams *p, PbrtTexture *t)
         return false;
     if (!file)
         return pbrt_fail(imp, imp->line, "Texture \"imagemap\": no \"string filename\"");
+    /* pbrt-v4's default: sRGB for PNG, linear for every other file (JPEG and TGA included). */
     const char *pt_encoding = NULL;
-    if (encoding && strcmp(encoding, "linear") == 0)
+    if ((encoding && strcmp(encoding, "linear") == 0) || (!encoding && !fs_has_suffix(file, ".png")))
         pt_encoding = "linear";
     else if (encoding && strcmp(encoding, "sRGB") != 0)
         pbrt_warn_once(imp, "encoding", "Texture \"imagemap\": encoding \"%s\" read as sRGB", encoding);
