@@ -120,6 +120,12 @@ bool pbrt_place_instance(PbrtImport *imp, const PbrtObjectDef *def, const Affine
 bool pbrt_material(PbrtImport *imp, const char *name, const char *type, PbrtParams *params);
 bool pbrt_texture(PbrtImport *imp, const char *name, const char *value_type, const char *type,
                   PbrtParams *params);
+/* A pbrt texture by name, of the kind wanted (float or spectrum) if there is one, else of the
+ * other; NULL when none (import_pbrt_textures.c). */
+PbrtTexture *pbrt_find_texture(PbrtImport *imp, const char *name, bool want_float);
+/* A file texture in the JSON (the file checked to stay in the folder); its name into out. */
+bool pbrt_add_file_texture(PbrtImport *imp, const char *file, const char *encoding, int line,
+                           char out[SCENE_NAME_LIMIT]);
 /* The pt material a shape uses: the state's material with the shape's emission and opacity
  * (cached per combination). emission NULL: none. */
 bool pbrt_shape_material(PbrtImport *imp, const float *emission, PbrtParams *shape_params,
