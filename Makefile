@@ -95,11 +95,11 @@ fuzz-replay: asan
 	$(Q)python3 tests/fuzz/replay.py build-asan/pt build-asan/fuzz -j 2 --timeout $(FUZZ_TIMEOUT)
 
 # libFuzzer targets (tests/fuzz/fuzz_*.c) for the scene parser, the OBJ/MTL loader, the PLY reader, the glTF import,
-# the texture loader and the checkpoint reader, built with clang (apt-get install clang) into build-fuzz/; each runs
+# the texture loader, the checkpoint reader and the pbrt-v4 importer, built with clang (apt-get install clang) into build-fuzz/; each runs
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf checkpoint
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \

@@ -29,6 +29,10 @@ typedef struct {
     cJSON *root; /* a pt JSON scene; NULL until the importer creates it */
     ImportedMesh *meshes;
     int num_meshes;
+    /* Name -> mesh index (open addressing, -1 = empty, a power of two in size): scenes of many
+     * thousands of shapes look names up once per shape and once per object. */
+    int *name_index;
+    int name_index_size;
 } ImportedScene;
 
 /* Moves *mesh into s under name (names are unique: the caller makes them so; an existing name is
@@ -49,7 +53,7 @@ typedef bool (*SceneImporter)(const char *path, ImportedScene *out, Error *err);
 #define SCENE_IMPORTERS(X)                                                                         \
     X(".dae", NULL, "COLLADA")                                                                     \
     X(".xml", NULL, "Mitsuba 3 XML")                                                               \
-    X(".pbrt", NULL, "pbrt-v4")                                                                    \
+    X(".pbrt", import_pbrt, "pbrt-v4")                                                             \
     X(".fbx", NULL, "FBX")                                                                         \
     X(".stl", NULL, "STL")                                                                         \
     X(".3ds", NULL, "3DS")                                                                         \

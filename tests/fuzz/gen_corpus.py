@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """gen_corpus.py OUT [--seeds DIR]: writes the malformed-input corpus into OUT/cases/ (one folder
 per case); with --seeds, also the seed inputs of the libFuzzer targets (DIR/scene, DIR/obj,
-DIR/texture, DIR/ply, DIR/gltf, DIR/checkpoint: the corpus's scene files, OBJ+MTL pairs, images,
+DIR/texture, DIR/ply, DIR/gltf, DIR/checkpoint, DIR/pbrt: the corpus's scene files, OBJ+MTL pairs, images,
 PLY files, GLB files and checkpoints).
 
 Each case folder holds its input files and case.json:
@@ -22,7 +22,7 @@ corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statem
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
 and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
-corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
+corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -38,6 +38,7 @@ from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
+from corpus_pbrt import pbrt_cases  # noqa: E402
 from corpus_ply import ply_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
 from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
@@ -49,7 +50,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -63,6 +64,8 @@ def write_seeds(folder):
             target, seed = "ply", as_bytes(files["x.ply"])
         elif c["name"].startswith("gltf-") and "x.glb" in files:
             target, seed = "gltf", as_bytes(files["x.glb"])
+        elif c["name"].startswith("pbrt-") and "scene.pbrt" in c["files"]:
+            target, seed = "pbrt", as_bytes(files["scene.pbrt"])
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -89,7 +92,8 @@ def main():
     transform_cases()
     ply_cases()
     gltf_cases(random.Random(20261202))
-    checkpoint_cases()  # last: earlier cases keep their numbers
+    checkpoint_cases()
+    pbrt_cases(random.Random(20261206))  # after the others: earlier cases keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
