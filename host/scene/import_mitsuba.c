@@ -213,12 +213,16 @@ static bool vertical_fov(Mitsuba *m, const XmlElement *e, double aspect, double 
         axis = aspect > 1.0 ? "y" : "x";
     else if (strcmp(axis, "larger") == 0)
         axis = aspect > 1.0 ? "x" : "y";
+    if (strcmp(axis, "y") == 0) { /* as given: no tan/atan rounding */
+        *fov_y = fov;
+        return true;
+    }
     double t = tan(0.5 * fov * PI / 180.0);
     if (strcmp(axis, "x") == 0)
         t /= aspect;
     else if (strcmp(axis, "diagonal") == 0)
         t /= sqrt(1.0 + aspect * aspect);
-    else if (strcmp(axis, "y"))
+    else
         return mi_fail(m, e, "fov_axis \"%.20s\" is not x, y, diagonal, smaller or larger", axis);
     *fov_y = 2.0 * atan(t) * 180.0 / PI;
     return true;

@@ -415,13 +415,23 @@ static int nested_bsdfs(const XmlElement *e, const XmlElement *out[2])
     return n;
 }
 
-/* A wrapper's material: the nested one's JSON copied under a fresh name, then changed. */
+static bool build_material(Mitsuba *m, const XmlElement *e, cJSON **material);
+
+/* A wrapper's material: the nested one's JSON, then changed. A nested bsdf of its own is built
+ * in place (no material of its own: the scene holds what shapes use); a shared one (a ref) is
+ * copied. */
 static bool copy_nested(Mitsuba *m, const XmlElement *e, const XmlElement *nested, cJSON **material)
 {
-    char inner[SCENE_NAME_LIMIT];
-    if (!mi_bsdf(m, nested, inner))
-        return false;
-    cJSON *copy = cJSON_Duplicate(cJSON_GetObjectItemCaseSensitive(m->materials, inner), true);
+    cJSON *copy = NULL;
+    if (strcmp(nested->name, "bsdf") == 0 && !find_mapped(m, nested)) {
+        if (!build_material(m, nested, &copy))
+            return false;
+    } else {
+        char inner[SCENE_NAME_LIMIT];
+        if (!mi_bsdf(m, nested, inner))
+            return false;
+        copy = cJSON_Duplicate(cJSON_GetObjectItemCaseSensitive(m->materials, inner), true);
+    }
     if (!copy)
         return mi_fail(m, e, "out of memory");
     cJSON_Delete(*material);
@@ -548,18 +558,28 @@ bool mi_bsdf(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT])
         snprintf(out, SCENE_NAME_LIMIT, "%s", done->name);
         return true;
     }
+    cJSON *material;
+    if (!build_material(m, e, &material))
+        return false;
+    mi_new_name(m, e, "bsdf", out);
+    cJSON_AddItemToObject(m->materials, out, material);
+    return remember(m, e, out);
+}
+
+/* The pt material of a <bsdf> element, not yet in the scene. */
+static bool build_material(Mitsuba *m, const XmlElement *e, cJSON **material)
+{
     if (m->include_depth > 64)
         return mi_fail(m, e, "bsdfs nested too deeply");
     m->include_depth++;
-    cJSON *material = cJSON_CreateObject();
-    bool ok = material && map_bsdf(m, e, &material);
+    *material = cJSON_CreateObject();
+    bool ok = *material && map_bsdf(m, e, material);
     m->include_depth--;
     if (!ok) {
-        cJSON_Delete(material);
+        cJSON_Delete(*material);
+        *material = NULL;
         return error_is_set(m->err) ? false : mi_fail(m, e, "out of memory");
     }
-    mi_new_name(m, e, "bsdf", out);
-    cJSON_AddItemToObject(m->materials, out, material);
     mi_warn_unused(m, e);
-    return remember(m, e, out);
+    return true;
 }

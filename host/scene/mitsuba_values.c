@@ -426,9 +426,7 @@ bool mi_file(Mitsuba *m, const XmlElement *e, const char *file, char *out, size_
      * file's folder, which the included documents' folders are inside of. */
     const char *slash = strrchr(m->path, '/');
     size_t folder = slash ? (size_t)(slash - m->path) + 1 : 0;
-    const char *relative = resolved[0] == '/' || strncmp(resolved, m->path, folder) ? resolved : resolved + folder;
-    if (resolved[0] != '/' && strncmp(resolved, m->path, folder))
-        return mi_fail(m, e, "filename \"%.200s\" is outside the scene's folder", file);
+    const char *relative = strncmp(resolved, m->path, folder) == 0 ? resolved + folder : resolved;
     if ((size_t)snprintf(out, size, "%s", relative) >= size)
         return mi_fail(m, e, "filename \"%.60s...\" is too long", file);
     return true;
