@@ -24,9 +24,12 @@
 static char **cli_defines; /* "NAME=VALUE" */
 static int num_cli_defines;
 
+/* The length of the parameter name at s: a letter or _, then letters, digits and _. */
 static size_t name_length(const char *s)
 {
     size_t n = 0;
+    if (!isalpha((unsigned char)s[0]) && s[0] != '_')
+        return 0;
     while (isalnum((unsigned char)s[n]) || s[n] == '_')
         n++;
     return n;
@@ -36,7 +39,7 @@ bool mitsuba_import_define(const char *name_value, Error *err)
 {
     size_t n = name_length(name_value);
     if (n == 0 || name_value[n] != '=') {
-        error_set(err, ERR_USAGE, NULL, 0, "-D: '%s' is not NAME=VALUE (NAME: letters, digits, _)", name_value);
+        error_set(err, ERR_USAGE, NULL, 0, "-D: '%s' is not NAME=VALUE (NAME: a letter or _, then letters, digits, _)", name_value);
         return false;
     }
     char **grown = realloc(cli_defines, (size_t)(num_cli_defines + 1) * sizeof *grown);
@@ -328,6 +331,8 @@ static bool sensor(Mitsuba *m, const XmlElement *e, cJSON *root, cJSON *render)
         cJSON_AddNumberToObject(camera, "aperture", 2.0 * radius); /* pt: the lens diameter */
         cJSON_AddNumberToObject(camera, "focus_distance", focus);
     }
+    if (strcmp(type, "perspective") == 0)
+        mi_prop(m, e, "focus_distance"); /* Mitsuba's perspective takes it and ignores it */
     mi_prop(m, e, "near_clip");
     mi_prop(m, e, "far_clip");
     mi_warn_unused(m, e);

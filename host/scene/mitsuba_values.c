@@ -371,7 +371,13 @@ void mi_warn_unused(Mitsuba *m, const XmlElement *e)
     for (int i = 0; i < e->num_children; i++) {
         const XmlElement *c = e->children[i];
         const char *name = xml_attribute(c, "name");
-        if (c->used || !name)
+        /* Nested plugins (a film, an emitter, a bsdf) may carry a name too: only properties. */
+        static const char *const properties[] = {"float", "integer", "boolean", "string", "rgb", "spectrum",
+                                                  "point", "vector", "transform", "texture", NULL};
+        int k = 0;
+        while (properties[k] && strcmp(properties[k], c->name))
+            k++;
+        if (c->used || !name || !properties[k])
             continue;
         char key[64];
         snprintf(key, sizeof key, "%.20s.%.20s.%.20s", xml_attribute(e, "type") ? xml_attribute(e, "type") : e->name,

@@ -22,7 +22,7 @@ corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statem
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
 and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
-corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
+corpus_cli.py (outputs, command line, environment), corpus_mitsuba.py (Mitsuba 3 XML scenes); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -37,6 +37,7 @@ from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
+from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_ply import ply_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
@@ -49,7 +50,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "mitsuba"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -63,6 +64,8 @@ def write_seeds(folder):
             target, seed = "ply", as_bytes(files["x.ply"])
         elif c["name"].startswith("gltf-") and "x.glb" in files:
             target, seed = "gltf", as_bytes(files["x.glb"])
+        elif c["name"].startswith("mitsuba-") and "scene.xml" in files:
+            target, seed = "mitsuba", as_bytes(files["scene.xml"])
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -90,6 +93,7 @@ def main():
     ply_cases()
     gltf_cases(random.Random(20261202))
     checkpoint_cases()  # last: earlier cases keep their numbers
+    mitsuba_cases(random.Random(20261206))  # after: the cases above keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
