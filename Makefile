@@ -136,6 +136,14 @@ $(BUILD)/test-meshes.stamp: tools/make_material_scenes.py tools/make_test_scenes
 	$(Q)python3 tools/make_material_scenes.py tests/scenes
 	$(Q)touch $@
 $(TESTS): $(BUILD)/test-meshes.stamp
+# The reference scenes as Mitsuba 3 XML (tools/mitsuba_xml.py; not in git), for test_reference.
+MITSUBA_XML_SCENES := furnace cornell cornell-sphere textured conductors glass-clear normalmap mix
+$(BUILD)/mitsuba-xml.stamp: tools/mitsuba_xml.py tools/mitsuba_reference.py tools/mitsuba_materials.py \
+                            tools/mitsuba_obj.py $(BUILD)/test-meshes.stamp
+	@echo "  GEN   tests/scenes/*/mitsuba/scene.xml"
+	$(Q)python3 tools/mitsuba_xml.py $(foreach s,$(MITSUBA_XML_SCENES),tests/scenes/$(s) tests/scenes/$(s)/mitsuba)
+	$(Q)touch $@
+$(BUILD)/tests/test_reference: $(BUILD)/mitsuba-xml.stamp
 
 VERSION ?= $(shell git describe --always --dirty 2>/dev/null || echo dev)
 bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))
