@@ -280,12 +280,12 @@ static bool conductor(Mitsuba *m, const XmlElement *e, bool rough, cJSON *materi
     cJSON_AddStringToObject(material, "type", "conductor");
     const char *preset = mi_string(m, e, "material", NULL);
     const XmlElement *eta = mi_prop(m, e, "eta"), *k = mi_prop(m, e, "k");
-    double eta_rgb[3], k_rgb[3];
+    double eta_rgb[3] = {0.0, 0.0, 0.0}, k_rgb[3] = {1.0, 1.0, 1.0}; /* Mitsuba's defaults */
     if (eta || k) {
-        if (!eta || !k || !mi_spectrum_rgb(m, eta, eta_rgb) || !mi_spectrum_rgb(m, k, k_rgb))
-            return error_is_set(m->err) ? false : mi_fail(m, e, "give both eta and k");
+        if ((eta && !mi_spectrum_rgb(m, eta, eta_rgb)) || (k && !mi_spectrum_rgb(m, k, k_rgb)))
+            return false;
     } else {
-        preset = preset ? preset : "Cu"; /* Mitsuba's default */
+        preset = preset ? preset : "none"; /* Mitsuba's default: eta 0, k 1, Fresnel 1 */
         size_t i = 0, n = sizeof conductors / sizeof conductors[0];
         while (i < n && strcmp(conductors[i].name, preset))
             i++;
@@ -295,7 +295,7 @@ static bool conductor(Mitsuba *m, const XmlElement *e, bool rough, cJSON *materi
             memcpy(eta_rgb, conductors[i].eta, sizeof eta_rgb);
             memcpy(k_rgb, conductors[i].k, sizeof k_rgb);
         } else {
-            eta_rgb[0] = -1.0;
+            eta_rgb[0] = -1.0; /* pt's Fresnel 1: no eta, no k */
         }
     }
     if (eta_rgb[0] >= 0.0) {
