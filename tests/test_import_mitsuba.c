@@ -478,3 +478,35 @@ Test(import_mitsuba, xml_and_json_flatten_to_the_same_bits, .timeout = 60)
     scene_free(&from_xml);
     scene_free(&from_json);
 }
+
+/* flip_normals reverses the winding (and normals) of the file's mesh, face_normals drops its
+ * normals; Mitsuba's rectangle has uv (0, 0) at (-1, -1) with v read from the image's top, so pt
+ * (v from the bottom) stores v = 1 there. */
+Test(import_mitsuba, flip_and_face_normals_and_shape_uvs)
+{
+    ImportedScene s;
+    Error err = {0};
+    import_body("", &s, &err); /* makes scene_dir */
+    imported_scene_free(&s);
+    const char *dir = scene_dir;
+    test_write_file(dir, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+    const char *path = test_write_file(dir, "scene.xml",
+        "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
+        "<boolean name=\"flip_normals\" value=\"true\"/></shape>"
+        "<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
+        "<boolean name=\"face_normals\" value=\"true\"/></shape><shape type=\"rectangle\"/></scene>");
+    memset(&s, 0, sizeof s);
+    cr_assert(mitsuba_import(path, &s, &err), "%s", err.message);
+    cr_assert_eq(s.num_meshes, 3);
+    const Mesh *flipped = &s.meshes[0].mesh, *flat = &s.meshes[1].mesh, *rect = &s.meshes[2].mesh;
+    cr_expect(flipped->corners[0] == 0 && flipped->corners[3] == 2 && flipped->corners[6] == 1,
+              "winding reversed");
+    cr_expect(flipped->normals[2] == -1.0f, "normal flipped");
+    cr_expect(flat->num_normals == 0 && flat->corners[2] == -1, "normals dropped");
+    for (size_t i = 0; i < 3 * rect->num_triangles; i++) {
+        const float *p = rect->positions + 3 * rect->corners[3 * i], *uv = rect->texcoords + 2 * rect->corners[3 * i + 1];
+        cr_expect(fabsf(uv[0] - 0.5f * (p[0] + 1)) < 1e-6f && fabsf(uv[1] - 0.5f * (1 - p[1])) < 1e-6f,
+                  "corner (%g, %g) has uv (%g, %g)", p[0], p[1], uv[0], uv[1]);
+    }
+    imported_scene_free(&s);
+}
