@@ -77,6 +77,7 @@ Test(import_mitsuba, transform_operations_compose_in_mitsuba_order)
                           "<transform name=\"to_world\"><scale value=\"2\"/><rotate y=\"1\" angle=\"90\"/>"
                           "<translate x=\"1\" y=\"2\" z=\"3\"/></transform></shape>"
                           "<shape type=\"ply\"><string name=\"filename\" value=\"m.ply\"/>"
+                          "<boolean name=\"flip_tex_coords\" value=\"true\"/>"
                           "<transform name=\"to_world\"><matrix value=\"0 -1 0 5  1 0 0 0  0 0 1 0  0 0 0 1\"/>"
                           "<scale x=\"3\" y=\"1\" z=\"1\"/></transform></shape>",
                           &s, &err), "%s", err.message);
@@ -494,10 +495,15 @@ Test(import_mitsuba, flip_and_face_normals_and_shape_uvs)
         "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
         "<boolean name=\"flip_normals\" value=\"true\"/></shape>"
         "<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
-        "<boolean name=\"face_normals\" value=\"true\"/></shape><shape type=\"rectangle\"/></scene>");
+        "<boolean name=\"face_normals\" value=\"true\"/></shape><shape type=\"rectangle\"/>"
+        "<shape type=\"ply\"><string name=\"filename\" value=\"uv.ply\"/></shape></scene>");
+    test_write_file(dir, "uv.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                   "property float z\nproperty float u\nproperty float v\nelement face 1\n"
+                                   "property list uchar int vertex_indices\nend_header\n"
+                                   "0 0 0 0 0.25\n1 0 0 1 0.25\n0 1 0 0 1\n3 0 1 2\n");
     memset(&s, 0, sizeof s);
     cr_assert(mitsuba_import(path, &s, &err), "%s", err.message);
-    cr_assert_eq(s.num_meshes, 3);
+    cr_assert_eq(s.num_meshes, 4);
     const Mesh *flipped = &s.meshes[0].mesh, *flat = &s.meshes[1].mesh, *rect = &s.meshes[2].mesh;
     cr_expect(flipped->corners[0] == 0 && flipped->corners[3] == 2 && flipped->corners[6] == 1,
               "winding reversed");
@@ -508,5 +514,10 @@ Test(import_mitsuba, flip_and_face_normals_and_shape_uvs)
         cr_expect(fabsf(uv[0] - 0.5f * (p[0] + 1)) < 1e-6f && fabsf(uv[1] - 0.5f * (1 - p[1])) < 1e-6f,
                   "corner (%g, %g) has uv (%g, %g)", p[0], p[1], uv[0], uv[1]);
     }
+    /* Mitsuba keeps a PLY's v (flip_tex_coords false), so its images read from the top: pt's v is 1 - v. */
+    const Mesh *ply = &s.meshes[3].mesh;
+    cr_assert_eq(ply->num_texcoords, 3);
+    cr_expect(fabsf(ply->texcoords[1] - 0.75f) < 1e-6f && fabsf(ply->texcoords[5] - 0.0f) < 1e-6f,
+              "PLY v not flipped: %g, %g", ply->texcoords[1], ply->texcoords[5]);
     imported_scene_free(&s);
 }

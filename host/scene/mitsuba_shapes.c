@@ -15,9 +15,9 @@
 
 #define PI 3.14159265358979323846
 
-/* Mitsuba puts v = 0 on an image's top row, pt on its bottom row: the uvs of the meshes made here
- * (Mitsuba's own shapes' uvs) are flipped so that a bitmap lands as Mitsuba shows it. Files need
- * nothing: Mitsuba's OBJ and PLY readers flip v themselves. */
+/* Mitsuba puts v = 0 on an image's top row, pt on its bottom row: the uvs of Mitsuba's own shapes
+ * are flipped so that a bitmap lands as Mitsuba shows it, and those of files whose v Mitsuba
+ * keeps (flip_tex_coords false: a PLY's default; an OBJ's is true, which flips v as pt reads it). */
 static void flip_v(Mesh *mesh)
 {
     for (size_t i = 0; i < mesh->num_texcoords; i++)
@@ -47,7 +47,7 @@ static void reshape(Mesh *mesh, bool flip, bool flat)
 
 /* The mesh called name, made once: an analytic shape (type) or a file (path, loaded). */
 static bool shared_mesh(Mitsuba *m, const XmlElement *e, const char *name, const char *type,
-                        const char *path, bool flip, bool flat)
+                        const char *path, bool flip, bool flat, bool flip_uv)
 {
     if (imported_scene_find_mesh(m->out, name) >= 0)
         return true;
@@ -73,7 +73,7 @@ static bool shared_mesh(Mitsuba *m, const XmlElement *e, const char *name, const
         }
         return mi_fail(m, e, "out of memory");
     }
-    if (!path)
+    if (flip_uv)
         flip_v(&mesh);
     reshape(&mesh, flip, flat);
     if (!imported_scene_add_mesh(m->out, name, &mesh, &inner))
@@ -148,18 +148,21 @@ static bool file_shape(Mitsuba *m, const XmlElement *e, const char *type, const 
                        const Affine *to_world, bool flip, bool flat)
 {
     char file[1024];
-    if (!mi_file(m, e, mi_string(m, e, "filename", NULL), file, sizeof file))
+    bool flip_tex_coords;
+    if (!mi_file(m, e, mi_string(m, e, "filename", NULL), file, sizeof file) ||
+        !mi_bool(m, e, "flip_tex_coords", strcmp(type, "obj") == 0, &flip_tex_coords))
         return false;
-    if (!flip && !flat) /* pt reads the file itself; objects naming one file share it */
+    if (!flip && !flat && flip_tex_coords) /* pt reads the file itself; objects naming one file share it */
         return add_object(m, type, file, material, to_world, true);
     /* The file read here to be changed: the tree's paths are relative to the imported file. */
     char path[2048], name[SCENE_NAME_LIMIT];
     const char *slash = file[0] == '/' ? NULL : strrchr(m->path, '/');
     snprintf(path, sizeof path, "%.*s%s", slash ? (int)(slash - m->path) + 1 : 0, m->path, file);
-    if (snprintf(name, sizeof name, "%.100s#%s%s", file, flip ? "flip" : "", flat ? "flat" : "") >=
-        (int)sizeof name)
+    if (snprintf(name, sizeof name, "%.100s#%s%s%s", file, flip ? "flip" : "", flat ? "flat" : "",
+                 flip_tex_coords ? "" : "v") >= (int)sizeof name)
         return mi_fail(m, e, "file name too long");
-    return shared_mesh(m, e, name, type, path, flip, flat) && add_object(m, "mesh", name, material, to_world, false);
+    return shared_mesh(m, e, name, type, path, flip, flat, !flip_tex_coords) &&
+           add_object(m, "mesh", name, material, to_world, !flat);
 }
 
 bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent)
@@ -226,7 +229,7 @@ bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent)
         }
         char name[64];
         snprintf(name, sizeof name, "%s%s%s", type, flip ? "#flip" : "", flat ? "#flat" : "");
-        if (!shared_mesh(m, e, name, type, NULL, flip, flat) || !add_object(m, "mesh", name, material, &to_world, false))
+        if (!shared_mesh(m, e, name, type, NULL, flip, flat, true) || !add_object(m, "mesh", name, material, &to_world, false))
             return false;
     }
     mi_warn_unused(m, e);
