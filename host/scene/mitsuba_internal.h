@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* mitsuba_internal.h: what the parts of the Mitsuba 3 importer share: the import's state, the
- * property readers (mitsuba_values.c), the BSDF and texture mapping (mitsuba_bsdf.c), the shapes
- * and emitters (mitsuba_shapes.c). Private to scene/import_mitsuba*.c and scene/mitsuba_*.c. */
+ * property readers (mitsuba_values.c), textures and parameters (mitsuba_texture.c), BSDFs
+ * (mitsuba_bsdf.c), shapes and emitters (mitsuba_shapes.c), the sensor and integrator
+ * (mitsuba_sensor.c). Private to scene/import_mitsuba*.c and scene/mitsuba_*.c. */
 #ifndef PT_MITSUBA_INTERNAL_H
 #define PT_MITSUBA_INTERNAL_H
 
@@ -75,17 +76,27 @@ bool mi_file(Mitsuba *m, const XmlElement *e, const char *file, char *out, size_
 cJSON *mi_rgb_json(const double rgb[3]);
 cJSON *mi_matrix_transform(const Affine *a); /* [{"matrix": [...]}] */
 
-/* ---- mitsuba_bsdf.c ---- */
-/* A <bsdf> (or a <ref> to one) as a pt material; its name in out. */
-bool mi_bsdf(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT]);
+/* ---- mitsuba_texture.c ---- */
+/* What element e (a bsdf or texture) was mapped to, or NULL; mi_remember records it. */
+const MitsubaNamed *mi_find_mapped(const Mitsuba *m, const XmlElement *e);
+bool mi_remember(Mitsuba *m, const XmlElement *e, const char *name);
 /* A colour parameter: rgb/spectrum/float (a JSON array) or a texture (its JSON name); the
  * fallback grey when absent. *out NULL after a failure. */
 bool mi_colour(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON **out);
 /* A scalar parameter: a number or a texture name. */
 bool mi_scalar(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON **out);
-/* A texture element (or ref) as a pt texture; linear: raw texels (normal maps). */
+/* A texture element (or ref) as a pt texture named out (*is_texture), or, for one pt cannot read,
+ * the colour to use instead (mean); linear: raw texels (normal maps). */
 bool mi_texture(Mitsuba *m, const XmlElement *e, bool linear, char out[SCENE_NAME_LIMIT], double mean[3],
                 bool *is_texture);
+
+/* ---- mitsuba_bsdf.c ---- */
+/* A <bsdf> (or a <ref> to one) as a pt material; its name in out. */
+bool mi_bsdf(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT]);
+
+/* ---- mitsuba_sensor.c ---- */
+bool mi_sensor(Mitsuba *m, const XmlElement *e, cJSON *root, cJSON *render);
+bool mi_integrator(Mitsuba *m, const XmlElement *e, cJSON *render);
 
 /* ---- mitsuba_shapes.c ---- */
 bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent);
