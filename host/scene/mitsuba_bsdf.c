@@ -176,6 +176,28 @@ static bool thin_dielectric(Mitsuba *m, const XmlElement *e, cJSON *material)
     return true;
 }
 
+/* A colour or scalar parameter read into material[key] at once (nothing to free on a later
+ * failure: the material owns it). */
+static bool add_colour(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON *material,
+                       const char *key)
+{
+    cJSON *value;
+    if (!mi_colour(m, e, name, fallback, &value))
+        return false;
+    cJSON_AddItemToObject(material, key, value);
+    return true;
+}
+
+static bool add_scalar(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON *material,
+                       const char *key)
+{
+    cJSON *value;
+    if (!mi_scalar(m, e, name, fallback, &value))
+        return false;
+    cJSON_AddItemToObject(material, key, value);
+    return true;
+}
+
 /* plastic: a diffuse base under a smooth or rough dielectric coat, as pt's principled with
  * metallic 0 (Lambert under a GGX specular lobe with Schlick Fresnel at the coat's ior): the same
  * highlight and base colour, without the coat's internal reflections that darken and saturate
@@ -183,17 +205,16 @@ static bool thin_dielectric(Mitsuba *m, const XmlElement *e, cJSON *material)
 static bool plastic(Mitsuba *m, const XmlElement *e, bool rough, cJSON *material)
 {
     double ior;
-    cJSON *base, *specular;
-    if (!ior_ratio(m, e, 1.49, &ior) || !mi_colour(m, e, "diffuse_reflectance", 0.5, &base) ||
-        !mi_colour(m, e, "specular_reflectance", 1.0, &specular))
-        return false;
     cJSON_AddStringToObject(material, "type", "principled");
-    cJSON_AddItemToObject(material, "base_color", base);
+    if (!ior_ratio(m, e, 1.49, &ior) || !add_colour(m, e, "diffuse_reflectance", 0.5, material, "base_color"))
+        return false;
+    const XmlElement *specular = mi_prop(m, e, "specular_reflectance");
+    if (specular && (strcmp(specular->name, "texture") == 0 || strcmp(specular->name, "ref") == 0))
+        mi_warn_once(m, specular, "plastic-specular", "textured specular_reflectance: white (pt's "
+                                                      "specular_color takes a colour)");
+    else if (specular && !add_colour(m, e, "specular_reflectance", 1.0, material, "specular_color"))
+        return false;
     cJSON_AddNumberToObject(material, "metallic", 0.0);
-    if (cJSON_IsArray(specular))
-        cJSON_AddItemToObject(material, "specular_color", specular);
-    else
-        cJSON_Delete(specular);
     cJSON_AddNumberToObject(material, "ior", ior);
     mi_prop(m, e, "nonlinear");
     mi_warn_once(m, e, "plastic", "plastic as pt's principled (metallic 0): no internal scattering in the coat");
@@ -208,15 +229,12 @@ static bool plastic(Mitsuba *m, const XmlElement *e, bool rough, cJSON *material
  * over, specular s (F0 = 0.08 s) becomes the ior with that F0. */
 static bool principled(Mitsuba *m, const XmlElement *e, cJSON *material)
 {
-    cJSON *base, *metallic, *rough;
     double specular;
-    if (!mi_colour(m, e, "base_color", 0.5, &base) || !mi_scalar(m, e, "metallic", 0.0, &metallic) ||
-        !mi_scalar(m, e, "roughness", 0.5, &rough) || !mi_float(m, e, "specular", 0.5, &specular))
-        return false;
     cJSON_AddStringToObject(material, "type", "principled");
-    cJSON_AddItemToObject(material, "base_color", base);
-    cJSON_AddItemToObject(material, "metallic", metallic);
-    cJSON_AddItemToObject(material, "roughness", rough);
+    if (!add_colour(m, e, "base_color", 0.5, material, "base_color") ||
+        !add_scalar(m, e, "metallic", 0.0, material, "metallic") ||
+        !add_scalar(m, e, "roughness", 0.5, material, "roughness") || !mi_float(m, e, "specular", 0.5, &specular))
+        return false;
     double f0 = fmin(fmax(0.08 * specular, 0.0), 0.99), root = sqrt(f0);
     if (f0 > 0.0)
         cJSON_AddNumberToObject(material, "ior", (1.0 + root) / (1.0 - root));
@@ -337,12 +355,8 @@ static bool map_bsdf(Mitsuba *m, const XmlElement *e, cJSON **material)
     if (!type)
         return mi_fail(m, e, "missing type=\"...\"");
     if (strcmp(type, "diffuse") == 0) {
-        cJSON *albedo;
-        if (!mi_colour(m, e, "reflectance", 0.5, &albedo))
-            return false;
         cJSON_AddStringToObject(*material, "type", "diffuse");
-        cJSON_AddItemToObject(*material, "albedo", albedo);
-        return true;
+        return add_colour(m, e, "reflectance", 0.5, *material, "albedo");
     }
     if (strcmp(type, "conductor") == 0 || strcmp(type, "roughconductor") == 0)
         return conductor(m, e, type[0] == 'r', *material);
