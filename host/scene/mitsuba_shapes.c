@@ -107,6 +107,11 @@ static bool shape_material(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_
     }
     if (!emitter)
         return true;
+    const MitsubaNamed *lit = mi_find_mapped(m, emitter); /* a shapegroup's shape, instanced again */
+    if (lit) {
+        snprintf(out, SCENE_NAME_LIMIT, "%s", lit->name);
+        return true;
+    }
     const char *type = xml_attribute(emitter, "type");
     if (!type || strcmp(type, "area")) {
         mi_warn_once(m, emitter, "shape-emitter", "only area emitters attach to shapes: ignored");
@@ -127,7 +132,7 @@ static bool shape_material(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_
     snprintf(base, sizeof base, "%.100s_emitter", out);
     mi_new_name(m, NULL, base, out);
     cJSON_AddItemToObject(m->materials, out, lamp);
-    return true;
+    return mi_remember(m, emitter, out);
 }
 
 static bool add_object(Mitsuba *m, const char *key, const char *value, const char *material,
