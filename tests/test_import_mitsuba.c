@@ -521,3 +521,17 @@ Test(import_mitsuba, flip_and_face_normals_and_shape_uvs)
               "PLY v not flipped: %g, %g", ply->texcoords[1], ply->texcoords[5]);
     imported_scene_free(&s);
 }
+
+/* A lamp in a shapegroup is one emissive material, however often the group is instanced. */
+Test(import_mitsuba, instanced_lamp_is_one_material)
+{
+    ImportedScene s;
+    Error err = {0};
+    cr_assert(import_body("<shape type=\"shapegroup\" id=\"g\"><shape type=\"rectangle\"><emitter type=\"area\">"
+                          "<rgb name=\"radiance\" value=\"2\"/></emitter></shape></shape>"
+                          "<shape type=\"instance\"><ref id=\"g\"/></shape>"
+                          "<shape type=\"instance\"><ref id=\"g\"/></shape>", &s, &err), "%s", err.message);
+    cr_expect_str_eq(get(s.root, "objects.0.material")->valuestring, get(s.root, "objects.1.material")->valuestring);
+    cr_expect_eq(cJSON_GetArraySize(get(s.root, "materials")), 2, "the default diffuse and its lamp");
+    imported_scene_free(&s);
+}
