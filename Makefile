@@ -11,7 +11,7 @@ CC      ?= cc
 CXX     ?= c++
 OPT     ?= -O2 -g
 BUILD   ?= build
-PKGS    := OpenCL libcjson glfw3 gl tinyobjloader
+PKGS    := OpenCL libcjson glfw3 gl tinyobjloader expat
 CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr/include/stb \
             $(shell pkg-config --cflags-only-I $(PKGS) 2>/dev/null) -D_POSIX_C_SOURCE=200809L -DCL_TARGET_OPENCL_VERSION=120
 CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP
@@ -99,7 +99,7 @@ fuzz-replay: asan
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \
@@ -136,6 +136,14 @@ $(BUILD)/test-meshes.stamp: tools/make_material_scenes.py tools/make_test_scenes
 	$(Q)python3 tools/make_material_scenes.py tests/scenes
 	$(Q)touch $@
 $(TESTS): $(BUILD)/test-meshes.stamp
+# The reference scenes as Mitsuba 3 XML (tools/mitsuba_xml.py; not in git), for test_reference.
+MITSUBA_XML_SCENES := furnace cornell cornell-sphere textured conductors glass-clear normalmap mix
+$(BUILD)/mitsuba-xml.stamp: tools/mitsuba_xml.py tools/mitsuba_reference.py tools/mitsuba_materials.py \
+                            tools/mitsuba_obj.py $(BUILD)/test-meshes.stamp
+	@echo "  GEN   tests/scenes/*/mitsuba/scene.xml"
+	$(Q)python3 tools/mitsuba_xml.py $(foreach s,$(MITSUBA_XML_SCENES),tests/scenes/$(s) tests/scenes/$(s)/mitsuba)
+	$(Q)touch $@
+$(BUILD)/tests/test_reference: $(BUILD)/mitsuba-xml.stamp
 
 VERSION ?= $(shell git describe --always --dirty 2>/dev/null || echo dev)
 bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))

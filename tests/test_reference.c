@@ -52,10 +52,10 @@ static Measured measure(RenderFixture *f, int spp_each, int max_depth)
     return m;
 }
 
-static void compare_with_reference(const char *name, int spp_total, int reference_spp)
+/* scene (a file of tests/scenes/<name>/) rendered by pt against the reference of <name>. */
+static void compare_scene_with_reference(const char *scene, const char *name, int spp_total, int reference_spp)
 {
-    char scene[256], ref_path[256], se_path[256];
-    snprintf(scene, sizeof scene, "tests/scenes/%s/scene.json", name);
+    char ref_path[256], se_path[256];
     snprintf(ref_path, sizeof ref_path, "tests/references/%s.exr", name);
     snprintf(se_path, sizeof se_path, "tests/references/%s.stderr.exr", name);
     struct stat st;
@@ -125,6 +125,13 @@ static void compare_with_reference(const char *name, int spp_total, int referenc
     render_fixture_close(&f);
 }
 
+static void compare_with_reference(const char *name, int spp_total, int reference_spp)
+{
+    char scene[256];
+    snprintf(scene, sizeof scene, "tests/scenes/%s/scene.json", name);
+    compare_scene_with_reference(scene, name, spp_total, reference_spp);
+}
+
 /* The reference spp are those of tools/make-references.sh. */
 Test(reference, cornell_box, .timeout = 300) { compare_with_reference("cornell", 128, 16384); }
 Test(reference, cornell_spheres_mirror_and_glass, .timeout = 300) { compare_with_reference("cornell-sphere", 64, 32768); }
@@ -143,3 +150,22 @@ Test(reference_materials, normal_map_at_grazing_light, .timeout = 300) { compare
 Test(reference_materials, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout = 300) { compare_with_reference("mix", 1024, 12288); }
 Test(reference_materials, environment_map_rough_gold, .timeout = 300) { compare_with_reference("envmap", 1024, 4096); }
 Test(reference_materials, environment_map_diffuse_only, .timeout = 300) { compare_with_reference("envmap-diffuse", 1024, 4096); }
+
+/* The same scenes as Mitsuba 3 XML files (tools/mitsuba_xml.py writes the scene Mitsuba rendered
+ * each reference from; make writes them to tests/scenes/<name>/mitsuba/), read by pt's Mitsuba
+ * importer: the importer's mapping checked against Mitsuba itself. */
+static void compare_xml_with_reference(const char *name, int spp_total, int reference_spp)
+{
+    char scene[256];
+    snprintf(scene, sizeof scene, "tests/scenes/%s/mitsuba/scene.xml", name);
+    compare_scene_with_reference(scene, name, spp_total, reference_spp);
+}
+
+Test(reference_mitsuba_xml, cornell_box, .timeout = 300) { compare_xml_with_reference("cornell", 128, 16384); }
+Test(reference_mitsuba_xml, cornell_spheres_mirror_and_glass, .timeout = 300) { compare_xml_with_reference("cornell-sphere", 64, 32768); }
+Test(reference_mitsuba_xml, textured, .timeout = 300) { compare_xml_with_reference("textured", 64, 16384); }
+Test(reference_mitsuba_xml, furnace, .timeout = 300) { compare_xml_with_reference("furnace", 32, 16384); }
+Test(reference_mitsuba_xml, rough_conductors_gold_and_anisotropic_copper, .timeout = 300) { compare_xml_with_reference("conductors", 1024, 8192); }
+Test(reference_mitsuba_xml, rough_glass_clear, .timeout = 300) { compare_xml_with_reference("glass-clear", 1024, 8192); }
+Test(reference_mitsuba_xml, normal_map_at_grazing_light, .timeout = 300) { compare_xml_with_reference("normalmap", 1024, 16384); }
+Test(reference_mitsuba_xml, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout = 300) { compare_xml_with_reference("mix", 1024, 12288); }

@@ -6,6 +6,7 @@
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
 #include "render/session.h"
+#include "scene/import_mitsuba.h"
 #include "scene/scene.h"
 
 #include <errno.h>
@@ -147,6 +148,12 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     return true;
 }
 
+/* -D NAME=VALUE: a Mitsuba scene parameter ($NAME), repeatable; kept by the importer. */
+static bool parse_define(const char *arg, const char *value, Options *o, Error *err)
+{
+    (void)arg, (void)o;
+    return mitsuba_import_define(value, err);
+}
 
 /* The columns between kind and commands, per kind. */
 #define INT(f, lo, hi) ARG_INT, offsetof(Options, f), lo, hi, NULL, NULL
@@ -190,6 +197,9 @@ const CliOption cli_options[] = {
     {"seed", 0, CUSTOM(parse_seed), SCENE_COMMANDS, HELP_OPTIONS, "--seed S",
      "random seed (default 0); the image is a pure function of scene,\n"
      "                     settings, seed and spp"},
+    {"define", 'D', CUSTOM(parse_define), SCENE_COMMANDS, HELP_OPTIONS, "-D NAME=VALUE",
+     "a Mitsuba scene's parameter $NAME (overrides its <default>);\n"
+     "                     repeatable"},
     {"device", 0, TEXT(device), SCENE_COMMANDS | TONEMAP, HELP_OPTIONS, "--device gpu|cpu|P:D",
      "OpenCL device (default: first GPU, else first CPU)"},
     {"device", 0, HELP_ONLY, 0, HELP_OPTIONS, "--device all|P:D,P:D,...",

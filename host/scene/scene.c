@@ -16,6 +16,7 @@
 #include "scene/camera.h"
 #include "scene/default_rig.h"
 #include "scene/gltf_scene.h"
+#include "scene/import_mitsuba.h"
 #include "scene/import_pbrt.h"
 #include "scene/json.h"
 #include "scene/load_objects.h"

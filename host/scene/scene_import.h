@@ -52,7 +52,7 @@ typedef bool (*SceneImporter)(const char *path, ImportedScene *out, Error *err);
  * names it and lists what pt reads. The readers' own headers declare the importers. */
 #define SCENE_IMPORTERS(X)                                                                         \
     X(".dae", NULL, "COLLADA")                                                                     \
-    X(".xml", NULL, "Mitsuba 3 XML")                                                               \
+    X(".xml", mitsuba_import, "Mitsuba 3 XML")                                                     \
     X(".pbrt", import_pbrt, "pbrt-v4")                                                             \
     X(".fbx", NULL, "FBX")                                                                         \
     X(".stl", NULL, "STL")                                                                         \

@@ -22,7 +22,8 @@ corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statem
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
 and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
-corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes); corpus_cases.py holds the
+corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
+corpus_mitsuba.py (Mitsuba 3 XML scenes); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -37,6 +38,7 @@ from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
+from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_pbrt import pbrt_cases  # noqa: E402
 from corpus_ply import ply_cases  # noqa: E402
@@ -50,7 +52,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt", "mitsuba"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -66,6 +68,8 @@ def write_seeds(folder):
             target, seed = "gltf", as_bytes(files["x.glb"])
         elif c["name"].startswith("pbrt-") and "scene.pbrt" in c["files"]:
             target, seed = "pbrt", as_bytes(files["scene.pbrt"])
+        elif c["name"].startswith("mitsuba-") and "scene.xml" in files:
+            target, seed = "mitsuba", as_bytes(files["scene.xml"])
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -94,6 +98,7 @@ def main():
     gltf_cases(random.Random(20261202))
     checkpoint_cases()
     pbrt_cases(random.Random(20261206))  # after the others: earlier cases keep their numbers
+    mitsuba_cases(random.Random(20261207))  # after: the cases above keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
