@@ -11,7 +11,7 @@ CC      ?= cc
 CXX     ?= c++
 OPT     ?= -O2 -g
 BUILD   ?= build
-PKGS    := OpenCL libcjson glfw3 gl tinyobjloader
+PKGS    := OpenCL libcjson glfw3 gl tinyobjloader libxml-2.0 assimp
 CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr/include/stb \
             $(shell pkg-config --cflags-only-I $(PKGS) 2>/dev/null) -D_POSIX_C_SOURCE=200809L -DCL_TARGET_OPENCL_VERSION=120
 CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP

@@ -47,7 +47,7 @@ typedef bool (*SceneImporter)(const char *path, ImportedScene *out, Error *err);
  * An importer of NULL is a format pt recognises but does not read yet: refused in one line that
  * names it and lists what pt reads. The readers' own headers declare the importers. */
 #define SCENE_IMPORTERS(X)                                                                         \
-    X(".dae", NULL, "COLLADA")                                                                     \
+    X(".dae", import_collada, "COLLADA")                                                           \
     X(".xml", NULL, "Mitsuba 3 XML")                                                               \
     X(".pbrt", NULL, "pbrt-v4")                                                                    \
     X(".fbx", NULL, "FBX")                                                                         \
