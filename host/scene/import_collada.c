@@ -9,6 +9,7 @@
 
 #include "io/collada_reader.h"
 #include "io/mesh_shapes.h"
+#include "scene/import_json.h"
 
 #define FILM_WIDTH 640
 #define PI 3.14159265358979323846
@@ -24,20 +25,10 @@ typedef struct {
     /* Per geometry, the bindings that have a mesh already: meshes[g][k] is binding k's. */
     int **made_bindings; /* per geometry: made * num_symbols material indices */
     int *made;
-    double bounds[6];
-    bool has_bounds, has_area_lights;
+    ImportBounds bounds;
+    bool has_area_lights;
     bool warned_emitter, warned_attenuation;
 } Importer;
-
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double t[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            t[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
-                           a[4 * i + 3] * b[12 + j];
-    memcpy(out, t, sizeof t);
-}
 
 /* M (x, y, z, w). */
 static void apply(const double m[16], const double p[4], double out[3])
@@ -54,18 +45,6 @@ static void up_axis_matrix(ColladaUpAxis axis, double m[16])
     memcpy(m, axis == COLLADA_Z_UP ? z_up : axis == COLLADA_X_UP ? x_up : y_up, 16 * sizeof *m);
 }
 
-static cJSON *vec3(const double v[3])
-{
-    double f[3] = {(float)v[0], (float)v[1], (float)v[2]};
-    return cJSON_CreateDoubleArray(f, 3);
-}
-
-static cJSON *colour(const float c[3])
-{
-    double v[3] = {c[0], c[1], c[2]};
-    return vec3(v);
-}
-
 static bool oom(Importer *im)
 {
     error_set(im->err, ERR_OUT_OF_MEMORY, im->path, 0, "%s: out of memory", im->path);
@@ -73,19 +52,6 @@ static bool oom(Importer *im)
 }
 
 /* ---------------------------------------------------------------- materials */
-
-static void world_bounds(Importer *im, const double p[3])
-{
-    if (!im->has_bounds) {
-        for (int c = 0; c < 3; c++)
-            im->bounds[c] = im->bounds[3 + c] = p[c];
-        im->has_bounds = true;
-    }
-    for (int c = 0; c < 3; c++) {
-        im->bounds[c] = fmin(im->bounds[c], p[c]);
-        im->bounds[3 + c] = fmax(im->bounds[3 + c], p[c]);
-    }
-}
 
 /* The JSON material replacing the mesh material `m` (NULL: the mesh's MTL-like one stands). */
 static cJSON *json_material(const ColladaDoc *doc, const ColladaMaterial *m)
@@ -96,29 +62,29 @@ static cJSON *json_material(const ColladaDoc *doc, const ColladaMaterial *m)
     switch (m->cgl) {
     case CGL_DIFFUSE:
         cJSON_AddStringToObject(j, "type", "diffuse");
-        cJSON_AddItemToObject(j, "albedo", colour(m->reflectance));
+        cJSON_AddItemToObject(j, "albedo", import_json_colour(m->reflectance));
         break;
     case CGL_MIRROR:
         cJSON_AddStringToObject(j, "type", "conductor");
-        cJSON_AddItemToObject(j, "reflectance", colour(m->reflectance));
+        cJSON_AddItemToObject(j, "reflectance", import_json_colour(m->reflectance));
         break;
     case CGL_MICROFACET:
         cJSON_AddStringToObject(j, "type", "conductor");
-        cJSON_AddItemToObject(j, "eta", colour(m->eta));
-        cJSON_AddItemToObject(j, "k", colour(m->k));
+        cJSON_AddItemToObject(j, "eta", import_json_colour(m->eta));
+        cJSON_AddItemToObject(j, "k", import_json_colour(m->k));
         cJSON_AddNumberToObject(j, "roughness", fmin(1.0, sqrt(m->alpha)));
         break;
     case CGL_GLASS:
         cJSON_AddStringToObject(j, "type", "dielectric");
         cJSON_AddNumberToObject(j, "ior", m->ior);
         cJSON_AddNumberToObject(j, "roughness", fmin(1.0, sqrt(m->roughness)));
-        cJSON_AddItemToObject(j, "tint", colour(m->transmittance));
+        cJSON_AddItemToObject(j, "tint", import_json_colour(m->transmittance));
         break;
     case CGL_EMISSION: {
         float black[3] = {0, 0, 0};
         cJSON_AddStringToObject(j, "type", "diffuse");
-        cJSON_AddItemToObject(j, "albedo", colour(black));
-        cJSON_AddItemToObject(j, "emission", colour(m->radiance));
+        cJSON_AddItemToObject(j, "albedo", import_json_colour(black));
+        cJSON_AddItemToObject(j, "emission", import_json_colour(m->radiance));
         break;
     }
     case CGL_NONE:
@@ -128,7 +94,7 @@ static cJSON *json_material(const ColladaDoc *doc, const ColladaMaterial *m)
         }
         /* CS184 renders a material without a CGL technique as Lambert with its diffuse colour. */
         cJSON_AddStringToObject(j, "type", "diffuse");
-        cJSON_AddItemToObject(j, "albedo", colour(m->common.kd));
+        cJSON_AddItemToObject(j, "albedo", import_json_colour(m->common.kd));
         break;
     }
     return j;
@@ -239,14 +205,6 @@ static bool mesh_for(Importer *im, int g, const int *bindings, char name[SCENE_N
            imported_scene_add_mesh(im->out, name, &mesh, im->err);
 }
 
-static cJSON *matrix_transform(const double m[16])
-{
-    cJSON *list = cJSON_CreateArray(), *op = cJSON_CreateObject();
-    cJSON_AddItemToObject(op, "matrix", cJSON_CreateDoubleArray(m, 16));
-    cJSON_AddItemToArray(list, op);
-    return list;
-}
-
 static bool is_cgl_emitter(const Importer *im, const ColladaInstance *inst)
 {
     const ColladaGeometry *g = &im->doc->geometries[inst->index];
@@ -273,19 +231,15 @@ static bool add_geometry(Importer *im, const ColladaInstance *inst)
     if (!mesh_for(im, inst->index, inst->bindings, name))
         return false;
     double world[16];
-    mat_mul(im->up, inst->world, world);
+    import_mat_mul(im->up, inst->world, world);
     cJSON *o = cJSON_CreateObject();
     if (!o)
         return oom(im);
     cJSON_AddStringToObject(o, "mesh", name);
-    cJSON_AddItemToObject(o, "transform", matrix_transform(world));
+    cJSON_AddItemToObject(o, "transform", import_json_matrix_transform(world));
     cJSON_AddItemToArray(im->objects, o);
-    const Mesh *m = &im->out->meshes[imported_scene_find_mesh(im->out, name)].mesh;
-    for (size_t i = 0; i < m->num_positions; i++) {
-        double p[4] = {m->positions[3 * i], m->positions[3 * i + 1], m->positions[3 * i + 2], 1}, w[3];
-        apply(world, p, w);
-        world_bounds(im, w);
-    }
+    import_bounds_add_mesh(&im->bounds, &im->out->meshes[imported_scene_find_mesh(im->out, name)].mesh,
+                           world);
     return true;
 }
 
@@ -306,20 +260,20 @@ static bool add_area_light(Importer *im, const ColladaInstance *inst, const Coll
         float black[3] = {0, 0, 0};
         cJSON *j = cJSON_CreateObject();
         cJSON_AddStringToObject(j, "type", "diffuse");
-        cJSON_AddItemToObject(j, "albedo", colour(black));
-        cJSON_AddItemToObject(j, "emission", colour(l->color));
+        cJSON_AddItemToObject(j, "albedo", import_json_colour(black));
+        cJSON_AddItemToObject(j, "emission", import_json_colour(l->color));
         cJSON_AddItemToObject(im->materials, material, j);
     }
     /* CS184's AreaLight: the square [-1/2, 1/2]^2 of the node's xy plane, emitting toward -z.
      * mesh_rectangle is [-1, 1]^2 facing +z: halve it and turn it over about x. */
     static const double turn[16] = {0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1};
     double world[16];
-    mat_mul(im->up, inst->world, world);
-    mat_mul(world, turn, world);
+    import_mat_mul(im->up, inst->world, world);
+    import_mat_mul(world, turn, world);
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "mesh", AREA_LIGHT_MESH);
     cJSON_AddStringToObject(o, "material", material);
-    cJSON_AddItemToObject(o, "transform", matrix_transform(world));
+    cJSON_AddItemToObject(o, "transform", import_json_matrix_transform(world));
     cJSON_AddItemToArray(im->objects, o);
     return true;
 }
@@ -340,7 +294,7 @@ static bool add_light(Importer *im, const ColladaInstance *inst)
              "the inverse square of the distance)", im->path, l->id);
     }
     double world[16], origin[4] = {0, 0, 0, 1}, ahead[4] = {0, 0, -1, 0}, p[3], d[3];
-    mat_mul(im->up, inst->world, world);
+    import_mat_mul(im->up, inst->world, world);
     apply(world, origin, p);
     apply(world, ahead, d);
     cJSON *j = cJSON_CreateObject();
@@ -348,14 +302,14 @@ static bool add_light(Importer *im, const ColladaInstance *inst)
         return oom(im);
     if (l->type == COLLADA_LIGHT_DIRECTIONAL) {
         cJSON_AddStringToObject(j, "type", "directional");
-        cJSON_AddItemToObject(j, "direction", vec3(d));
-        cJSON_AddItemToObject(j, "irradiance", colour(l->color));
+        cJSON_AddItemToObject(j, "direction", import_json_vec3(d));
+        cJSON_AddItemToObject(j, "irradiance", import_json_colour(l->color));
     } else {
         cJSON_AddStringToObject(j, "type", l->type == COLLADA_LIGHT_SPOT ? "spot" : "point");
-        cJSON_AddItemToObject(j, "position", vec3(p));
-        cJSON_AddItemToObject(j, "intensity", colour(l->color));
+        cJSON_AddItemToObject(j, "position", import_json_vec3(p));
+        cJSON_AddItemToObject(j, "intensity", import_json_colour(l->color));
         if (l->type == COLLADA_LIGHT_SPOT) {
-            cJSON_AddItemToObject(j, "direction", vec3(d));
+            cJSON_AddItemToObject(j, "direction", import_json_vec3(d));
             cJSON_AddNumberToObject(j, "cone_angle", fmin(180.0, l->falloff_angle / 2.0));
         }
     }
@@ -376,19 +330,11 @@ static bool add_camera(Importer *im, cJSON *root)
     cJSON *camera = cJSON_CreateObject(), *film = NULL;
     if (!camera)
         return oom(im);
-    double centre[3] = {0, 0, 0}, diagonal = 1.0;
-    if (im->has_bounds) {
-        double e[3];
-        for (int c = 0; c < 3; c++)
-            centre[c] = 0.5 * (im->bounds[c] + im->bounds[3 + c]), e[c] = im->bounds[3 + c] - im->bounds[c];
-        diagonal = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-        if (!(diagonal > 0))
-            diagonal = 1.0;
-    }
+    double centre[3], diagonal = import_bounds_centre(&im->bounds, centre);
     if (inst) {
         const ColladaCamera *c = &im->doc->cameras[inst->index];
         double world[16], o[4] = {0, 0, 0, 1}, f[4] = {0, 0, -1, 0}, u[4] = {0, 1, 0, 0}, fwd[3];
-        mat_mul(im->up, inst->world, world);
+        import_mat_mul(im->up, inst->world, world);
         apply(world, o, eye);
         apply(world, f, fwd);
         apply(world, u, up);
@@ -407,7 +353,7 @@ static bool add_camera(Importer *im, cJSON *root)
             cJSON_AddNumberToObject(film, "width", FILM_WIDTH);
             cJSON_AddNumberToObject(film, "height", fmax(1.0, round(FILM_WIDTH / aspect)));
         }
-        if (im->doc->has_cgl && im->has_bounds) {
+        if (im->doc->has_cgl && im->bounds.any) {
             /* CS184 (Application::load): the camera looks at the bounds' centre from 1.5 x
              * their diagonal, along the direction of the point one unit ahead of the file's
              * camera seen from the origin, +y up. */
@@ -432,9 +378,9 @@ static bool add_camera(Importer *im, cJSON *root)
         for (int k = 0; k < 3; k++)
             eye[k] = centre[k] + (k == 2 ? 1.5 * diagonal : 0);
     }
-    cJSON_AddItemToObject(camera, "eye", vec3(eye));
-    cJSON_AddItemToObject(camera, "target", vec3(target));
-    cJSON_AddItemToObject(camera, "up", vec3(up));
+    cJSON_AddItemToObject(camera, "eye", import_json_vec3(eye));
+    cJSON_AddItemToObject(camera, "target", import_json_vec3(target));
+    cJSON_AddItemToObject(camera, "up", import_json_vec3(up));
     cJSON_AddNumberToObject(camera, "fov_y", (float)fov_y);
     cJSON_AddItemToObject(root, "camera", camera);
     if (film)

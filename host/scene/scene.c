@@ -13,6 +13,7 @@
 #include "io/input_file.h"
 #include "scene/camera.h"
 #include "scene/gltf_scene.h"
+#include "scene/import_assimp.h"
 #include "scene/import_collada.h"
 #include "scene/json.h"
 #include "scene/load_objects.h"
