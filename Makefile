@@ -21,6 +21,10 @@ CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
 # dependencies (libGL.so.1 -> libGLdispatch.so.0), which a RUNPATH would leave to the system.
 LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib' -Wl,--disable-new-dtags
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -ltinygltf -lm -lpthread
+# libdraco (glTF KHR_draco_mesh_compression, io/gltf_draco.cc) statically: Debian's libdraco.so
+# exports its own build of tinygltf, whose symbols would replace libtinygltf's (another layout:
+# a crash in TinyGLTF's destructor); from the archive only the decoder's objects are linked.
+LDLIBS  += -Wl,-Bstatic -ldraco -Wl,-Bdynamic
 # MPI (OpenMPI: libopenmpi-dev): always linked, started only under mpirun (host/dist/mpi_link.h).
 MPI_CFLAGS := $(shell mpicc --showme:compile 2>/dev/null || pkg-config --cflags ompi-c 2>/dev/null)
 MPI_LIBS   := $(shell mpicc --showme:link 2>/dev/null || pkg-config --libs ompi-c 2>/dev/null)
