@@ -178,6 +178,11 @@ $(BUILD)/tests/%.o: tests/%.c
 	@echo "  CC    $<"
 	$(Q)$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -c -o $@ $<
 
+$(BUILD)/tests/%.o: tests/%.cc
+	@mkdir -p $(@D)
+	@echo "  CXX   $<"
+	$(Q)$(CXX) $(CPPFLAGS) -Itests $(CXXFLAGS) -c -o $@ $<
+
 $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 	@echo "  LD    $@"
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
@@ -187,6 +192,8 @@ $(filter $(BUILD)/tests/test_accel_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
+# The Draco tests write their glTF twins with libdraco's encoder (tests/draco_fixture.cc).
+$(BUILD)/tests/test_gltf_draco: $(BUILD)/tests/draco_fixture.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o
