@@ -22,7 +22,8 @@ corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statem
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
 and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
-corpus_cli.py (outputs, command line, environment); corpus_cases.py holds the
+corpus_cli.py (outputs, command line, environment), corpus_collada.py (COLLADA, the Assimp
+formats, Draco glTF); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -35,6 +36,7 @@ sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 from corpus_cases import cases  # noqa: E402
 from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
+from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
@@ -49,7 +51,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "collada", "assimp"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -63,6 +65,11 @@ def write_seeds(folder):
             target, seed = "ply", as_bytes(files["x.ply"])
         elif c["name"].startswith("gltf-") and "x.glb" in files:
             target, seed = "gltf", as_bytes(files["x.glb"])
+        elif c["name"].startswith("dae-") and "x.dae" in files:
+            target, seed = "collada", as_bytes(files["x.dae"])
+        elif c["name"].startswith(("stl-", "off-", "fbx-", "3ds-")):  # fuzz_assimp.c: format byte
+            kind = ("stl-", "off-", "fbx-", "3ds-").index(c["name"][:4])
+            target, seed = "assimp", bytes([kind]) + as_bytes(next(iter(files.values())))
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -89,7 +96,8 @@ def main():
     transform_cases()
     ply_cases()
     gltf_cases(random.Random(20261202))
-    checkpoint_cases()  # last: earlier cases keep their numbers
+    checkpoint_cases()
+    collada_cases(random.Random(20261206))  # after the others: earlier cases keep their numbers
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
