@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "base/fs.h"
+#include "base/transform.h"
 #include "io/input_file.h"
 
 #define ASSIMP_FILE_LIMIT ((size_t)2 << 30)
@@ -39,16 +40,6 @@ static void matrix_of(const struct aiMatrix4x4 *m, double out[16])
                            m->c1, m->c2, m->c3, m->c4, m->d1, m->d2, m->d3, m->d4};
     for (int i = 0; i < 16; i++)
         out[i] = v[i];
-}
-
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double t[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            t[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
-                           a[4 * i + 3] * b[12 + j];
-    memcpy(out, t, sizeof t);
 }
 
 static void apply(const double m[16], const double p[3], double w, double out[3])
@@ -214,7 +205,7 @@ static bool visit(Reader *r, const struct aiNode *node, const double parent[16],
     }
     double local[16], world[16];
     matrix_of(&node->mTransformation, local);
-    mat_mul(parent, local, world);
+    rows16_mul(parent, local, world);
     AssimpScene *s = r->out;
     for (unsigned i = 0; i < node->mNumMeshes; i++) {
         if (node->mMeshes[i] >= r->ai->mNumMeshes)

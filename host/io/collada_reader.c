@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "base/fs.h"
+#include "base/transform.h"
 #include "io/input_file.h"
 #include "io/triangulate.h"
 
@@ -213,16 +214,6 @@ static void mat_identity(double m[16])
 {
     memset(m, 0, 16 * sizeof *m);
     m[0] = m[5] = m[10] = m[15] = 1.0;
-}
-
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double t[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            t[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
-                           a[4 * i + 3] * b[12 + j];
-    memcpy(out, t, sizeof t);
 }
 
 static void normalize3(double v[3])
@@ -976,7 +967,7 @@ static bool visit_node(Reader *r, const xmlNode *node, const double parent[16], 
     for (xmlNode *e = node->children; e; e = e->next) {
         bool ok;
         if (transform_element(r, e, m, &ok))
-            mat_mul(world, m, world);
+            rows16_mul(world, m, world);
         else if (!ok)
             return false;
     }

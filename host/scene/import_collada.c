@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/transform.h"
 #include "io/collada_reader.h"
 #include "io/mesh_shapes.h"
 #include "scene/import_json.h"
@@ -231,7 +232,7 @@ static bool add_geometry(Importer *im, const ColladaInstance *inst)
     if (!mesh_for(im, inst->index, inst->bindings, name))
         return false;
     double world[16];
-    import_mat_mul(im->up, inst->world, world);
+    rows16_mul(im->up, inst->world, world);
     cJSON *o = cJSON_CreateObject();
     if (!o)
         return oom(im);
@@ -268,8 +269,8 @@ static bool add_area_light(Importer *im, const ColladaInstance *inst, const Coll
      * mesh_rectangle is [-1, 1]^2 facing +z: halve it and turn it over about x. */
     static const double turn[16] = {0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1};
     double world[16];
-    import_mat_mul(im->up, inst->world, world);
-    import_mat_mul(world, turn, world);
+    rows16_mul(im->up, inst->world, world);
+    rows16_mul(world, turn, world);
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "mesh", AREA_LIGHT_MESH);
     cJSON_AddStringToObject(o, "material", material);
@@ -294,7 +295,7 @@ static bool add_light(Importer *im, const ColladaInstance *inst)
              "the inverse square of the distance)", im->path, l->id);
     }
     double world[16], origin[4] = {0, 0, 0, 1}, ahead[4] = {0, 0, -1, 0}, p[3], d[3];
-    import_mat_mul(im->up, inst->world, world);
+    rows16_mul(im->up, inst->world, world);
     apply(world, origin, p);
     apply(world, ahead, d);
     cJSON *j = cJSON_CreateObject();
@@ -334,7 +335,7 @@ static bool add_camera(Importer *im, cJSON *root)
     if (inst) {
         const ColladaCamera *c = &im->doc->cameras[inst->index];
         double world[16], o[4] = {0, 0, 0, 1}, f[4] = {0, 0, -1, 0}, u[4] = {0, 1, 0, 0}, fwd[3];
-        import_mat_mul(im->up, inst->world, world);
+        rows16_mul(im->up, inst->world, world);
         apply(world, o, eye);
         apply(world, f, fwd);
         apply(world, u, up);

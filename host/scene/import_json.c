@@ -31,16 +31,6 @@ cJSON *import_json_matrix_transform(const double m[16])
     return list;
 }
 
-void import_mat_mul(const double a[16], const double b[16], double out[16])
-{
-    double t[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            t[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
-                           a[4 * i + 3] * b[12 + j];
-    memcpy(out, t, sizeof t);
-}
-
 void import_bounds_add_mesh(ImportBounds *b, const Mesh *mesh, const double m[16])
 {
     for (size_t i = 0; i < mesh->num_positions; i++) {

@@ -25,7 +25,5 @@ void import_bounds_add_mesh(ImportBounds *b, const Mesh *mesh, const double m[16
 double import_bounds_centre(const ImportBounds *b, double centre[3]);
 /* {"eye", "target", "up", "fov_y"} looking at b's centre from +z at 1.5 diagonals. */
 cJSON *import_json_framing_camera(const ImportBounds *b, double fov_y);
-/* 4x4 row-major product a * b. */
-void import_mat_mul(const double a[16], const double b[16], double out[16]);
 
 #endif

@@ -2,9 +2,9 @@
 /* libFuzzer target: the Assimp path (host/io/assimp_reader.c, host/scene/import_assimp.c). The
  * input's first byte picks the format (STL, OFF, FBX, 3DS, X3D); the rest is the file. Assimp
  * itself is fuzzed upstream (OSS-Fuzz); this checks what pt does with what it hands back. */
-#include "fuzz_input.h"
-
 #include "scene/import_assimp.h"
+
+#include "fuzz_input.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -21,12 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (import_assimp(path, &s, &err)) {
         for (int i = 0; i < s.num_meshes; i++) {
             const Mesh *m = &s.meshes[i].mesh;
-            for (size_t t = 0; t < 9 * m->num_triangles; t++) {
-                int32_t index = m->corners[t];
-                size_t count = t % 3 == 0 ? m->num_positions : t % 3 == 1 ? m->num_texcoords : m->num_normals;
-                if (index < -1 || (t % 3 == 0 && index < 0) || (index >= 0 && (size_t)index >= count))
-                    abort();
-            }
+            fuzz_check_mesh(m);
         }
     } else if (!err.message[0]) {
         abort();

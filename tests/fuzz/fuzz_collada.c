@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* libFuzzer target: the COLLADA reader and its mapping to a pt scene (host/io/collada_reader.c,
  * host/scene/import_collada.c). The input is the .dae file. */
-#include "fuzz_input.h"
-
 #include "scene/import_collada.h"
+
+#include "fuzz_input.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -18,12 +18,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         /* Every index handed on must be inside its array; every object names a mesh. */
         for (int i = 0; i < s.num_meshes; i++) {
             const Mesh *m = &s.meshes[i].mesh;
-            for (size_t t = 0; t < 9 * m->num_triangles; t++) {
-                int32_t index = m->corners[t];
-                size_t count = t % 3 == 0 ? m->num_positions : t % 3 == 1 ? m->num_texcoords : m->num_normals;
-                if (index < -1 || (t % 3 == 0 && index < 0) || (index >= 0 && (size_t)index >= count))
-                    abort();
-            }
+            fuzz_check_mesh(m);
             for (size_t t = 0; t < m->num_triangles; t++)
                 if (m->material_ids[t] < 0 || (size_t)m->material_ids[t] >= m->num_materials)
                     abort();
