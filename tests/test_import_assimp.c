@@ -186,6 +186,12 @@ Test(assimp, unreadable_files_give_assimps_reason_in_one_line, .timeout = 60)
     cr_expect(strstr(err.message, "bad.fbx: Assimp cannot read it: ") && !strchr(err.message, '\n'),
               "message: %s", err.message);
     imported_scene_free(&s);
+    /* Assimp asserts (aborts the process) on an empty buffer: pt refuses it first. */
+    const char *empty = test_write_file(dir, "empty.3ds", "");
+    err = (Error){0};
+    cr_expect_not(import_assimp(empty, &s, &err));
+    cr_expect(strstr(err.message, "empty.3ds: the file is empty"), "message: %s", err.message);
+    imported_scene_free(&s);
     const char *broken = test_write_file(dir, "broken.stl", "solid x\nfacet normal 0 0 1\nouter loop\n"
                                                             "vertex 0 0 0\nvertex 1 0\nendloop\n");
     err = (Error){0};

@@ -284,6 +284,10 @@ bool assimp_read_memory(const char *path, const char *hint, const void *data, si
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: larger than 4 GiB", path);
         return false;
     }
+    if (size == 0) { /* Assimp asserts (aborts) on an empty buffer */
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: the file is empty", path);
+        return false;
+    }
     /* Triangulate (n-gons), sort by primitive type (points and lines apart), drop degenerate
      * triangles; validation refuses inconsistent structures instead of handing them on. */
     const struct aiScene *ai = aiImportFileFromMemory(

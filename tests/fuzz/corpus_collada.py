@@ -119,6 +119,8 @@ def collada_cases(rng):
          ["render", "x.off"] + TINY, "ok")
     case("off-index", {"x.off": "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 7\n"},
          ["render", "x.off"] + TINY, "any")
+    for ext in ("stl", "fbx", "3ds", "x3d", "off"):  # Assimp asserts on an empty buffer
+        case(ext + "-empty", {"x." + ext: ""}, ["render", "x." + ext] + TINY, "error", needle="empty")
     case("fbx-garbage", {"x.fbx": b"Kaydara FBX Binary  \0\x1a\0" + bytes(range(256)) * 4},
          ["render", "x.fbx"] + TINY, "error", needle="x.fbx")
     case("fbx-ascii-empty", {"x.fbx": "; FBX 7.5.0 project file\nObjects: {\n}\n"},

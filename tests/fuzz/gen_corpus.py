@@ -67,8 +67,8 @@ def write_seeds(folder):
             target, seed = "gltf", as_bytes(files["x.glb"])
         elif c["name"].startswith("dae-") and "x.dae" in files:
             target, seed = "collada", as_bytes(files["x.dae"])
-        elif c["name"].startswith(("stl-", "off-", "fbx-", "3ds-")):  # fuzz_assimp.c: format byte
-            kind = ("stl-", "off-", "fbx-", "3ds-").index(c["name"][:4])
+        elif c["name"].startswith(("stl-", "off-", "fbx-", "3ds-", "x3d-")):  # fuzz_assimp.c: format byte
+            kind = ("stl-", "off-", "fbx-", "3ds-", "x3d-").index(c["name"][:4])
             target, seed = "assimp", bytes([kind]) + as_bytes(next(iter(files.values())))
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
