@@ -147,14 +147,15 @@ static bool collect_ids(Reader *r, xmlNode *n)
         if (n)
             n = n->next;
     }
-    qsort(r->ids, r->num_ids, sizeof *r->ids, compare_ids);
+    if (r->num_ids > 0) /* qsort and bsearch take no NULL array, even empty */
+        qsort(r->ids, r->num_ids, sizeof *r->ids, compare_ids);
     return true;
 }
 
 /* The element a "#id" URL (or a bare id) names, NULL when none. */
 static xmlNode *lookup(const Reader *r, const char *url)
 {
-    if (!url)
+    if (!url || r->num_ids == 0)
         return NULL;
     IdEntry key = {url[0] == '#' ? url + 1 : url, NULL};
     IdEntry *hit = bsearch(&key, r->ids, r->num_ids, sizeof *r->ids, compare_ids);

@@ -20,7 +20,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             const Mesh *m = &s.meshes[i].mesh;
             fuzz_check_mesh(m);
             for (size_t t = 0; t < m->num_triangles; t++)
-                if (m->material_ids[t] < 0 || (size_t)m->material_ids[t] >= m->num_materials)
+                if (m->material_ids[t] < -1 || (m->material_ids[t] >= 0 && (size_t)m->material_ids[t] >= m->num_materials))
                     abort();
         }
         const cJSON *o;
