@@ -346,6 +346,11 @@ static bool load_source(Reader *r, MeshBuilder *b, SourceTable *t, int attr_kind
         declared > (1L << 30) || (long)width > stride || offset + (n ? (n - 1) * stride + width : 0) > declared)
         return fail(r, accessor, ERR_OBJ_PARSE, "count, stride or offset out of range of its array%s",
                     "", NULL);
+    /* Each number takes at least two characters ("0 "): a count its text cannot hold is refused
+     * before memory is taken for it. */
+    if ((size_t)declared > strlen(text(array)) / 2 + 1)
+        return fail(r, array, ERR_OBJ_PARSE, "count %s is more numbers than its text holds",
+                    attr(array, "count"), NULL);
     double *values = malloc((size_t)(declared ? declared : 1) * sizeof *values);
     if (!values)
         return fail(r, array, ERR_OUT_OF_MEMORY, "out of memory", NULL, NULL);
