@@ -74,6 +74,8 @@ def collada_cases(rng):
              "error", "x.dae")
     dae_case("count-lies", dae(geometries=GEOMETRY.replace('count="12"', 'count="1200000000"')),
              "error", "x.dae")
+    dae_case("count-beyond-text", dae(geometries=GEOMETRY.replace('count="12"', 'count="600000000"')
+             .replace('count="4" stride', 'count="200000000" stride')), "error", "count")
     dae_case("stride-zero", dae(geometries=GEOMETRY.replace('stride="3"', 'stride="0"')), "error", "x.dae")
     dae_case("offset-huge", dae(geometries=GEOMETRY.replace('offset="0"', 'offset="4000000000"')),
              "error", "x.dae")
