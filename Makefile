@@ -11,7 +11,7 @@ CC      ?= cc
 CXX     ?= c++
 OPT     ?= -O2 -g
 BUILD   ?= build
-PKGS    := OpenCL libcjson glfw3 gl tinyobjloader expat
+PKGS    := OpenCL libcjson glfw3 gl tinyobjloader expat libxml-2.0 assimp
 CPPFLAGS += -Ihost -I$(BUILD) -I/usr/include/OpenEXR -I/usr/include/Imath -I/usr/include/stb \
             $(shell pkg-config --cflags-only-I $(PKGS) 2>/dev/null) -D_POSIX_C_SOURCE=200809L -DCL_TARGET_OPENCL_VERSION=120
 CFLAGS  += -std=c11 -Wall -Wextra -Wpedantic $(OPT) -MMD -MP
@@ -21,6 +21,10 @@ CXXFLAGS += -std=c++11 -Wall -Wextra $(OPT) -MMD -MP
 # dependencies (libGL.so.1 -> libGLdispatch.so.0), which a RUNPATH would leave to the system.
 LDFLAGS += -Wl,-rpath,'$$ORIGIN/../lib' -Wl,--disable-new-dtags
 LDLIBS  += $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lOpenEXRCore-3_1 -ltinygltf -lm -lpthread
+# libdraco (glTF KHR_draco_mesh_compression, io/gltf_draco.cc) statically: Debian's libdraco.so
+# exports its own build of tinygltf, whose symbols would replace libtinygltf's (another layout:
+# a crash in TinyGLTF's destructor); from the archive only the decoder's objects are linked.
+LDLIBS  += -Wl,-Bstatic -ldraco -Wl,-Bdynamic
 # MPI (OpenMPI: libopenmpi-dev): always linked, started only under mpirun (host/dist/mpi_link.h).
 MPI_CFLAGS := $(shell mpicc --showme:compile 2>/dev/null || pkg-config --cflags ompi-c 2>/dev/null)
 MPI_LIBS   := $(shell mpicc --showme:link 2>/dev/null || pkg-config --libs ompi-c 2>/dev/null)
@@ -99,7 +103,7 @@ fuzz-replay: asan
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba collada assimp
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \
@@ -182,6 +186,11 @@ $(BUILD)/tests/%.o: tests/%.c
 	@echo "  CC    $<"
 	$(Q)$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -c -o $@ $<
 
+$(BUILD)/tests/%.o: tests/%.cc
+	@mkdir -p $(@D)
+	@echo "  CXX   $<"
+	$(Q)$(CXX) $(CPPFLAGS) -Itests $(CXXFLAGS) -c -o $@ $<
+
 $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TEST_SUPPORT) $(BUILD)/libpt.a
 	@echo "  LD    $@"
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(TEST_LDLIBS)
@@ -191,6 +200,8 @@ $(filter $(BUILD)/tests/test_accel_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
+# The Draco tests write their glTF twins with libdraco's encoder (tests/draco_fixture.cc).
+$(BUILD)/tests/test_gltf_draco: $(BUILD)/tests/draco_fixture.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o

@@ -224,13 +224,21 @@ Test(cli_options, unknown_scene_key_has_its_line_and_the_accepted_keys)
 Test(cli_options, unsupported_scene_formats_name_the_readable_ones)
 {
     const char *dir = test_temp_dir();
-    const char *names[] = {"scene.usda", "MODEL.USDZ", "scene.abc", "model.c4d", "building.ifc"};
+    const char *names[] = {"scene.usda", "model.MAX", "scene.abc"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         const char *path = test_write_file(dir, names[i], "not a scene\n");
         char args[700];
         snprintf(args, sizeof args, "render '%s' --quiet", path);
-        expect_clean_error(run_pt(NULL, args), names[i], strrchr(names[i], '.'),
-                           "pt reads .json scenes, .obj, .ply, .gltf, .glb");
+        expect_clean_error(run_pt(NULL, args), names[i], "pt reads .json scenes, .obj, .ply, .gltf",
+                           ".dae, .xml, .pbrt, .fbx, .stl");
+    }
+    /* Those pt imports (issue 37) are read, and a broken one is its reader's one line. */
+    const char *read[] = {"model.fbx", "MODEL.STL", "scene.blend", "model.dae"};
+    for (size_t i = 0; i < sizeof read / sizeof read[0]; i++) {
+        const char *path = test_write_file(dir, read[i], "not a scene\n");
+        char args[700];
+        snprintf(args, sizeof args, "render '%s' --quiet", path);
+        expect_clean_error(run_pt(NULL, args), read[i], read[i], NULL);
     }
 }
 

@@ -9,6 +9,7 @@ set -eu
 # Tests: Criterion (runner), Xvfb + Mesa (viewer tests in a real window), xdotool (window resizing).
 PACKAGES="build-essential pkg-config ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
 libtinyobjloader-dev libtinygltf-dev libstb-dev libopenexr-dev libglfw3-dev libcjson-dev libcriterion-dev \
+libxml2-dev libassimp-dev libdraco-dev \
 libopenmpi-dev openmpi-bin patchelf libexpat1-dev xvfb xauth libgl1-mesa-dri xdotool"
 
 missing=""

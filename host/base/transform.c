@@ -398,3 +398,13 @@ void trs_swept_box(const Trs *a, const Trs *b, const float lo[3], const float hi
         out_hi[k] = nextafterf((float)(bhi[k] + pad + 1e-5 * reach), INFINITY);
     }
 }
+
+void rows16_mul(const double a[16], const double b[16], double out[16])
+{
+    double t[16];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            t[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
+                           a[4 * i + 3] * b[12 + j];
+    memcpy(out, t, sizeof t);
+}

@@ -23,6 +23,9 @@ bool affine_rotate(const double axis[3], double degrees, Affine *out);
 /* From 16 numbers, row-major with column vectors (p' = M p); false when the last row is not
  * (0, 0, 0, 1) (a projective matrix). */
 bool affine_from_rows16(const double rows[16], Affine *out);
+/* out = a * b for 4 x 4 matrices stored as 16 rows-first doubles (the importers' node matrices,
+ * which may be projective until checked); out may be a or b. */
+void rows16_mul(const double a[16], const double b[16], double out[16]);
 /* a b: b applied first, then a. */
 Affine affine_mul(const Affine *a, const Affine *b);
 double affine_det(const Affine *a);

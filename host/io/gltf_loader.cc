@@ -36,7 +36,7 @@ const char *const SUPPORTED[] = {"KHR_lights_punctual",         "KHR_materials_e
                                  "KHR_materials_specular",      "KHR_materials_transmission",
                                  "KHR_materials_ior",           "KHR_materials_volume",
                                  "KHR_texture_transform",       "KHR_mesh_quantization",
-                                 nullptr};
+                                 "KHR_draco_mesh_compression",  nullptr};
 
 bool supported(const std::string &name)
 {
@@ -202,9 +202,14 @@ bool parse(const char *path, tinygltf::Model *model, Error *err)
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({file_exists, expand_path, read_file, write_file, &log});
     loader.SetImageLoader(keep_image_bytes, nullptr);
-    std::string terr, twarn, base = folder_of(path);
-    bool ok = glb ? loader.LoadBinaryFromMemory(model, &terr, &twarn, bytes, (unsigned)size, base)
-                  : loader.LoadASCIIFromString(model, &terr, &twarn, data, (unsigned)size, base);
+    std::string terr, twarn, base = folder_of(path), draco; /* io/gltf_primitives.h */
+    const char *in = data;
+    size_t in_size = size;
+    if (gltf_io::draco_prepare(bytes, size, glb, draco))
+        in = draco.data(), in_size = draco.size();
+    const unsigned char *in_bytes = reinterpret_cast<const unsigned char *>(in);
+    bool ok = glb ? loader.LoadBinaryFromMemory(model, &terr, &twarn, in_bytes, (unsigned)in_size, base)
+                  : loader.LoadASCIIFromString(model, &terr, &twarn, in, (unsigned)in_size, base);
     if (!ok) {
         if (!log.failed.empty()) {
             const char *json = glb ? data + 20 : data;

@@ -321,6 +321,8 @@ bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, con
         return r.fail(ERR_OBJ_PARSE, "%d (%s) is not supported: pt renders triangles, strips and "
                       "fans", mode, mode_name(mode));
     }
+    if (prim.extensions.count("KHR_draco_mesh_compression")) /* io/gltf_draco.h */
+        return decode_draco_primitive(model, mesh, primitive, path, out, err);
     std::vector<float> pos, nrm, uv;
     bool has_pos, has_nrm, has_uv;
     if (!read_attribute(r, prim, prefix, "POSITION", 3, (size_t)-1, pos, &has_pos))
@@ -336,7 +338,7 @@ bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, con
     if (!read_attribute(r, prim, prefix, "NORMAL", 3, nv, nrm, &has_nrm) ||
         !read_attribute(r, prim, prefix, "TEXCOORD_0", 2, nv, uv, &has_uv))
         return false;
-    std::vector<uint32_t> idx, tris;
+    std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
         snprintf(r.where, sizeof r.where, "%s.indices", prefix);
         if (!read_indices(r, prim.indices, idx))
@@ -347,6 +349,22 @@ bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, con
             idx[i] = (uint32_t)i;
     }
     snprintf(r.where, sizeof r.where, "%s%s", prefix, prim.indices >= 0 ? ".indices" : "");
+    return mesh_from_arrays(model, path, r.where, mode, pos, has_nrm ? &nrm : nullptr, has_uv ? &uv : nullptr,
+                            idx, out, err);
+}
+
+bool mesh_from_arrays(const tinygltf::Model &model, const char *path, const char *where, int mode,
+                      const std::vector<float> &pos,
+                      const std::vector<float> *normals, const std::vector<float> *uvs,
+                      const std::vector<uint32_t> &idx, Mesh *out, Error *err)
+{
+    static const std::vector<float> none;
+    Reader r{model, path, err, {0}};
+    snprintf(r.where, sizeof r.where, "%s", where);
+    bool has_nrm = normals != nullptr, has_uv = uvs != nullptr;
+    const std::vector<float> &nrm = has_nrm ? *normals : none, &uv = has_uv ? *uvs : none;
+    size_t nv = pos.size() / 3;
+    std::vector<uint32_t> tris;
     if (!assemble(r, mode, idx, nv, tris))
         return false;
     size_t nt = tris.size() / 3;

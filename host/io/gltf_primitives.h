@@ -25,6 +25,24 @@ namespace gltf_io {
 bool decode_primitive(const tinygltf::Model &model, int mesh, int primitive, const char *path,
                       Mesh *out, Error *err);
 
+/* The mesh of decoded arrays (xyz positions; normals and uvs per position or NULL; glTF's uv,
+ * v = 0 at the top; vertex indices of `mode`): decode_primitive's last step, shared with the
+ * KHR_draco_mesh_compression decoder. `where` names the primitive in errors. */
+bool mesh_from_arrays(const tinygltf::Model &model, const char *path, const char *where, int mode,
+                      const std::vector<float> &pos, const std::vector<float> *normals,
+                      const std::vector<float> *uvs, const std::vector<uint32_t> &idx, Mesh *out,
+                      Error *err);
+
+/* tinygltf refuses an index accessor without a buffer view, which is what a Draco primitive's
+ * is (its indices are in the Draco data): for a file naming KHR_draco_mesh_compression, the
+ * glTF (glb: a JSON chunk of a checked GLB) with those primitives' "indices" removed, in
+ * `patched`; false when nothing needs changing. */
+bool draco_prepare(const unsigned char *data, size_t size, bool glb, std::string &patched);
+
+/* A primitive with KHR_draco_mesh_compression, decoded by libdraco (io/gltf_draco.cc). */
+bool decode_draco_primitive(const tinygltf::Model &model, int mesh, int primitive,
+                            const char *path, Mesh *out, Error *err);
+
 } // namespace gltf_io
 
 #endif

@@ -16,6 +16,8 @@
 #include "scene/camera.h"
 #include "scene/default_rig.h"
 #include "scene/gltf_scene.h"
+#include "scene/import_assimp.h"
+#include "scene/import_collada.h"
 #include "scene/import_mitsuba.h"
 #include "scene/import_pbrt.h"
 #include "scene/json.h"

@@ -51,15 +51,15 @@ typedef bool (*SceneImporter)(const char *path, ImportedScene *out, Error *err);
  * An importer of NULL is a format pt recognises but does not read yet: refused in one line that
  * names it and lists what pt reads. The readers' own headers declare the importers. */
 #define SCENE_IMPORTERS(X)                                                                         \
-    X(".dae", NULL, "COLLADA")                                                                     \
+    X(".dae", import_collada, "COLLADA")                                                           \
     X(".xml", mitsuba_import, "Mitsuba 3 XML")                                                     \
     X(".pbrt", import_pbrt, "pbrt-v4")                                                             \
-    X(".fbx", NULL, "FBX")                                                                         \
-    X(".stl", NULL, "STL")                                                                         \
-    X(".3ds", NULL, "3DS")                                                                         \
-    X(".x3d", NULL, "X3D")                                                                         \
-    X(".blend", NULL, "Blender")                                                                   \
-    X(".off", NULL, "OFF")                                                                         \
+    X(".fbx", import_assimp, "FBX")                                                                \
+    X(".stl", import_assimp, "STL")                                                                \
+    X(".3ds", import_assimp, "3DS")                                                                \
+    X(".x3d", import_assimp, "X3D")                                                                \
+    X(".blend", import_assimp, "Blender")                                                          \
+    X(".off", import_assimp, "OFF")                                                                \
     X(".usd", NULL, "USD")                                                                         \
     X(".usda", NULL, "USD")                                                                        \
     X(".usdc", NULL, "USD")                                                                        \

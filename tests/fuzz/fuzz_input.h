@@ -28,6 +28,20 @@ static const char *fuzz_path(const char *name)
     return path;
 }
 
+/* Aborts unless every corner index of a mesh a reader handed on is inside its array (positions
+ * always, texcoords and normals or -1). For the readers' targets that include io/mesh.h. */
+#ifdef PT_MESH_H
+static void fuzz_check_mesh(const Mesh *m)
+{
+    for (size_t t = 0; t < 9 * m->num_triangles; t++) {
+        int32_t index = m->corners[t];
+        size_t count = t % 3 == 0 ? m->num_positions : t % 3 == 1 ? m->num_texcoords : m->num_normals;
+        if (index < -1 || (t % 3 == 0 && index < 0) || (index >= 0 && (size_t)index >= count))
+            abort();
+    }
+}
+#endif
+
 static void fuzz_write(const char *path, const uint8_t *data, size_t size)
 {
     FILE *f = fopen(path, "wb");

@@ -23,7 +23,8 @@ corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
 and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
-corpus_mitsuba.py (Mitsuba 3 XML scenes); corpus_cases.py holds the
+corpus_mitsuba.py (Mitsuba 3 XML scenes),
+corpus_collada.py (COLLADA, the Assimp formats, Draco glTF); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -36,6 +37,7 @@ sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 from corpus_cases import cases  # noqa: E402
 from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
+from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
 from corpus_mitsuba import mitsuba_cases  # noqa: E402
@@ -52,7 +54,7 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt", "mitsuba"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt", "mitsuba", "collada", "assimp"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -70,6 +72,11 @@ def write_seeds(folder):
             target, seed = "pbrt", as_bytes(files["scene.pbrt"])
         elif c["name"].startswith("mitsuba-") and "scene.xml" in files:
             target, seed = "mitsuba", as_bytes(files["scene.xml"])
+        elif c["name"].startswith("dae-") and "x.dae" in files:
+            target, seed = "collada", as_bytes(files["x.dae"])
+        elif c["name"].startswith(("stl-", "off-", "fbx-", "3ds-", "x3d-")):  # fuzz_assimp.c: format byte
+            kind = ("stl-", "off-", "fbx-", "3ds-", "x3d-").index(c["name"][:4])
+            target, seed = "assimp", bytes([kind]) + as_bytes(next(iter(files.values())))
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -99,6 +106,7 @@ def main():
     checkpoint_cases()
     pbrt_cases(random.Random(20261206))  # after the others: earlier cases keep their numbers
     mitsuba_cases(random.Random(20261207))  # after: the cases above keep their numbers
+    collada_cases(random.Random(20261208))
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
