@@ -44,9 +44,12 @@ void render_images_denoise(RenderImages *images, const Session *session, Denoise
         error_set(&err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for the noisy image");
     if (noisy) {
         memcpy(noisy, images->rgb, floats * sizeof *noisy);
+        /* PT_DENOISE_COLOR_ONLY=1: no guides, for measurements (tools/bench_denoise.sh). */
+        const char *color_only = getenv("PT_DENOISE_COLOR_ONLY");
+        bool guided = !(color_only && !strcmp(color_only, "1"));
         DenoiseInput input = {.color = noisy,
-                              .albedo = images->layer[AOV_LAYER_ALBEDO],
-                              .normal = images->layer[AOV_LAYER_NORMAL],
+                              .albedo = guided ? images->layer[AOV_LAYER_ALBEDO] : NULL,
+                              .normal = guided ? images->layer[AOV_LAYER_NORMAL] : NULL,
                               .width = desc->width,
                               .height = desc->height};
         if (denoiser_run(denoiser, &input, images->rgb, &err)) {

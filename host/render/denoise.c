@@ -94,8 +94,9 @@ static void *open_library(Error *err)
     }
     if (env && env[0])
         error_set(err, ERR_FILE_MISSING, env, 0,
-                  "Intel Open Image Denoise could not be loaded from PT_OIDN_LIBRARY=%s (%s)", env,
-                  dlerror());
+                  "Intel Open Image Denoise could not be loaded from PT_OIDN_LIBRARY=%s (%s): "
+                  "name a libOpenImageDenoise.so.2 there, or unset it and run "
+                  "tools/install-oidn.sh (or make deps) in pt's source tree", env, dlerror());
     else
         error_set(err, ERR_FILE_MISSING, NULL, 0,
                   "Intel Open Image Denoise (" OIDN_SONAME ") is not installed: run "
