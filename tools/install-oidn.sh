@@ -35,7 +35,9 @@ for f in libOpenImageDenoise.so.2 libOpenImageDenoise_core.so.$version \
          libtbb.so.12; do
     cp "$tmp/pyoidn/oidn/lib/$f" "$dest/lib/$f"
 done
-cp "$tmp"/pyoidn-*.dist-info/LICENSE* "$dest/lib/" 2>/dev/null || true
+# OIDN and TBB are Apache-2.0 (github.com/RenderKit/oidn, oneapi-src/oneTBB); the wheel's packaging
+# is MIT: its licence file comes along.
+cp "$tmp"/pyoidn-*.dist-info/licenses/LICENSE "$dest/lib/LICENSE.pyoidn" 2>/dev/null || true
 rm -rf "$tmp"
 echo "$version" > "$dest/lib/VERSION"
 echo "install-oidn: done ($(du -sh "$dest/lib" | cut -f1))"
