@@ -231,9 +231,10 @@ const CliOption cli_options[] = {
     {"aov", 0, CUSTOM(parse_aov), RENDER, HELP_OPTIONS, "--aov LIST",
      "add layers to the EXR beside the image: albedo, normal, depth,\n"
      "                     variance, spp (comma-separated) or all"},
-    {"denoise", 0, FLAG(denoise), RENDER, HELP_OPTIONS, "--denoise",
+    {"denoise", 0, FLAG(denoise), RENDER | VIEW, HELP_OPTIONS, "--denoise",
      "denoise the image with Intel Open Image Denoise (albedo and normal\n"
-     "                     guides); the EXR keeps the raw image as noisy.R/G/B"},
+     "                     guides); the EXR keeps the raw image as noisy.R/G/B. pt view:\n"
+     "                     start with the denoised view (Ctrl+D toggles it)"},
     {"denoise-device", 0, CUSTOM(parse_denoise_device), RENDER | VIEW, HELP_OPTIONS,
      "--denoise-device D",
      "auto (default: OIDN's CUDA device when rendering on an NVIDIA GPU,\n"
