@@ -175,3 +175,37 @@ Test(denoise, bad_values_are_refused)
     snprintf(args, sizeof args, "render '%s' -q", scene);
     expect_clean_error(run_pt(NULL, args), "render.denoise \"yes\"", "render.denoise", "true or false");
 }
+
+/* Work units (the distributed path: several devices, MPI ranks, checkpoints) merge the film before
+ * it is denoised, once: the noisy layer is the plain render's bits. A render stopped after its
+ * first run of units (SIGTERM, PT_TEST_RAISE: no timing) is denoised too and marked partial. */
+Test(denoise, units_and_partial_images, .timeout = 900)
+{
+    const char *dir = test_temp_dir();
+    const char *film = "tests/scenes/cornell --spp 16 --width 32 --height 32 -q";
+    char plain[512], units[512], partial[512], args[1024];
+    snprintf(plain, sizeof plain, "%s/plain.exr", dir);
+    snprintf(units, sizeof units, "%s/units.exr", dir);
+    snprintf(partial, sizeof partial, "%s/partial.exr", dir);
+    snprintf(args, sizeof args, "render %s -o '%s'", film, plain);
+    cr_assert_eq(run_pt(NULL, args).exit_code, 0);
+    snprintf(args, sizeof args, "render %s --unit-spp 4 --unit-rows 8 --denoise -o '%s'", film, units);
+    Run r = run_pt(NULL, args);
+    cr_assert_eq(r.exit_code, 0, "%s", r.err);
+    int w, h;
+    float *a = read_rgb(plain, "", &w, &h), *b = read_rgb(units, "noisy.", &w, &h);
+    cr_expect(memcmp(a, b, (size_t)w * (size_t)h * 3 * sizeof *a) == 0,
+              "units: the noisy layer differs from the plain render");
+    free(a), free(b);
+
+    snprintf(args, sizeof args, "render %s --unit-spp 4 --unit-rows 8 --denoise -o '%s'", film, partial);
+    r = run_pt_env(NULL, "PT_TEST_RAISE=SIGTERM@unit:1", args);
+    cr_assert_eq(r.exit_code, 143, "exit %d: %s", r.exit_code, r.err);
+    ExrInspect f;
+    exr_inspect_open(&f, partial);
+    cr_expect_eq(exr_inspect_int(&f, "partial"), 1);
+    cr_expect_eq(exr_inspect_int(&f, "denoised"), 1);
+    cr_expect_lt(exr_inspect_int(&f, "spp"), 16);
+    cr_expect_geq(exr_inspect_find(&f, "noisy.R"), 0);
+    exr_inspect_close(&f);
+}
