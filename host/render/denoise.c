@@ -209,8 +209,12 @@ static bool run_filter(Denoiser *d, const FilterImage *images, int count, const 
 {
     const OidnApi *api = d->api;
     OIDNFilter filter = api->oidnNewFilter(d->device, "RT");
-    if (!filter)
-        return oidn_ok(d, what, err) && false;
+    if (!filter) {
+        if (oidn_ok(d, what, err)) /* no message from OIDN: say what failed */
+            error_set(err, ERR_SYSTEM, NULL, 0, "Intel Open Image Denoise: %s: no \"RT\" filter",
+                      what);
+        return false;
+    }
     for (int i = 0; i < count; i++)
         api->oidnSetFilterImage(filter, images[i].name, images[i].buffer, OIDN_FORMAT_FLOAT3,
                                 (size_t)in->width, (size_t)in->height, 0, 0, 0);
