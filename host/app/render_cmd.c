@@ -151,10 +151,11 @@ static void checkpoint_base(const Options *o, char *base, size_t size)
 }
 
 /* The albedo, normal and depth layers asked for (and the denoiser's guides): after the beauty, in
- * a pass of their own, so that the beauty's bits cannot depend on them. */
+ * a pass of their own, so that the beauty's bits cannot depend on them; then --denoise. */
 static void aov_pass(const Options *o, RenderImages *images, Session *session,
-                     const RenderSettings *settings, int aov_spp)
+                     const RenderSettings *settings, int spp_done, bool denoise)
 {
+    int aov_spp = denoise ? denoise_guide_spp(spp_done) : aov_pass_spp(spp_done);
     Error err = {0};
     double start = seconds_now();
     if (!render_images_aov_pass(images, session, settings, aov_spp, &err))
@@ -162,6 +163,8 @@ static void aov_pass(const Options *o, RenderImages *images, Session *session,
     if (!o->quiet && (images->layer[AOV_LAYER_ALBEDO] || images->layer[AOV_LAYER_NORMAL] ||
                        images->layer[AOV_LAYER_DEPTH]))
         fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_spp, seconds_now() - start);
+    if (denoise)
+        render_images_denoise(images, session, (DenoiseDevice)o->denoise_device, o->quiet);
 }
 
 /* The EXR (linear, every layer, the record in its header), then the PNG (bloom and the display
@@ -276,10 +279,7 @@ int command_render(const Options *o)
         session_close(&session);
         return stop_exit_status();
     }
-    aov_pass(o, &images, &session, &settings,
-             denoise ? denoise_guide_spp(spp_done) : aov_pass_spp(spp_done));
-    if (denoise)
-        render_images_denoise(&images, &session, (DenoiseDevice)o->denoise_device, o->quiet);
+    aov_pass(o, &images, &session, &settings, spp_done, denoise);
     write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)
         render_cmd_units_remove_checkpoint(o, base);
