@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/env.h"
 
 /* An AOV sample costs about an eighth of a beauty sample on PoCL (render_output.c), so guides
  * over all the image's samples add about 12% to the render; past 64 samples the guides' edges and
@@ -37,6 +38,10 @@ void render_images_denoise(RenderImages *images, const Session *session, Denoise
     size_t floats = (size_t)desc->width * (size_t)desc->height * 3;
     double start = seconds_now();
     Error err = {0};
+    /* PT_DENOISE_COLOR_ONLY=1: no guides, for measurements (tools/bench_denoise.sh). */
+    bool color_only = false;
+    if (!env_flag("PT_DENOISE_COLOR_ONLY", false, &color_only, &err))
+        die("%s", err.message);
     bool on_nvidia_gpu = session->dev.is_nvidia && (session->dev.type & CL_DEVICE_TYPE_GPU);
     Denoiser *denoiser = denoiser_open(device, on_nvidia_gpu, &err);
     float *noisy = denoiser ? malloc(floats * sizeof *noisy) : NULL;
@@ -44,12 +49,9 @@ void render_images_denoise(RenderImages *images, const Session *session, Denoise
         error_set(&err, ERR_OUT_OF_MEMORY, NULL, 0, "out of memory for the noisy image");
     if (noisy) {
         memcpy(noisy, images->rgb, floats * sizeof *noisy);
-        /* PT_DENOISE_COLOR_ONLY=1: no guides, for measurements (tools/bench_denoise.sh). */
-        const char *color_only = getenv("PT_DENOISE_COLOR_ONLY");
-        bool guided = !(color_only && !strcmp(color_only, "1"));
         DenoiseInput input = {.color = noisy,
-                              .albedo = guided ? images->layer[AOV_LAYER_ALBEDO] : NULL,
-                              .normal = guided ? images->layer[AOV_LAYER_NORMAL] : NULL,
+                              .albedo = color_only ? NULL : images->layer[AOV_LAYER_ALBEDO],
+                              .normal = color_only ? NULL : images->layer[AOV_LAYER_NORMAL],
                               .width = desc->width,
                               .height = desc->height};
         if (denoiser_run(denoiser, &input, images->rgb, &err)) {
