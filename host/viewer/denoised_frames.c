@@ -46,9 +46,11 @@ static void render_guides(Viewer *v)
 static void show_result(Viewer *v)
 {
     DenoiseView *d = &v->denoise;
-    if (d->error[0]) {
-        fprintf(stderr, "pt: warning: denoised view: %s\n", d->error);
+    if (d->error[0]) { /* OIDN failed (out of memory, say): back to the noisy view, once */
+        fprintf(stderr, "pt: warning: denoised view: %s; the view stays noisy\n", d->error);
         d->error[0] = '\0';
+        v->denoise_on = false, v->film_changed = true, v->shown_spp = 0;
+        return;
     }
     if (d->output_spp == 0 || d->output_generation != v->film_generation ||
         (v->shown_spp == d->output_spp && v->shown_generation == v->film_generation))
@@ -73,6 +75,8 @@ void viewer_update_denoised(Viewer *v, bool film_still)
     if (!v->denoise_on || denoise_view_busy(d))
         return;
     show_result(v);
+    if (!v->denoise_on)
+        return;
     const SceneDesc *desc = &v->session.scene.desc;
     int spp = wavefront_spp_done(v->wavefront);
     bool same_film = d->output_generation == v->film_generation && d->width == desc->width &&
