@@ -202,6 +202,8 @@ $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_chec
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
 # The Draco tests write their glTF twins with libdraco's encoder (tests/draco_fixture.cc).
 $(BUILD)/tests/test_gltf_draco: $(BUILD)/tests/draco_fixture.o
+$(BUILD)/tests/test_denoise: $(BUILD)/tests/cli_run.o
+$(BUILD)/tests/test_viewer_denoise: $(BUILD)/tests/viewer_session.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o

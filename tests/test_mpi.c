@@ -207,3 +207,18 @@ Test(mpi, a_malformed_kill_test_setting_is_refused)
     cr_expect_neq(r.exit_code, 0);
     cr_expect(strstr(r.err, "pt: PT_TEST_KILL_RANK=one: expected RANK@UNITS"), "%s", r.err);
 }
+
+/* --denoise under MPI: rank 0 alone denoises, once, the merged film (one "denoised with" line
+ * among every rank's stderr), and the result is one process's denoised image bit for bit (the
+ * same film and guides; OIDN's CPU device is deterministic). */
+Test(mpi, two_ranks_denoise_the_merged_film_once_on_rank_0)
+{
+    make_dir();
+    const char *alone = render(0, "--device cpu --denoise --denoise-device cpu", "alone.exr");
+    MpiRun r;
+    const char *two = run_scene(&r, NULL, 2, "--denoise --denoise-device cpu", "two.exr");
+    cr_assert_eq(r.exit_code, 0, "stderr:\n%s", r.err);
+    const char *first = strstr(r.err, "pt: denoised with");
+    cr_expect(first && !strstr(first + 1, "pt: denoised with"), "not one denoising:\n%s", r.err);
+    expect_same_pixels(alone, two);
+}

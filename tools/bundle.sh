@@ -3,9 +3,10 @@
 # bundle.sh BUILD_DIR VERSION: a relocatable dist/pt-VERSION-linux-x86_64/ (+ .tar.gz) that runs on a
 # machine with only an OpenCL ICD loader and a driver: bin/ (pt and the benchmark tools, linked with
 # an $ORIGIN/../lib rpath), lib/ (every shared library they link that such a machine may lack),
-# scenes/ and the README. lib/ holds libmpi and its libraries too (pt links MPI), which are all a
-# pt run without mpirun loads; OpenMPI's runtime (mpirun, orted, its plugins under its install
-# prefix) is not bundled: running under mpirun needs OpenMPI 4.1 installed on the machine (README).
+# scenes/ and the README. lib/ also holds Intel Open Image Denoise (below), and libmpi and its
+# libraries (pt links MPI), which are all a pt run without mpirun loads; OpenMPI's runtime (mpirun,
+# orted, its plugins under its install prefix) is not bundled: running under mpirun needs OpenMPI
+# 4.1 installed on the machine (README).
 set -eu
 build=$1; version=$2
 name=pt-$version-linux-x86_64
@@ -33,6 +34,15 @@ for lib in "$dest"/lib/*; do
         patchelf --set-rpath '$ORIGIN' "$lib"
     fi
 done
+# Intel Open Image Denoise (--denoise): the runtime tools/install-oidn.sh keeps in .oidn/lib (its C
+# API, core, CPU and CUDA devices, TBB; RPATH $ORIGIN/../lib finds each other in lib/), found by
+# bin/pt in ../lib (render/denoise.h). It needs no library a bare GPU machine lacks but libcuda.
+./tools/install-oidn.sh
+cp .oidn/lib/lib* "$dest/lib/"
+cp .oidn/lib/LICENSE.pyoidn "$dest/lib/" 2>/dev/null || true
+# Debug sections out (the symbol table stays: perf and backtraces still name functions): with OIDN's
+# ~50 MB of network weights the archive then fits one 64 MiB upload to a GPU machine.
+strip --strip-debug "$dest"/bin/*
 cp -r scenes "$dest/"
 cp README.md "$dest/README.md"
 tar -C dist -czf "dist/$name.tar.gz" "$name"

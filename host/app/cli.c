@@ -273,5 +273,6 @@ ViewerDesc cli_viewer_desc(const Options *o)
                         .bloom_strength = o->bloom_strength, .bloom_radius = o->bloom_radius,
                         .sort_materials = o->sort_materials, .quiet = o->quiet,
                         .frames = o->frames, .screenshot = o->screenshot,
-                        .print_events = o->print_events};
+                        .print_events = o->print_events, .denoise = o->denoise,
+                        .denoise_device = o->denoise_device};
 }

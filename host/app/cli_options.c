@@ -5,6 +5,7 @@
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
+#include "render/denoise.h"
 #include "render/session.h"
 #include "scene/import_mitsuba.h"
 #include "scene/scene.h"
@@ -103,6 +104,18 @@ static bool parse_aov(const char *arg, const char *v, Options *o, Error *err)
 {
     (void)arg;
     return aov_parse_list(v, &o->aov_mask, err);
+}
+
+static bool parse_denoise_device(const char *arg, const char *v, Options *o, Error *err)
+{
+    DenoiseDevice device;
+    if (!denoise_device_from_name(v, &device)) {
+        error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not a denoising device (auto, cpu or gpu)",
+                  arg, v);
+        return false;
+    }
+    o->denoise_device = (int)device;
+    return true;
 }
 
 static bool parse_tonemap(const char *arg, const char *v, Options *o, Error *err)
@@ -241,6 +254,14 @@ const CliOption cli_options[] = {
     {"aov", 0, CUSTOM(parse_aov), RENDER, HELP_OPTIONS, "--aov LIST",
      "add layers to the EXR beside the image: albedo, normal, depth,\n"
      "                     variance, spp (comma-separated) or all"},
+    {"denoise", 0, FLAG(denoise), RENDER | VIEW, HELP_OPTIONS, "--denoise",
+     "denoise the image with Intel Open Image Denoise (albedo and normal\n"
+     "                     guides); the EXR keeps the raw image as noisy.R/G/B. pt view:\n"
+     "                     start with the denoised view (Ctrl+D toggles it)"},
+    {"denoise-device", 0, CUSTOM(parse_denoise_device), RENDER | VIEW, HELP_OPTIONS,
+     "--denoise-device D",
+     "auto (default: OIDN's CUDA device when rendering on an NVIDIA GPU,\n"
+     "                     else its CPU device), cpu or gpu"},
     {"noise-threshold", 0, FLOAT_SETTING(noise_threshold, 1e-9, 1e9, "noise_threshold"),
      RENDER | VIEW, HELP_OPTIONS,
      "--noise-threshold T",

@@ -47,6 +47,8 @@ typedef struct {
     int frames;              /* pt view: quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* pt view: at exit, the film (FILE.exr) or the framebuffer (PNG) */
     bool print_events;       /* pt view --events: stdout lines for scripts to wait on */
+    bool denoise;            /* --denoise: OIDN (render/denoise.h); the scene's render.denoise too */
+    int denoise_device;      /* --denoise-device: DenoiseDevice, AUTO unless asked */
     const char *camera_json; /* --camera: the scene's camera replaced (render) or the start pose
                               * (view), a JSON object with the keys of the scene's camera */
 } Options;

@@ -13,6 +13,7 @@
 
 #include "dist/mpi_link.h"
 #include "app/render_cmd_units.h"
+#include "app/render_denoise.h"
 #include "app/render_loop.h"
 #include "app/render_output.h"
 #include "app/stop_signals.h"
@@ -150,19 +151,21 @@ static void checkpoint_base(const Options *o, char *base, size_t size)
     snprintf(base, size, "out/%s", stem);
 }
 
-/* The albedo, normal and depth layers asked for: after the beauty, from camera samples of their
- * own, so that the beauty's bits cannot depend on them. */
+/* The albedo, normal and depth layers asked for (and the denoiser's guides): after the beauty, in
+ * a pass of their own, so that the beauty's bits cannot depend on them; then --denoise. */
 static void aov_pass(const Options *o, RenderImages *images, Session *session,
-                     const RenderSettings *settings, int spp_done)
+                     const RenderSettings *settings, int spp_done, bool denoise)
 {
+    int aov_spp = denoise ? denoise_guide_spp(spp_done) : aov_pass_spp(spp_done);
     Error err = {0};
     double start = seconds_now();
-    if (!render_images_aov_pass(images, session, settings, spp_done, &err))
+    if (!render_images_aov_pass(images, session, settings, aov_spp, &err))
         die("%s", err.message);
-    if (!o->quiet && (images->mask & (AOV_MASK(AOV_LAYER_ALBEDO) | AOV_MASK(AOV_LAYER_NORMAL) |
-                                      AOV_MASK(AOV_LAYER_DEPTH))))
-        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_pass_spp(spp_done),
-                seconds_now() - start);
+    if (!o->quiet && (images->layer[AOV_LAYER_ALBEDO] || images->layer[AOV_LAYER_NORMAL] ||
+                       images->layer[AOV_LAYER_DEPTH]))
+        fprintf(stderr, "pt: AOV pass: %d spp in %.2f s\n", aov_spp, seconds_now() - start);
+    if (denoise)
+        render_images_denoise(images, session, (DenoiseDevice)o->denoise_device, o->quiet);
 }
 
 /* The camera sees no geometry at all (a file's camera looking away, a model far off): said before
@@ -286,7 +289,9 @@ int command_render(const Options *o)
     const SceneDesc *desc = &session.scene.desc;
     size_t num_pixels = (size_t)desc->width * (size_t)desc->height;
     RenderImages images;
-    if (!render_images_alloc(&images, o->aov_mask, num_pixels))
+    bool denoise = o->denoise || desc->denoise;
+    if (!render_images_alloc(&images, o->aov_mask, num_pixels) ||
+        (denoise && !render_images_add_guides(&images, num_pixels)))
         die("out of memory for a %dx%d film", desc->width, desc->height);
     int spp = desc->spp, spp_done = spp;
     RenderStop stop = RENDER_COMPLETE; /* anything else: the image is partial */
@@ -326,7 +331,7 @@ int command_render(const Options *o)
         session_close(&session);
         return stop_exit_status();
     }
-    aov_pass(o, &images, &session, &settings, spp_done);
+    aov_pass(o, &images, &session, &settings, spp_done, denoise);
     warn_when_black(&images, &session);
     write_outputs(o, &out, &images, &session, &stats, spp, stop);
     if (units && stop == RENDER_COMPLETE)

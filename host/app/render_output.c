@@ -52,6 +52,7 @@ void render_images_free(RenderImages *images)
 {
     free(images->rgb);
     free(images->alpha);
+    free(images->noisy);
     for (int l = 0; l < AOV_LAYER_COUNT; l++)
         free(images->layer[l]);
     memset(images, 0, sizeof *images);
@@ -73,7 +74,7 @@ int aov_pass_spp(int spp_done)
 }
 
 bool render_images_aov_pass(RenderImages *images, Session *session, const RenderSettings *settings,
-                            int spp_done, Error *err)
+                            int aov_spp, Error *err)
 {
     AovImages aovs = {.albedo = images->layer[AOV_LAYER_ALBEDO],
                       .normal = images->layer[AOV_LAYER_NORMAL],
@@ -81,14 +82,18 @@ bool render_images_aov_pass(RenderImages *images, Session *session, const Render
                       .coverage = images->alpha};
     if (!aovs.coverage && !aovs.albedo && !aovs.normal && !aovs.depth)
         return true;
+    images->guide_spp = aov_spp;
     /* The coverage alone needs only the camera rays' first hits. */
     bool walk = aovs.albedo || aovs.normal || aovs.depth;
-    AovSettings aov = {.spp = aov_pass_spp(spp_done),
+    AovSettings aov = {.spp = aov_spp,
                        .max_depth = walk ? settings->max_depth : 1,
                        .seed = settings->seed,
                        .first_sample = settings->first_sample};
     return aov_render_layers(&session->dev, &session->scene, &session->buffers, &aov, &aovs, err);
 }
+
+/* The header attributes only a denoised image has (the last of render_write_exr's list). */
+#define DENOISE_ATTRIBUTES 4
 
 /* The camera as the JSON object `pt render --camera` takes (the viewer's C key prints it). */
 static void camera_json(const CameraDesc *camera, char *out, size_t size)
@@ -103,16 +108,21 @@ bool render_write_exr(const char *path, const RenderImages *images, const Sessio
                       const RenderRecord *record, Error *err)
 {
     const SceneDesc *desc = &session->scene.desc;
-    ImageLayer layers[AOV_LAYER_COUNT];
+    ImageLayer layers[AOV_LAYER_COUNT + 1];
     int layer_count = 0;
     for (int l = 0; l < AOV_LAYER_COUNT; l++)
-        if (images->layer[l])
+        if (images->layer[l] && (images->mask & AOV_MASK(l)))
             layers[layer_count++] = (ImageLayer){layer_info[l].name, layer_info[l].channels,
                                                  images->layer[l]};
+    if (images->noisy)
+        layers[layer_count++] = (ImageLayer){"noisy", "RGB", images->noisy};
     char seed[16], devices[600], camera[1024];
     snprintf(seed, sizeof seed, "%u", record->seed);
     snprintf(devices, sizeof devices, "%s (%s)", session->dev.name, session->dev.platform_name);
     camera_json(&desc->camera, camera, sizeof camera);
+    char guides[96];
+    snprintf(guides, sizeof guides, "albedo, normal: %d spp of the image's camera samples, "
+             "prefiltered", images->guide_spp);
     const ImageAttribute attributes[] = {
         {.name = "spp", .type = IMAGE_ATTR_INT, .int_value = record->spp_done},
         {.name = "spp_requested", .type = IMAGE_ATTR_INT, .int_value = record->spp_requested},
@@ -123,7 +133,15 @@ bool render_write_exr(const char *path, const RenderImages *images, const Sessio
         {.name = "scene", .type = IMAGE_ATTR_STRING, .string_value = record->scene},
         {.name = "camera", .type = IMAGE_ATTR_STRING, .string_value = camera},
         {.name = "partial", .type = IMAGE_ATTR_INT, .int_value = record->partial ? 1 : 0},
+        /* --denoise: written only when the image was denoised (the attribute count drops them) */
+        {.name = "denoised", .type = IMAGE_ATTR_INT, .int_value = 1},
+        {.name = "denoiser", .type = IMAGE_ATTR_STRING, .string_value = images->denoiser},
+        {.name = "denoise_device", .type = IMAGE_ATTR_STRING, .string_value = images->denoise_device},
+        {.name = "denoise_guides", .type = IMAGE_ATTR_STRING, .string_value = guides},
     };
+    int attribute_count = (int)(sizeof attributes / sizeof attributes[0]);
+    if (!images->noisy)
+        attribute_count -= DENOISE_ATTRIBUTES;
     ExrImage image = {.rgb = images->rgb,
                       .alpha = images->alpha,
                       .width = desc->width,
@@ -131,6 +149,6 @@ bool render_write_exr(const char *path, const RenderImages *images, const Sessio
                       .layers = layers,
                       .layer_count = layer_count,
                       .attributes = attributes,
-                      .attribute_count = (int)(sizeof attributes / sizeof attributes[0])};
+                      .attribute_count = attribute_count};
     return image_write_exr_layers(path, &image, err);
 }

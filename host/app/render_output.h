@@ -14,12 +14,17 @@
 
 /* Per pixel, row 0 at the top; a layer not asked for is NULL. */
 typedef struct {
-    unsigned mask;     /* AOV_MASK bits of the layers held */
+    unsigned mask;     /* AOV_MASK bits of the layers asked for: those the EXR gets */
     float *rgb;        /* the beauty, 3 floats a pixel */
     float *alpha;      /* the beauty's coverage (EXR A): the fraction of the AOV pass's camera
                         * samples that hit geometry; exact (hits / samples, one work item a
                         * pixel), so no order of samples can change it */
-    float *layer[AOV_LAYER_COUNT]; /* indexed by AovLayer, its channel count floats a pixel */
+    float *layer[AOV_LAYER_COUNT]; /* indexed by AovLayer, its channel count floats a pixel; the
+                                    * denoiser's guides (albedo, normal) may be held unasked */
+    float *noisy;      /* --denoise: the beauty before denoising (rgb is denoised); else NULL */
+    char denoiser[64]; /* "Intel Open Image Denoise 2.5.1" once rgb is denoised, else "" */
+    char denoise_device[16]; /* OIDN's device: "CPU" or "CUDA" */
+    int guide_spp;     /* the samples per pixel of the AOV pass (albedo, normal, depth) */
 } RenderImages;
 
 /* Allocates the beauty and the layers of mask; false when out of memory. */
@@ -30,10 +35,10 @@ void render_images_free(RenderImages *images);
 void render_images_read_film(RenderImages *images, Wavefront *w);
 
 /* Runs the AOV pass for the albedo, normal and depth layers held and the beauty's alpha, over
- * the first aov_pass_spp samples of the render's camera samples (only the camera rays when no
- * layer is asked for). */
+ * the first aov_spp samples of the render's camera samples (aov_pass_spp, or denoise_guide_spp
+ * when denoising; only the camera rays' first hits when no layer is held). */
 bool render_images_aov_pass(RenderImages *images, Session *session, const RenderSettings *settings,
-                            int spp_done, Error *err);
+                            int aov_spp, Error *err);
 
 /* The samples the AOV pass takes of a render holding spp_done per pixel: a quarter, at least 1,
  * at most 16 (render_output.c says why). */
@@ -45,13 +50,16 @@ typedef struct {
     unsigned seed;
     double render_seconds;
     const char *scene;        /* the scene path as given */
-    bool partial;             /* fewer samples than asked (a stop signal or a time limit) */
+    bool partial;             /* fewer samples than asked (a stop signal or a time limit); a
+                               * denoised image is then the denoised partial one */
 } RenderRecord;
 
 /* Writes the EXR: beauty, layers (every channel 32-bit float, the spp counts too: what Blender's
  * compositor reads best; exact up to 2^24 samples) and the header attributes spp, spp_requested,
  * seed (a string: the full unsigned range), render_time (float seconds of path tracing), devices,
- * pt_version, scene, camera (the JSON object `--camera` takes) and partial (int 1/0). */
+ * pt_version, scene, camera (the JSON object `--camera` takes) and partial (int 1/0). A
+ * denoised image adds the layer noisy.R/G/B (the raw beauty) and the attributes denoised (int 1),
+ * denoiser ("Intel Open Image Denoise 2.5.1"), denoise_device ("CPU"/"CUDA") and denoise_guides. */
 bool render_write_exr(const char *path, const RenderImages *images, const Session *session,
                       const RenderRecord *record, Error *err);
 

@@ -38,7 +38,8 @@ static bool parse_film(JsonParser *p, const cJSON *obj, SceneDesc *d)
 
 static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
 {
-    static const char *const keys[] = {"spp", "max_depth", "noise_threshold", "min_spp", NULL};
+    static const char *const keys[] = {"spp", "max_depth", "noise_threshold", "min_spp", "denoise",
+                                       NULL};
     if (!json_check_object(p, obj, "render", keys) ||
         !parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) ||
         !parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
@@ -53,6 +54,10 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
     if (item && !(d->noise_threshold > 0.0f))
         return json_fail(p, ERR_JSON_VALUE, "render.noise_threshold", "%g must be > 0",
                          d->noise_threshold);
+    item = json_member(obj, "denoise");
+    if (item && !cJSON_IsBool(item))
+        return json_fail(p, ERR_JSON_TYPE, "render.denoise", "expected true or false");
+    d->denoise = item && cJSON_IsTrue(item);
     return true;
 }
 

@@ -26,4 +26,13 @@ bool viewer_is_exr_name(const char *path);
 /* C: the camera as a JSON fragment for a scene file. */
 void viewer_print_camera(const Viewer *v);
 
+/* The denoised view (viewer/denoised_frames.c). Ctrl+D: on (loading OIDN the first time; a
+ * warning and no change when it is missing) or off. */
+void viewer_toggle_denoise(Viewer *v);
+/* Once a frame after sampling: shows a finished result of this film, hands the film to the
+ * denoising thread when due. film_still: the film gains no more samples (paused, converged). */
+void viewer_update_denoised(Viewer *v, bool film_still);
+/* The display shows a denoised image of the current film. */
+bool viewer_showing_denoised(const Viewer *v);
+
 #endif

@@ -33,7 +33,7 @@ static const struct { int key; unsigned bit; } held_keys[] = {
 };
 
 /* Letters by key position (GLFW names them after the US layout), so WASD stays under the left hand
- * on any layout; Ctrl+S saves because plain S is the fly-backward key. */
+ * on any layout; Ctrl+S saves and Ctrl+D toggles the denoised view because plain S and D fly. */
 void viewer_input_key(ViewerInput *in, int key, int action, int mods)
 {
     const unsigned modifiers = VIEWER_HELD_SHIFT | VIEWER_HELD_CTRL;
@@ -58,6 +58,10 @@ void viewer_input_key(ViewerInput *in, int key, int action, int mods)
     case GLFW_KEY_S:
         if (mods & GLFW_MOD_CONTROL)
             in->actions |= VIEWER_SAVE;
+        break;
+    case GLFW_KEY_D:
+        if (mods & GLFW_MOD_CONTROL)
+            in->actions |= VIEWER_DENOISE;
         break;
     default: break;
     }
@@ -187,6 +191,8 @@ void viewer_input_print_help(FILE *out)
           "  , / .           turn the environment map 15 degrees clockwise / counter-clockwise\n"
           "                  seen from above (its rotation -15 / +15)\n"
           "  Ctrl+S          save the film as PNG + EXR (out/<scene>-view-N, never overwriting)\n"
+          "  Ctrl+D          denoised view on / off (Intel Open Image Denoise, on a thread of\n"
+          "                  its own, each time the film has doubled its samples)\n"
           "  C               print the camera as JSON to paste into a scene\n"
           "  H               this list\n"
           "  Esc             quit\n",

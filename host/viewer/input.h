@@ -19,6 +19,7 @@ enum {
     VIEWER_PRINT_CAMERA = 1 << 4, /* C: the camera as JSON on stdout */
     VIEWER_HELP = 1 << 5,         /* H: the key list */
     VIEWER_NEXT_TONEMAP = 1 << 6, /* T: the next tone-map curve */
+    VIEWER_DENOISE = 1 << 7,      /* Ctrl+D: the denoised view on or off */
 };
 
 typedef struct {

@@ -9,6 +9,7 @@
 
 #include "render/session.h"
 #include "viewer/viewer.h"
+#include "viewer/denoise_view.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/stats.h"
@@ -36,6 +37,12 @@ typedef struct {
     ViewerStats stats;       /* for the summary at exit */
     double title_time, title_frame_ms;
     uint64_t title_paths;
+    unsigned film_generation; /* counts the film's restarts: a denoised image is of one */
+    bool denoise_on;          /* Ctrl+D (or --denoise) */
+    DenoiseView denoise;
+    unsigned shown_generation; /* the denoised image in the display's texture: of this film */
+    int shown_spp;             /* at this many spp; 0: the texture holds the noisy film */
+    char title_denoised[48];   /* the title's denoising part, as last set */
 } Viewer;
 
 #endif

@@ -56,6 +56,7 @@ static void create_film(Viewer *v, uint32_t window_size)
     if (!v->wavefront)
         die("%s", err.message);
     v->film_changed = true;
+    v->film_generation++;
 }
 
 /* A new window when the measured rate calls for one at least 4x larger or smaller (the first
@@ -78,6 +79,7 @@ static void apply_camera(Viewer *v)
     Camera camera = camera_from_desc(&d->camera, d->width, d->height);
     wavefront_set_camera(v->wavefront, &camera);
     v->film_changed = true;
+    v->film_generation++;
     v->paused = false; /* a new view is always wanted rendered */
 }
 
@@ -146,7 +148,9 @@ static void apply_input(Viewer *v, double seconds)
         printf("%s at %d spp\n", v->paused ? "paused" : "resumed", wavefront_spp_done(v->wavefront));
     }
     if (in->actions & VIEWER_RESET)
-        wavefront_reset(v->wavefront), v->film_changed = true;
+        wavefront_reset(v->wavefront), v->film_changed = true, v->film_generation++;
+    if (in->actions & VIEWER_DENOISE)
+        viewer_toggle_denoise(v);
     if (in->actions & VIEWER_SAVE)
         viewer_save_film(v);
     if (in->actions & VIEWER_PRINT_CAMERA)
@@ -217,7 +221,7 @@ static void upload_film(Viewer *v)
 
 static void show_film(Viewer *v)
 {
-    if (v->film_changed) {
+    if (v->film_changed && !viewer_showing_denoised(v)) {
         upload_film(v);
         v->film_changed = false;
     }
@@ -232,9 +236,18 @@ static void update_title(Viewer *v, double now, double frame_ms)
     if (now - v->title_time < TITLE_INTERVAL_S)
         return;
     char title[1400];
-    snprintf(title, sizeof title, "pt view %s | %d spp%s | %.2f Msamples/s | %s | %.0f ms",
+    char denoised[48] = "";
+    if (viewer_showing_denoised(v))
+        snprintf(denoised, sizeof denoised, " | denoised (%d spp)", v->shown_spp);
+    else if (v->denoise_on)
+        snprintf(denoised, sizeof denoised, " | denoising");
+    if (strcmp(denoised, v->title_denoised)) { /* --events: scripts wait for the state */
+        viewer_print_event(&v->input, "title%s", denoised[0] ? denoised + 2 : " noisy");
+        snprintf(v->title_denoised, sizeof v->title_denoised, "%s", denoised);
+    }
+    snprintf(title, sizeof title, "pt view %s | %d spp%s%s | %.2f Msamples/s | %s | %.0f ms",
              v->scene_name, wavefront_spp_done(v->wavefront),
-             v->paused ? " (paused)" : converged(v) ? " (done)" : "",
+             v->paused ? " (paused)" : converged(v) ? " (done)" : "", denoised,
              (double)v->title_paths / (now - v->title_time) * 1e-6, v->session.dev.name,
              v->title_frame_ms);
     glfwSetWindowTitle(v->window, title);
@@ -254,6 +267,7 @@ static void run_frames(Viewer *v)
         double start = seconds_now();
         apply_input(v, start - last);
         render_step(v);
+        viewer_update_denoised(v, v->paused || converged(v));
         show_film(v);
         glfwSwapBuffers(v->window);
         double now = seconds_now(), frame_ms = 1e3 * (now - start);
@@ -325,6 +339,8 @@ int command_view(const ViewerDesc *o)
     /* A first guess at the window, refined from the first frames' rate. */
     create_film(v, (v->session.dev.type & CL_DEVICE_TYPE_GPU) ? 1u << 20 : 1u << 14);
     viewer_print_event(&v->input, "ready %dx%d", d->width, d->height);
+    if (o->denoise)
+        viewer_toggle_denoise(v);
     v->title_time = seconds_now();
     run_frames(v);
 
@@ -342,6 +358,7 @@ int command_view(const ViewerDesc *o)
     if (!o->quiet)
         viewer_stats_print(&v->stats, wavefront_spp_done(v->wavefront), v->session.dev.name, stderr);
     viewer_stats_destroy(&v->stats);
+    denoise_view_stop(&v->denoise);
     wavefront_destroy(v->wavefront);
     viewer_display_destroy(&v->display);
     glfwDestroyWindow(v->window);

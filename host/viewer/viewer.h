@@ -23,6 +23,8 @@ typedef struct {
     bool print_events;       /* --events: a stdout line per input event and state change */
     int frames;              /* quit after this many frames; 0 = run until closed */
     const char *screenshot;  /* at exit: FILE.exr the linear film, else a PNG of the framebuffer */
+    bool denoise;            /* --denoise: start with the denoised view (Ctrl+D) */
+    int denoise_device;      /* DenoiseDevice (render/denoise.h) */
 } ViewerDesc;
 
 /* Runs the window until Esc, closing it, or o->frames frames; returns the exit status. Without a

@@ -32,7 +32,8 @@ def cli_cases():
             "--aov": ["shiny", "", "ALBEDO"], "--device": ["gpu", "9:9", "-1:0", "0:", ":0", "abc",
                                                             "0:0:0", "99999999999:0", ""],
             "--camera": ["{", "[]", '{"eye": "x"}', '{"fov_y": -1}', '{"bogus": 1}', "null", ""],
-            "--frames": ["0", "-1", "x"], "--csv": ["", "/proc/x.csv"]}
+            "--frames": ["0", "-1", "x"], "--csv": ["", "/proc/x.csv"],
+            "--denoise-device": ["tpu", "", "GPU", "cpu,gpu"]}
     for opt, values in opts.items():
         for i, value in enumerate(values):
             args = [a for a in base]

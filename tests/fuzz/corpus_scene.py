@@ -91,6 +91,11 @@ def json_cases(rng):
     case("json-scene-is-dev-zero", {}, ["render", "/dev/zero"] + TINY, "error")
     case("json-huge-file", {"tri.obj": TRIANGLE}, ["render", "scene.json"] + TINY, "error",
          setup="truncate -s 70M scene.json")
+    # render.denoise: a boolean; other types are one-line errors (true would load OIDN: not here).
+    for vname, value in [("string", "yes"), ("number", 1), ("null", None), ("array", [True])]:
+        scene = json.loads(json.dumps(BASE_SCENE))
+        scene["render"]["denoise"] = value
+        scene_case("denoise-%s" % vname, json.dumps(scene), "error", needle="render.denoise")
     lights_cases()
     black_holes_cases(scene_case)
 
