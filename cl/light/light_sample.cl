@@ -60,9 +60,10 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     const global uint *material_ids = scene->material_ids;
     const global Material *materials = scene->materials;
     LightSample ls;
-    LightEntry entry = light_pick(lights, num_lights, rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
-                                  rng_bounce(key, bounce, DIM_LIGHT_COIN));
-    float u1 = rng_bounce(key, bounce, DIM_LIGHT_U), u2 = rng_bounce(key, bounce, DIM_LIGHT_V);
+    uint2 pick = rng_bounce_bits2(key, bounce, DIM_LIGHT_PICK); /* and DIM_LIGHT_COIN */
+    LightEntry entry = light_pick(lights, num_lights, pick.x, uint_to_unit(pick.y));
+    float2 u = rng_bounce_pair(key, bounce, DIM_LIGHT_U);
+    float u1 = u.x, u2 = u.y;
     if (PT_FEATURE(ENV) && entry.triangle == LIGHT_ENVIRONMENT) {
         EnvSample es = env_sample(env, rng_bounce_bits(key, bounce, DIM_ENV_PICK),
                                   rng_bounce(key, bounce, DIM_ENV_COIN), u1, u2);

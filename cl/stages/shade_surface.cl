@@ -219,9 +219,8 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
                              const SurfaceBsdf *sb, float3 leaf_absorption, uint leaf_index,
                              float3 beta, uint medium, RngKey key, uint bounce, uint depth)
 {
-    BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front,
-                                rng_bounce(key, bounce, DIM_BSDF_U),
-                                rng_bounce(key, bounce, DIM_BSDF_V),
+    float2 u = rng_bounce_pair(key, bounce, DIM_BSDF_U);
+    BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front, u.x, u.y,
                                 rng_bounce(key, bounce, DIM_BSDF_LOBE));
     float3 wi = frame_to_world(sb->frame, bs.wi);
     beta *= bs.weight;

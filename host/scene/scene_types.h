@@ -58,6 +58,7 @@ typedef struct {
     int spp, max_depth; /* default 64, 8 */
     float noise_threshold; /* render.noise_threshold: adaptive sampling; 0 = off */
     int min_spp;           /* render.min_spp; 0 = the default (render/wavefront.h) */
+    int sampler;           /* render.sampler: SAMPLER_* (scene/sampler.h); 0 = not given */
     float background[3];
     char environment[1024];   /* the map's path resolved against the scene file; "" = none */
     float environment_scale;  /* default 1 */
