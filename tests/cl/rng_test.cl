@@ -30,3 +30,16 @@ kernel void rng_test_dimension_pair(uint num_pixels, uint seed, uint d0, uint d1
     uint b1 = min((uint)(rng_uniform(pixel, sample, d1, seed) * 256.0f), 255u);
     bins[i] = (ushort)(b0 * 256u + b1);
 }
+
+/* Tuple `tuple` of the Sobol sampler for samples first .. first + count - 1 of pixel `pixel`: the
+ * two components' bits, through the pair call (use_pair) or one dimension at a time. */
+kernel void rng_test_sobol_tuple(uint pixel, uint seed, uint tuple, uint first, uint count,
+                                 uint use_pair, global uint2 *points)
+{
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    RngKey key = rng_sampler_key(pixel, first + i, seed, RNG_SOBOL);
+    points[i] = use_pair ? rng_bits2(key, tuple)
+                         : (uint2)(rng_bits(key, 2u * tuple), rng_bits(key, 2u * tuple + 1u));
+}
