@@ -54,15 +54,17 @@ Test(sampler, sobol_aligned_blocks_are_nets, .timeout = 600)
     cl_mem out = device_buffer(dev, "points", CL_MEM_WRITE_ONLY, NET_POINTS * 2 * sizeof(cl_uint), NULL, &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     cl_kernel kernel = device_kernel(dev, "rng_test_sobol_tuple");
-    static cl_uint points[2 * NET_POINTS], scalar[2 * NET_POINTS];
+    static cl_uint points[2 * NET_POINTS], other[2 * NET_POINTS];
     for (size_t p = 0; p < sizeof pixels / sizeof *pixels; p++)
         for (size_t s = 0; s < sizeof seeds / sizeof *seeds; s++)
             for (size_t t = 0; t < sizeof tuples / sizeof *tuples; t++)
                 for (cl_uint first = 0; first <= 2 * NET_POINTS; first += 2 * NET_POINTS) {
                     sobol_points(dev, kernel, out, pixels[p], seeds[s], tuples[t], first, 1u, points);
-                    sobol_points(dev, kernel, out, pixels[p], seeds[s], tuples[t], first, 0u, scalar);
-                    cr_assert(!memcmp(points, scalar, sizeof points),
-                              "pixel %u tuple %u: rng_bits2 and rng_bits disagree", pixels[p], tuples[t]);
+                    for (cl_uint call = 0; call <= 2; call += 2) {
+                        sobol_points(dev, kernel, out, pixels[p], seeds[s], tuples[t], first, call, other);
+                        cr_assert(!memcmp(points, other, sizeof points), "pixel %u tuple %u: rng_bits2 and %s disagree",
+                                  pixels[p], tuples[t], call ? "rng_bits4" : "rng_bits");
+                    }
                     for (unsigned k = 0; k <= 12; k++)
                         for (uint32_t block = 0; block < NET_POINTS >> k; block++) {
                             unsigned a = 0;
@@ -76,4 +78,114 @@ Test(sampler, sobol_aligned_blocks_are_nets, .timeout = 600)
     clReleaseKernel(kernel);
     clReleaseMemObject(out);
     test_device_release(dev);
+}
+
+/* ---- Convergence on an analytic integral --------------------------------------------------- */
+
+#define SIDE 32
+#define EYE_HEIGHT 0.9 /* below the lamp */
+#define TAN_HALF 0.2679491924311227 /* tan(15 degrees): fov_y 30 */
+#define ALBEDO 0.5
+#define LAMP_HALF 0.5 /* a 1 x 1 lamp ... */
+#define LAMP_HEIGHT 1.0 /* ... this high above the floor, facing down, radiance 1 */
+
+/* Seen from straight above: a grey floor lit by a square lamp facing it (out of view), direct
+ * light only (max depth 2). Every pixel sees the floor. */
+static const char *write_lit_floor(void)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "floor.mtl", "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 1 1 1\n");
+    test_write_file(dir, "floor.obj",
+                    "mtllib floor.mtl\n"
+                    "v -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\n"
+                    "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+                    "usemtl floor\nf 1 2 3 4\nusemtl lamp\nf 5 6 7 8\n");
+    char json[512];
+    snprintf(json, sizeof json,
+             "{\"camera\": {\"eye\": [0, %g, 0], \"target\": [0, 0, 0], \"up\": [0, 0, -1], \"fov_y\": 30},\n"
+             " \"film\": {\"width\": %d, \"height\": %d}, \"render\": {\"max_depth\": 2},\n"
+             " \"objects\": [{\"obj\": \"floor.obj\"}], \"background\": [0, 0, 0]}\n",
+             EYE_HEIGHT, SIDE, SIDE);
+    return test_write_file(dir, "floor.json", json);
+}
+
+/* Irradiance at floor point (x, 0, z) from the lamp (radiance 1): Lambert's polygon formula,
+ * E = 1/2 sum over edges of the angle they subtend times the normal's share of their plane's. */
+static double lamp_irradiance(double x, double z)
+{
+    static const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    double sum = 0.0;
+    for (int i = 0; i < 4; i++) {
+        const double *a = corners[i], *b = corners[(i + 1) % 4];
+        double va[3] = {LAMP_HALF * a[0] - x, LAMP_HEIGHT, LAMP_HALF * a[1] - z};
+        double vb[3] = {LAMP_HALF * b[0] - x, LAMP_HEIGHT, LAMP_HALF * b[1] - z};
+        double la = sqrt(va[0] * va[0] + va[1] * va[1] + va[2] * va[2]);
+        double lb = sqrt(vb[0] * vb[0] + vb[1] * vb[1] + vb[2] * vb[2]);
+        double c[3] = {va[1] * vb[2] - va[2] * vb[1], va[2] * vb[0] - va[0] * vb[2],
+                       va[0] * vb[1] - va[1] * vb[0]};
+        double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double angle = acos(fmin(1.0, fmax(-1.0, (va[0] * vb[0] + va[1] * vb[1] + va[2] * vb[2]) / (la * lb))));
+        sum += angle * c[1] / lc; /* the floor's normal is +y */
+    }
+    return 0.5 * fabs(sum);
+}
+
+/* Each pixel's exact value: radiance albedo / pi E averaged over its footprint on the floor (the
+ * box filter), by a 16 x 16 midpoint rule (its error is far below the errors measured). */
+static void exact_floor(double *exact)
+{
+    double half_width = EYE_HEIGHT * TAN_HALF, pixel = 2.0 * half_width / SIDE;
+    for (int y = 0; y < SIDE; y++)
+        for (int x = 0; x < SIDE; x++) {
+            double sum = 0.0;
+            for (int j = 0; j < 16; j++)
+                for (int i = 0; i < 16; i++)
+                    sum += lamp_irradiance(-half_width + (x + (i + 0.5) / 16.0) * pixel,
+                                           -half_width + (y + (j + 0.5) / 16.0) * pixel);
+            exact[y * SIDE + x] = ALBEDO / 3.14159265358979323846 * sum / 256.0;
+        }
+}
+
+/* Root-mean-square relative error of the film against the exact values, over SEEDS renders. */
+#define SEEDS 4
+static double rms_error(RenderFixture *f, const double *exact, int sampler, int spp)
+{
+    double sum = 0.0;
+    for (unsigned s = 0; s < SEEDS; s++) {
+        float *rgb = render_fixture_render(f, (RenderSettings){.spp = spp, .max_depth = 2, .seed = 11u + 7u * s,
+                                                               .sampler = sampler}, NULL);
+        for (int i = 0; i < SIDE * SIDE; i++) {
+            double e = (rgb[3 * i + 1] - exact[i]) / exact[i];
+            sum += e * e;
+        }
+        free(rgb);
+    }
+    return sqrt(sum / (SEEDS * SIDE * SIDE));
+}
+
+/* From 16 to 256 spp the independent sampler's error falls as 1/sqrt(N) (4x); Sobol's faster
+ * (the lamp's and the BSDF's 2D tuples are each stratified; what is left at the rate of random
+ * numbers is their interaction with the pixel's jitter, a padded sampler's limit). With 4 x 1024
+ * pixels the measured ratios are within a few percent of their expectation. */
+Test(sampler, sobol_error_falls_faster_than_independent, .timeout = 600)
+{
+    static double exact[SIDE * SIDE];
+    exact_floor(exact);
+    RenderFixture f;
+    render_fixture_open(&f, write_lit_floor(), SIDE, SIDE);
+    double ind16 = rms_error(&f, exact, SAMPLER_INDEPENDENT, 16);
+    double ind256 = rms_error(&f, exact, SAMPLER_INDEPENDENT, 256);
+    double sob16 = rms_error(&f, exact, SAMPLER_SOBOL, 16);
+    double sob256 = rms_error(&f, exact, SAMPLER_SOBOL, 256);
+    cr_log_info("relative RMS error: independent %.3g at 16 spp, %.3g at 256 (ratio %.2f); "
+                "sobol %.3g, %.3g (ratio %.2f)", ind16, ind256, ind16 / ind256, sob16, sob256,
+                sob16 / sob256);
+    fprintf(stderr, "independent %.4g %.4g ratio %.2f; sobol %.4g %.4g ratio %.2f\n", ind16, ind256,
+            ind16 / ind256, sob16, sob256, sob16 / sob256);
+    cr_expect(ind16 / ind256 > 3.4 && ind16 / ind256 < 4.7,
+              "independent: error ratio %.2f from 16 to 256 spp, 4 expected", ind16 / ind256);
+    cr_expect(sob16 / sob256 > 6.0, "sobol: error ratio %.2f from 16 to 256 spp, not above 1/sqrt(N)'s 4",
+              sob16 / sob256);
+    cr_expect(sob256 < 0.5 * ind256, "sobol's error %.3g at 256 spp, independent's %.3g", sob256, ind256);
+    render_fixture_close(&f);
 }

@@ -48,13 +48,16 @@ inline uint rng_independent_bits(RngKey key, uint dimension)
     return hash_pcg(key.x ^ rotate(key.y, dimension & 31u) ^ (dimension * 0x9e3779b9u));
 }
 
-/* Sobol: dimensions 2t and 2t + 1 are tuple t, the two Sobol dimensions under a scramble and a
- * shuffle hashed from (pixel, seed, t) (sobol.cl); numbering pairs what is drawn together (light
- * u, v; BSDF u, v; jitter x, y; lens u, v). */
+/* Sobol: dimensions 4t .. 4t + 3 are tuple t, the four Sobol dimensions under a scramble and a
+ * shuffle hashed from (pixel, seed, t) (sobol.cl); numbering puts what is drawn together in one
+ * tuple, pairs first (jitter x, y with lens u, v; light u, v with its pick; BSDF u, v with the
+ * lobe). */
+inline uint rng_sobol_tuple_seed(RngKey key, uint tuple) { return hash_pcg(key.x ^ (tuple * 0x9e3779b9u)); }
+
 inline uint rng_sobol_bits(RngKey key, uint dimension)
 {
-    uint tuple_seed = hash_pcg(key.x ^ ((dimension >> 1) * 0x9e3779b9u));
-    return sobol_owen_bits(sobol_shuffled_index(key.y, tuple_seed), dimension & 1u, tuple_seed);
+    uint tuple_seed = rng_sobol_tuple_seed(key, dimension >> 2);
+    return sobol_owen_bits(sobol_shuffled_index(key.y, tuple_seed), dimension & 3u, tuple_seed);
 }
 
 inline uint rng_bits(RngKey key, uint dimension)
@@ -62,14 +65,30 @@ inline uint rng_bits(RngKey key, uint dimension)
     return key.z == RNG_SOBOL ? rng_sobol_bits(key, dimension) : rng_independent_bits(key, dimension);
 }
 
-/* Dimensions 2t and 2t + 1 (one Sobol tuple) at once: the tuple's hash and shuffle are shared. */
-inline uint2 rng_bits2(RngKey key, uint tuple)
+/* Dimensions `first` and `first` + 1 (first even: a pair of one tuple) at once: the tuple's hash
+ * and shuffle are shared. */
+inline uint2 rng_bits2(RngKey key, uint first)
 {
     if (key.z != RNG_SOBOL)
-        return (uint2)(rng_independent_bits(key, 2u * tuple), rng_independent_bits(key, 2u * tuple + 1u));
-    uint tuple_seed = hash_pcg(key.x ^ (tuple * 0x9e3779b9u));
+        return (uint2)(rng_independent_bits(key, first), rng_independent_bits(key, first + 1u));
+    uint tuple_seed = rng_sobol_tuple_seed(key, first >> 2);
     uint index = sobol_shuffled_index(key.y, tuple_seed);
-    return (uint2)(sobol_owen_bits(index, 0u, tuple_seed), sobol_owen_bits(index, 1u, tuple_seed));
+    uint c = first & 3u;
+    return (uint2)(sobol_owen_bits(index, c, tuple_seed), sobol_owen_bits(index, c + 1u, tuple_seed));
+}
+
+/* Dimensions `first` .. `first` + 3 (first a multiple of 4: a whole tuple). */
+inline uint4 rng_bits4(RngKey key, uint first)
+{
+    if (key.z != RNG_SOBOL)
+        return (uint4)(rng_independent_bits(key, first), rng_independent_bits(key, first + 1u),
+                       rng_independent_bits(key, first + 2u), rng_independent_bits(key, first + 3u));
+    uint tuple_seed = rng_sobol_tuple_seed(key, first >> 2);
+    uint index = sobol_shuffled_index(key.y, tuple_seed);
+    uint2 high = sobol_dims23_reversed(index);
+    return (uint4)(sobol_owen_finish(index, 0u, tuple_seed),
+                   sobol_owen_finish(sobol_dim1_reversed(index), 1u, tuple_seed),
+                   sobol_owen_finish(high.x, 2u, tuple_seed), sobol_owen_finish(high.y, 3u, tuple_seed));
 }
 
 /* A uniform float in [0, 1): the top 24 bits, so 1.0f is never returned. */
@@ -78,8 +97,9 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 /* Dimension numbering. Dimensions are hashed, never stored, so unused numbers cost nothing; they are
  * reserved so that later features do not renumber (and so re-noise) what exists:
  *   camera, 0..7: jitter x, y, lens u, v; 4 is for the shutter time (motion blur), 5..7 spare;
- *   (the Sobol sampler stratifies the pairs 2t, 2t + 1 jointly: keep what is drawn together so);
- *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light pick, alias coin, light u, v,
+ *   (the Sobol sampler stratifies 4t .. 4t + 3 jointly, best the pair 4t, 4t + 1: keep what is
+ *   drawn together so);
+ *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light u, v, light pick, alias coin,
  *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
  *   the shadow ray, environment texel pick, its alias coin, black-hole disk pass-through coins
  *   (14, DIM_DISK_COIN in integrate_geodesic.cl); 15 spare. */
@@ -90,10 +110,10 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_CAMERA_TIME 4u /* the path's shutter fraction (camera_time) */
 #define DIM_BOUNCE_BASE 8u
 #define DIMS_PER_BOUNCE 16u
-#define DIM_LIGHT_PICK 0u
-#define DIM_LIGHT_COIN 1u
-#define DIM_LIGHT_U 2u
-#define DIM_LIGHT_V 3u
+#define DIM_LIGHT_U 0u
+#define DIM_LIGHT_V 1u
+#define DIM_LIGHT_PICK 2u
+#define DIM_LIGHT_COIN 3u
 #define DIM_BSDF_U 4u
 #define DIM_BSDF_V 5u
 #define DIM_BSDF_LOBE 6u
@@ -121,7 +141,7 @@ inline float rng_uniform(uint pixel, uint sample, uint dimension, uint seed)
 /* Dimensions `first` and `first` + 1 (first even: a tuple) as two floats. */
 inline float2 rng_pair(RngKey key, uint first)
 {
-    uint2 bits = rng_bits2(key, first >> 1);
+    uint2 bits = rng_bits2(key, first);
     return (float2)(uint_to_unit(bits.x), uint_to_unit(bits.y));
 }
 
@@ -139,7 +159,12 @@ inline float rng_bounce(RngKey key, uint bounce, uint which)
  * bounce `bounce`, as bits or as floats. */
 inline uint2 rng_bounce_bits2(RngKey key, uint bounce, uint which)
 {
-    return rng_bits2(key, (DIM_BOUNCE_BASE + bounce * DIMS_PER_BOUNCE + which) >> 1);
+    return rng_bits2(key, DIM_BOUNCE_BASE + bounce * DIMS_PER_BOUNCE + which);
+}
+/* Dimensions `which` .. `which` + 3 (which a multiple of 4: DIM_LIGHT_U) of bounce `bounce`. */
+inline uint4 rng_bounce_bits4(RngKey key, uint bounce, uint which)
+{
+    return rng_bits4(key, DIM_BOUNCE_BASE + bounce * DIMS_PER_BOUNCE + which);
 }
 inline float2 rng_bounce_pair(RngKey key, uint bounce, uint which)
 {

@@ -31,8 +31,9 @@ kernel void rng_test_dimension_pair(uint num_pixels, uint seed, uint d0, uint d1
     bins[i] = (ushort)(b0 * 256u + b1);
 }
 
-/* Tuple `tuple` of the Sobol sampler for samples first .. first + count - 1 of pixel `pixel`: the
- * two components' bits, through the pair call (use_pair) or one dimension at a time. */
+/* The pair (dimensions 4 tuple, 4 tuple + 1: Sobol dimensions 0 and 1) of tuple `tuple` of the
+ * Sobol sampler for samples first .. first + count - 1 of pixel `pixel`, through the pair call
+ * (use_pair 1), the tuple call (2) or one dimension at a time (0). */
 kernel void rng_test_sobol_tuple(uint pixel, uint seed, uint tuple, uint first, uint count,
                                  uint use_pair, global uint2 *points)
 {
@@ -40,6 +41,8 @@ kernel void rng_test_sobol_tuple(uint pixel, uint seed, uint tuple, uint first, 
     if (i >= count)
         return;
     RngKey key = rng_sampler_key(pixel, first + i, seed, RNG_SOBOL);
-    points[i] = use_pair ? rng_bits2(key, tuple)
-                         : (uint2)(rng_bits(key, 2u * tuple), rng_bits(key, 2u * tuple + 1u));
+    uint d = 4u * tuple;
+    points[i] = use_pair == 1u ? rng_bits2(key, d)
+                : use_pair == 2u ? rng_bits4(key, d).xy
+                                 : (uint2)(rng_bits(key, d), rng_bits(key, d + 1u));
 }
