@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "support.h"
 
@@ -189,3 +190,70 @@ Test(sampler, sobol_error_falls_faster_than_independent, .timeout = 600)
     cr_expect(sob256 < 0.5 * ind256, "sobol's error %.3g at 256 spp, independent's %.3g", sob256, ind256);
     render_fixture_close(&f);
 }
+
+/* ---- Sobol and independent numbers converge to the same image ------------------------------ */
+
+#define Z_RENDERS 8
+#define Z_SIDE 24
+#define Z_BLOCK 4 /* pixels a side */
+#define Z_BLOCKS ((Z_SIDE / Z_BLOCK) * (Z_SIDE / Z_BLOCK) * 3)
+
+/* Per block of Z_BLOCK x Z_BLOCK pixels and channel: the mean over Z_RENDERS renders (seeds) of
+ * the block's average, and that mean's variance. */
+static void block_means(RenderFixture *f, int sampler, int spp, double *mean, double *variance)
+{
+    static double sum[Z_BLOCKS], sum2[Z_BLOCKS];
+    memset(sum, 0, sizeof sum), memset(sum2, 0, sizeof sum2);
+    for (unsigned k = 0; k < Z_RENDERS; k++) {
+        float *rgb = render_fixture_render(
+            f, (RenderSettings){.spp = spp, .max_depth = f->scene.desc.max_depth, .seed = 1000u + 17u * k,
+                                .sampler = sampler}, NULL);
+        double block[Z_BLOCKS] = {0};
+        for (int y = 0; y < Z_SIDE; y++)
+            for (int x = 0; x < Z_SIDE; x++)
+                for (int c = 0; c < 3; c++)
+                    block[((y / Z_BLOCK) * (Z_SIDE / Z_BLOCK) + x / Z_BLOCK) * 3 + c] +=
+                        rgb[(y * Z_SIDE + x) * 3 + c] / (double)(Z_BLOCK * Z_BLOCK);
+        for (int b = 0; b < Z_BLOCKS; b++)
+            sum[b] += block[b], sum2[b] += block[b] * block[b];
+        free(rgb);
+    }
+    for (int b = 0; b < Z_BLOCKS; b++) {
+        mean[b] = sum[b] / Z_RENDERS;
+        variance[b] = fmax(sum2[b] - Z_RENDERS * mean[b] * mean[b], 0.0) / (Z_RENDERS - 1) / Z_RENDERS;
+    }
+}
+
+/* z of every block's difference: few beyond 3.5 (a t with 7 degrees of freedom is beyond 3.5 for
+ * about 1% of blocks; caustic paths make it heavier-tailed, hence the 8% allowance), and the mean
+ * of z^2 near 1 (a bias over a part of the image raises it). */
+static void same_image(const char *name, int spp)
+{
+    char path[256];
+    snprintf(path, sizeof path, "tests/scenes/%s/scene.json", name);
+    RenderFixture f;
+    render_fixture_open(&f, path, Z_SIDE, Z_SIDE);
+    static double ms[Z_BLOCKS], vs[Z_BLOCKS], mi[Z_BLOCKS], vi[Z_BLOCKS];
+    block_means(&f, SAMPLER_SOBOL, spp, ms, vs);
+    block_means(&f, SAMPLER_INDEPENDENT, spp, mi, vi);
+    int beyond = 0;
+    double z2_sum = 0.0, sobol_var = 0.0, independent_var = 0.0;
+    for (int b = 0; b < Z_BLOCKS; b++) {
+        double var = vs[b] + vi[b] + pow(1e-4 * fmax(fabs(mi[b]), 1e-2), 2);
+        double z2 = (ms[b] - mi[b]) * (ms[b] - mi[b]) / var;
+        beyond += z2 > 3.5 * 3.5;
+        z2_sum += z2;
+        sobol_var += vs[b], independent_var += vi[b];
+    }
+    cr_log_info("%s: %d of %d blocks beyond |z| 3.5, mean z^2 %.2f; variance sobol / independent %.2f",
+                name, beyond, Z_BLOCKS, z2_sum / Z_BLOCKS, sobol_var / independent_var);
+    fprintf(stderr, "%s: %d of %d blocks beyond |z| 3.5, mean z^2 %.2f; variance sobol / independent %.2f\n",
+            name, beyond, Z_BLOCKS, z2_sum / Z_BLOCKS, sobol_var / independent_var);
+    cr_expect(beyond <= Z_BLOCKS * 8 / 100, "%s: %d of %d blocks differ beyond |z| 3.5", name, beyond, Z_BLOCKS);
+    cr_expect(z2_sum / Z_BLOCKS < 2.0, "%s: mean z^2 %.2f over %d blocks (1 expected)", name,
+              z2_sum / Z_BLOCKS, Z_BLOCKS);
+    render_fixture_close(&f);
+}
+
+Test(sampler, sobol_and_independent_agree_cornell_glass_mirror, .timeout = 600) { same_image("cornell-sphere", 128); }
+Test(sampler, sobol_and_independent_agree_environment_map, .timeout = 600) { same_image("envmap", 128); }

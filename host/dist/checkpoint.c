@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "dist/checkpoint.h"
+#include "scene/sampler.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -24,7 +25,8 @@ RenderIdentity render_identity(const Scene *scene, const RenderSettings *setting
                             .seed = settings->seed,
                             .first_sample = settings->first_sample,
                             .no_nee = settings->no_nee,
-                            .sobol = settings->sampler == SAMPLER_SOBOL,
+                            .sobol = sampler_resolve(settings->sampler, scene->desc.sampler) ==
+                                     SAMPLER_SOBOL,
                             .clamp_indirect = settings->clamp_indirect,
                             .grid = *grid};
 }
@@ -305,7 +307,7 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
     }
     const UnitGrid *g = &h.id.grid;
     if (h.header_bytes != CHECKPOINT_HEADER_BYTES || h.film_words != FILM_WORDS || h.reserved ||
-        (h.flags & ~(uint32_t)FLAG_NO_NEE) || g->width > FILM_SIZE_LIMIT ||
+        (h.flags & ~(uint32_t)(FLAG_NO_NEE | FLAG_SOBOL)) || g->width > FILM_SIZE_LIMIT ||
         g->height > FILM_SIZE_LIMIT) {
         error_set(err, ERR_FILE_READ, path, 0, "%s: damaged checkpoint (header fields out of "
                   "range): remove it to start over", path);

@@ -41,7 +41,7 @@ typedef struct {
     uint64_t scene;
     uint32_t max_depth, seed, first_sample;
     bool no_nee;
-    bool sobol; /* the sampler (resolved: session_settle_settings) */
+    bool sobol; /* the sampler (sampler_resolve of the settings and the scene) */
     float clamp_indirect;
     UnitGrid grid;
 } RenderIdentity;
