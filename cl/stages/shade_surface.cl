@@ -193,7 +193,13 @@ PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint
 }
 
 /* Russian roulette (Cycles' path_terminate), driven by the throughput: false when the path ends,
- * else beta is divided by the survival probability. */
+ * else beta is divided by the survival probability. It may end paths from the vertex
+ * PT_ROULETTE_DEPTH on (depth counts segments; Mitsuba's rr_depth 5 is PT_ROULETTE_DEPTH 5). A
+ * build option so that the estimator studies (bench/README.md "Sampler and estimator") can set it
+ * through PT_CL_OPTIONS. */
+#ifndef PT_ROULETTE_DEPTH
+#define PT_ROULETTE_DEPTH 3u
+#endif
 PT_INLINE bool survives_roulette(float3 *beta, RngKey key, uint bounce)
 {
     float q = fmin(max3(*beta), 0.95f);
@@ -229,7 +235,7 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
     bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
     if (bs.flags == 0u || (dot(wi, sp->ng) > 0.0f) != reflects)
         return false;
-    if (depth >= 3u && !survives_roulette(&beta, key, bounce))
+    if (depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, key, bounce))
         return false;
     if (!(max3(beta) > 0.0f))
         return false;
