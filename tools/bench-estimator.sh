@@ -26,6 +26,11 @@ echo "scene,variant,seed,spp,seconds,relmse" >"$out"
 for scene in $scenes; do
     ref=tests/references/$scene.exr
     echo "$variants" | while IFS='|' read -r name defines args; do
+        # warm-up (seed 0, not counted): PoCL compiles the kernels at their first launch, inside
+        # the render time pt reports
+        # shellcheck disable=SC2086
+        PT_CL_OPTIONS="$maths $defines" "$PT" render "tests/scenes/$scene/scene.json" $args --spp 1 \
+            -o "$tmp/img.exr" 2>/dev/null >&2 || true
         for s in $(seq "$seeds"); do
             # shellcheck disable=SC2086 # args are words
             secs=$(PT_CL_OPTIONS="$maths $defines" "$PT" render "tests/scenes/$scene/scene.json" $args \

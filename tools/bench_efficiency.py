@@ -206,6 +206,9 @@ def main():
                 csv.flush()
 
             for sampler in PT_SAMPLERS:
+                # warm-up: the device compiles the kernels at their first launch (PoCL), in the
+                # render time pt reports
+                pt_render(args, scene_path, sampler, 0, os.path.join(temp, "pt.exr"))
                 for seed in range(1, args.seeds + 1):
                     out = os.path.join(temp, "pt.exr")
                     seconds = pt_render(args, scene_path, sampler, seed, out)
