@@ -19,10 +19,12 @@ Mitsuba by tools/mitsuba_reference.py, the converter of the committed references
       [--width 160 --height 120] [--spp 64] [--seeds 4] [--ref-spp 4096] [--max-depth 64]
       [--scenes cornell,caustics,...] [--cache DIR] [--csv FILE]
 
-PYTHON imports mitsuba and numpy (.venv-mitsuba, or wheels installed with pip --target on a
-machine without network: PYTHONPATH=WHEELS_DIR python3 ...). On the GPU machine:
-  PYTHONPATH=wheels python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
-      --width 320 --height 240 --spp 256 --ref-spp 16384 --csv bench/results/efficiency-gpu.csv
+PYTHON imports mitsuba and numpy (.venv-mitsuba, or on a machine without network wheels fetched
+elsewhere with `pip download mitsuba==3.9.1 numpy -d wheels` and installed with `pip install
+--no-index --find-links wheels --target pydeps mitsuba numpy`). It runs from a checkout or from a
+pt bundle (tools/bundle.sh: bin/pt, tools/, tests/scenes/). On the GPU machine, in the bundle:
+  PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
+      --width 320 --height 240 --spp 256 --seeds 4 --ref-spp 16384 --csv efficiency-gpu.csv
 """
 import argparse
 import os
@@ -161,7 +163,9 @@ def pt_render(args, scene_path, sampler, seed, out):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--pt", default=os.path.join(ROOT, "build", "pt"))
+    built = os.path.join(ROOT, "build", "pt")
+    ap.add_argument("--pt", default=built if os.path.exists(built) else os.path.join(ROOT, "bin", "pt"),
+                    help="default build/pt, else bin/pt (in a bundle: tools/bundle.sh)")
     ap.add_argument("--device", help="pt's --device (cpu, gpu); default pt's choice")
     ap.add_argument("--variant", default="scalar_rgb",
                     help="llvm_ad_rgb needs a libLLVM Dr.Jit accepts (tools/bench_mitsuba.py); cuda_ad_rgb on a GPU")

@@ -34,6 +34,10 @@ for lib in "$dest"/lib/*; do
     fi
 done
 cp -r scenes "$dest/"
+# tools/bench_efficiency.py (issue 34) runs from the bundle: its Python tools and the test scenes
+mkdir -p "$dest/tools" "$dest/tests"
+cp tools/*.py "$dest/tools/"
+cp -r tests/scenes "$dest/tests/"
 cp README.md "$dest/README.md"
 tar -C dist -czf "dist/$name.tar.gz" "$name"
 echo "bundle: $dest ($(du -sh "$dest" | cut -f1)), dist/$name.tar.gz"
