@@ -76,12 +76,15 @@ inline uint sobol_shuffled_index(uint reversed_sample, uint seed)
     return reverse_bits(owen_scramble_reversed(reversed_sample, seed ^ 0xbff95bfeu));
 }
 
-/* Dimensions 2 and 3 of Sobol point `index`, bit-reversed (x: 2, y: 3). Branch-free over all 32
- * bits: the shuffled index has random high bits, and work items stay in step. */
+/* Dimensions 2 and 3 of Sobol point `index` mod 2^16, bit-reversed (x: 2, y: 3): branch-free, so
+ * work items stay in step. The bits above 16 only XOR a constant into a block of up to 2^16
+ * samples (a digital shift, which the Owen scramble absorbs: every aligned block keeps its net),
+ * so leaving them out costs nothing below 65536 spp and halves the loop; beyond, these two
+ * dimensions repeat their set of values every 2^16 samples, paired with other values of 0 and 1. */
 inline uint2 sobol_dims23_reversed(uint index)
 {
     uint2 r = (uint2)(0u);
-    for (uint k = 0; k < 32u; k++) {
+    for (uint k = 0; k < 16u; k++) {
         uint take = 0u - ((index >> k) & 1u);
         r.x ^= sobol_directions_reversed[0][k] & take;
         r.y ^= sobol_directions_reversed[1][k] & take;
