@@ -257,3 +257,28 @@ static void same_image(const char *name, int spp)
 
 Test(sampler, sobol_and_independent_agree_cornell_glass_mirror, .timeout = 600) { same_image("cornell-sphere", 128); }
 Test(sampler, sobol_and_independent_agree_environment_map, .timeout = 600) { same_image("envmap", 128); }
+
+/* render.sampler chooses the sampler when the settings do not (settings 0), and the settings'
+ * choice wins over it: the same bits as the named sampler's render. */
+Test(sampler, scene_sampler_is_the_default_and_settings_override_it, .timeout = 300)
+{
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s", write_lit_floor());
+    *strrchr(dir, '/') = '\0'; /* the folder of floor.json and floor.obj */
+    const char *path = test_write_file(dir, "floor-independent.json",
+        "{\"camera\": {\"eye\": [0, 0.9, 0], \"target\": [0, 0, 0], \"up\": [0, 0, -1], \"fov_y\": 30},\n"
+        " \"film\": {\"width\": 32, \"height\": 32}, \"render\": {\"max_depth\": 2, \"sampler\": \"independent\"},\n"
+        " \"objects\": [{\"obj\": \"floor.obj\"}], \"background\": [0, 0, 0]}\n");
+    RenderFixture f;
+    render_fixture_open(&f, path, SIDE, SIDE);
+    size_t bytes = SIDE * SIDE * 3 * sizeof(float);
+    float *scene = render_fixture_render(&f, (RenderSettings){.spp = 4, .max_depth = 2, .seed = 3}, NULL);
+    float *ind = render_fixture_render(&f, (RenderSettings){.spp = 4, .max_depth = 2, .seed = 3,
+                                                            .sampler = SAMPLER_INDEPENDENT}, NULL);
+    float *sob = render_fixture_render(&f, (RenderSettings){.spp = 4, .max_depth = 2, .seed = 3,
+                                                            .sampler = SAMPLER_SOBOL}, NULL);
+    cr_expect(!memcmp(scene, ind, bytes), "render.sampler \"independent\" was not used");
+    cr_expect(memcmp(sob, ind, bytes), "--sampler sobol did not override render.sampler");
+    free(scene), free(ind), free(sob);
+    render_fixture_close(&f);
+}
