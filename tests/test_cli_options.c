@@ -30,10 +30,12 @@ Test(cli_options, equals_form_is_the_spaced_form)
 {
     char *spaced[] = {"pt", "render", "--spp", "8", "scene.json", "--time-limit", "2.5",
                       "--camera", "{\"eye\": [0, 1, 2]}", "--tonemap", "aces", "--bloom", "0.5,4",
-                      "--noise-threshold", "0.02", "--min-spp", "4", "--aov", "albedo,depth"};
+                      "--noise-threshold", "0.02", "--min-spp", "4", "--aov", "albedo,depth",
+                      "--sampler", "independent"};
     char *joined[] = {"pt", "render", "--spp=8", "scene.json", "--time-limit=2.5",
                       "--camera={\"eye\": [0, 1, 2]}", "--tonemap=aces", "--bloom=0.5,4",
-                      "--noise-threshold=0.02", "--min-spp=4", "--aov=albedo,depth"};
+                      "--noise-threshold=0.02", "--min-spp=4", "--aov=albedo,depth",
+                      "--sampler=independent"};
     Options a, b;
     cr_assert(parse(sizeof spaced / sizeof spaced[0], spaced, &a));
     cr_assert(parse(sizeof joined / sizeof joined[0], joined, &b));
@@ -53,6 +55,8 @@ Test(cli_options, equals_form_is_the_spaced_form)
     cr_expect_eq(b.min_spp, 4);
     cr_expect_neq(a.aov_mask, 0u);
     cr_expect_eq(a.aov_mask, b.aov_mask);
+    cr_expect_eq(a.sampler, SAMPLER_INDEPENDENT);
+    cr_expect_eq(b.sampler, SAMPLER_INDEPENDENT);
 }
 
 Test(cli_options, version_prints_the_version)
@@ -253,6 +257,7 @@ Test(cli_options, bad_values_are_one_line)
         {"--tonemap sepia", "sepia"}, {"--tonemap=", "--tonemap"}, {"--aov albedo,shiny", "shiny"},
         {"--aov ''", "--aov"}, {"--time-limit 0", "--time-limit"}, {"--min-spp 0", "--min-spp"},
         {"--min-spp 16 --spp 8", "--min-spp"}, {"--spp=", "--spp"},
+        {"--sampler halton", "--sampler: 'halton' is not a sampler (sobol, independent)"},
         /* render/ finds this one (the scene's spp) and names min_spp; pt names the flag. */
         {"--min-spp 99999", "--min-spp 99999: more than the spp"},
     };

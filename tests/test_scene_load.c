@@ -124,6 +124,8 @@ Test(scene, values_out_of_range_name_key_and_value)
     expect_error("{" OBJECTS ", \"film\": {\"height\": -3}}", ERR_JSON_VALUE, "film.height: -3");
     expect_error("{" OBJECTS ", \"render\": {\"spp\": 0}}", ERR_JSON_VALUE, "render.spp: 0");
     expect_error("{" OBJECTS ", \"render\": {\"max_depth\": 0}}", ERR_JSON_VALUE, "render.max_depth: 0");
+    expect_error("{" OBJECTS ", \"render\": {\"sampler\": \"halton\"}}", ERR_JSON_VALUE, "render.sampler");
+    expect_error("{" OBJECTS ", \"render\": {\"sampler\": 1}}", ERR_JSON_TYPE, "render.sampler");
     expect_error("{" OBJECTS ", \"render\": {\"spp\": 1e12}}", ERR_JSON_VALUE, "render.spp");
     expect_error("{" OBJECTS ", \"background\": [0, -1, 0]}", ERR_JSON_VALUE, "background");
     expect_error("{" CAMERA ", \"objects\": []}", ERR_JSON_VALUE, "objects: empty");

@@ -44,6 +44,10 @@ cp .oidn/lib/LICENSE.pyoidn "$dest/lib/" 2>/dev/null || true
 # ~50 MB of network weights the archive then fits one 64 MiB upload to a GPU machine.
 strip --strip-debug "$dest"/bin/*
 cp -r scenes "$dest/"
+# tools/bench_efficiency.py (issue 34) runs from the bundle: its Python tools and the test scenes
+mkdir -p "$dest/tools" "$dest/tests"
+cp tools/*.py "$dest/tools/"
+cp -r tests/scenes "$dest/tests/"
 cp README.md "$dest/README.md"
 tar -C dist -czf "dist/$name.tar.gz" "$name"
 echo "bundle: $dest ($(du -sh "$dest" | cut -f1)), dist/$name.tar.gz"

@@ -29,10 +29,9 @@ inline void camera_ray(constant RenderParams *p, uint x, uint y, float2 jitter, 
 inline void camera_sample(constant RenderParams *p, uint pixel, uint sample, float3 *origin,
                           float3 *dir)
 {
-    float2 jitter = (float2)(rng_uniform(pixel, sample, DIM_CAMERA_JITTER_X, p->seed),
-                             rng_uniform(pixel, sample, DIM_CAMERA_JITTER_Y, p->seed));
-    float2 lens = (float2)(rng_uniform(pixel, sample, DIM_LENS_U, p->seed),
-                           rng_uniform(pixel, sample, DIM_LENS_V, p->seed));
+    RngKey key = render_rng_key(p, pixel, sample);
+    float2 jitter = rng_pair(key, DIM_CAMERA_JITTER_X);
+    float2 lens = p->camera.eye.w > 0.0f ? rng_pair(key, DIM_LENS_U) : (float2)(0.0f);
     camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, origin, dir);
 }
 
@@ -43,5 +42,5 @@ inline float camera_time(constant RenderParams *p, uint pixel, uint sample)
 {
     if (!(p->shutter_close > p->shutter_open))
         return 0.0f;
-    return rng_uniform(pixel, sample, DIM_CAMERA_TIME, p->seed);
+    return rng_from_key(render_rng_key(p, pixel, sample), DIM_CAMERA_TIME);
 }

@@ -60,9 +60,10 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     const global uint *material_ids = scene->material_ids;
     const global Material *materials = scene->materials;
     LightSample ls;
-    LightEntry entry = light_pick(lights, num_lights, rng_bounce_bits(key, bounce, DIM_LIGHT_PICK),
-                                  rng_bounce(key, bounce, DIM_LIGHT_COIN));
-    float u1 = rng_bounce(key, bounce, DIM_LIGHT_U), u2 = rng_bounce(key, bounce, DIM_LIGHT_V);
+    /* DIM_LIGHT_U, _V, _PICK, _COIN: one Sobol tuple, so the point is stratified with the pick. */
+    uint4 bits = rng_bounce_bits4(key, bounce, DIM_LIGHT_U);
+    LightEntry entry = light_pick(lights, num_lights, bits.z, uint_to_unit(bits.w));
+    float u1 = uint_to_unit(bits.x), u2 = uint_to_unit(bits.y);
     if (PT_FEATURE(ENV) && entry.triangle == LIGHT_ENVIRONMENT) {
         EnvSample es = env_sample(env, rng_bounce_bits(key, bounce, DIM_ENV_PICK),
                                   rng_bounce(key, bounce, DIM_ENV_COIN), u1, u2);

@@ -64,6 +64,14 @@ typedef struct {
 #define RENDER_SHADOW_QUEUE 2u /* shadow rays appended to a queue (else: a flag per active slot) */
 #define RENDER_ADAPTIVE 4u     /* window sample k traces pixel active_pixels[...] (window_pixel) */
 #define RENDER_CLAMP_INDIRECT 8u /* contributions of 2+ bounces are clamped (clamp_indirect) */
+#define RENDER_SOBOL 16u       /* the Sobol sampler (cl/core/sobol.cl), else independent numbers */
+
+/* The samplers (render.sampler, --sampler): SAMPLER_DEFAULT (0) is "not given", and resolves to
+ * SAMPLER_SOBOL (wavefront_init). X(NAME, "word"). */
+#define SAMPLERS(X) X(SOBOL, "sobol") X(INDEPENDENT, "independent")
+#define PT_SAMPLER_ENUM(name, word) SAMPLER_##name,
+enum { SAMPLER_DEFAULT, SAMPLERS(PT_SAMPLER_ENUM) SAMPLER_COUNT };
+#undef PT_SAMPLER_ENUM
 
 /* ---- Lights --------------------------------------------------------------------------------- */
 

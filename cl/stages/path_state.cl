@@ -45,7 +45,7 @@ inline uint window_sample(constant RenderParams *p, uint k)
  * (sample_id[slot] = k) draws from this key, so the wavefront and the megakernel agree. */
 inline RngKey path_rng_key(constant RenderParams *p, const global uint *active_pixels, uint k)
 {
-    return rng_path_key(window_pixel(p, active_pixels, k), window_sample(p, k), p->seed);
+    return render_rng_key(p, window_pixel(p, active_pixels, k), window_sample(p, k));
 }
 
 /* The hit lane (hit_pack) and the slot's hit_instance as the Hit that surface_at takes. */

@@ -70,7 +70,7 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
         float3 origin, dir;
         camera_sample(p, pixel, sample, &origin, &dir);
         float time = PT_FEATURE(MOTION) ? camera_time(p, pixel, sample) : 0.0f;
-        RngKey key = rng_path_key(pixel, sample, p->seed);
+        RngKey key = render_rng_key(p, pixel, sample);
         for (uint bounce = 0u; bounce < max_segments; bounce++) {
             Hit hit = aov_trace(&scene, origin, dir, time, key, bounce);
             if (hit.prim == HIT_NONE)

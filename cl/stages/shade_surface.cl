@@ -193,11 +193,17 @@ PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint
 }
 
 /* Russian roulette (Cycles' path_terminate), driven by the throughput: false when the path ends,
- * else beta is divided by the survival probability. */
-PT_INLINE bool survives_roulette(float3 *beta, RngKey key, uint bounce)
+ * else beta is divided by the survival probability. It may end paths from the vertex
+ * PT_ROULETTE_DEPTH on (depth counts segments; Mitsuba's rr_depth 5 is PT_ROULETTE_DEPTH 5). A
+ * build option so that the estimator studies (bench/README.md "Sampler and estimator") can set it
+ * through PT_CL_OPTIONS. */
+#ifndef PT_ROULETTE_DEPTH
+#define PT_ROULETTE_DEPTH 3u
+#endif
+PT_INLINE bool survives_roulette(float3 *beta, float u)
 {
     float q = fmin(max3(*beta), 0.95f);
-    if (rng_bounce(key, bounce, DIM_ROULETTE) >= q)
+    if (u >= q)
         return false;
     *beta /= q;
     return true;
@@ -219,10 +225,10 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
                              const SurfaceBsdf *sb, float3 leaf_absorption, uint leaf_index,
                              float3 beta, uint medium, RngKey key, uint bounce, uint depth)
 {
-    BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front,
-                                rng_bounce(key, bounce, DIM_BSDF_U),
-                                rng_bounce(key, bounce, DIM_BSDF_V),
-                                rng_bounce(key, bounce, DIM_BSDF_LOBE));
+    /* DIM_BSDF_U, _V, _LOBE, DIM_ROULETTE: one Sobol tuple (the lobe stratified with the direction) */
+    uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
+    BsdfSample bs = bsdf_sample(&sb->bsdf, sb->wo_local, sp->front, uint_to_unit(u.x), uint_to_unit(u.y),
+                                uint_to_unit(u.z));
     float3 wi = frame_to_world(sb->frame, bs.wi);
     beta *= bs.weight;
     /* A sample on the other side of the true surface than its lobe says (possible with shading
@@ -230,7 +236,7 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
     bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
     if (bs.flags == 0u || (dot(wi, sp->ng) > 0.0f) != reflects)
         return false;
-    if (depth >= 3u && !survives_roulette(&beta, key, bounce))
+    if (depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, uint_to_unit(u.w)))
         return false;
     if (!(max3(beta) > 0.0f))
         return false;

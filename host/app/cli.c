@@ -256,6 +256,7 @@ RenderSettings cli_render_settings(const Options *o)
 {
     return (RenderSettings){
         .seed = o->seed,
+        .sampler = o->sampler,
         .no_nee = o->no_nee,
         .no_compaction = o->no_compaction,
         .profile = o->profile,

@@ -8,6 +8,7 @@
 #include "render/denoise.h"
 #include "render/session.h"
 #include "scene/import_mitsuba.h"
+#include "scene/sampler.h"
 #include "scene/scene.h"
 
 #include <errno.h>
@@ -131,6 +132,14 @@ static bool parse_tonemap(const char *arg, const char *v, Options *o, Error *err
     return false;
 }
 
+static bool parse_sampler(const char *arg, const char *v, Options *o, Error *err)
+{
+    if (sampler_from_name(v, &o->sampler))
+        return true;
+    error_set(err, ERR_USAGE, NULL, 0, "%s: '%s' is not a sampler (sobol, independent)", arg, v);
+    return false;
+}
+
 /* --bloom STRENGTH[,RADIUS]: strength in [0, 1] (the share of the bright part's energy spread
  * out), radius in pixels. */
 static bool parse_bloom(const char *arg, const char *value, Options *o, Error *err)
@@ -210,6 +219,9 @@ const CliOption cli_options[] = {
     {"seed", 0, CUSTOM(parse_seed), SCENE_COMMANDS, HELP_OPTIONS, "--seed S",
      "random seed (default 0); the image is a pure function of scene,\n"
      "                     settings, seed and spp"},
+    {"sampler", 0, CUSTOM(parse_sampler), SCENE_COMMANDS, HELP_OPTIONS, "--sampler NAME",
+     "sobol (default: Owen-scrambled Sobol, lower error) or independent;\n"
+     "                     the scene's render.sampler unless given"},
     {"define", 'D', CUSTOM(parse_define), SCENE_COMMANDS, HELP_OPTIONS, "-D NAME=VALUE",
      "a Mitsuba scene's parameter $NAME (overrides its <default>);\n"
      "                     repeatable"},

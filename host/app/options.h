@@ -20,6 +20,7 @@ typedef struct {
                          * beauty; 0 = none */
     int spp, max_depth, width, height; /* 0 = from the scene */
     unsigned seed;
+    int sampler;    /* --sampler: SAMPLER_* (scene/sampler.h); 0 = the scene's */
     bool seed_given;
     float exposure; /* stops, PNG and the viewer */
     Tonemap tonemap;      /* --tonemap, PNG and the viewer; TONEMAP_DEFAULT unless asked */

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "dist/checkpoint.h"
+#include "scene/sampler.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -13,7 +14,8 @@
 #include "scene/scene_hash.h"
 
 static const uint8_t MAGIC[8] = {'P', 'T', 'C', 'K', 'P', 'T', '\r', '\n'};
-enum { FLAG_NO_NEE = 1u };
+/* FLAG_SOBOL: checkpoints written before the sampler existed (independent numbers) lack it. */
+enum { FLAG_NO_NEE = 1u, FLAG_SOBOL = 2u };
 
 RenderIdentity render_identity(const Scene *scene, const RenderSettings *settings,
                                const UnitGrid *grid)
@@ -23,6 +25,8 @@ RenderIdentity render_identity(const Scene *scene, const RenderSettings *setting
                             .seed = settings->seed,
                             .first_sample = settings->first_sample,
                             .no_nee = settings->no_nee,
+                            .sobol = sampler_resolve(settings->sampler, scene->desc.sampler) ==
+                                     SAMPLER_SOBOL,
                             .clamp_indirect = settings->clamp_indirect,
                             .grid = *grid};
 }
@@ -72,7 +76,7 @@ static void encode_header(uint8_t h[CHECKPOINT_HEADER_BYTES], const RenderIdenti
     put32(h + 24, id->max_depth);
     put32(h + 28, id->seed);
     put32(h + 32, id->first_sample);
-    put32(h + 36, id->no_nee ? FLAG_NO_NEE : 0u);
+    put32(h + 36, (id->no_nee ? FLAG_NO_NEE : 0u) | (id->sobol ? FLAG_SOBOL : 0u));
     put32(h + 40, (FloatBits){.value = id->clamp_indirect}.bits);
     const UnitGrid *g = &id->grid;
     uint32_t grid[6] = {g->width, g->height, g->spp, g->unit_spp, g->unit_rows, g->count};
@@ -99,6 +103,7 @@ static void decode_header(const uint8_t h[CHECKPOINT_HEADER_BYTES], Header *out)
     out->id.first_sample = get32(h + 32);
     out->flags = get32(h + 36);
     out->id.no_nee = out->flags & FLAG_NO_NEE;
+    out->id.sobol = out->flags & FLAG_SOBOL;
     out->id.clamp_indirect = (FloatBits){.bits = get32(h + 40)}.value;
     UnitGrid *g = &out->id.grid;
     g->width = get32(h + 44), g->height = get32(h + 48), g->spp = get32(h + 52);
@@ -245,6 +250,9 @@ static void describe_difference(const RenderIdentity *a, const RenderIdentity *b
     else if (a->no_nee != b->no_nee)
         snprintf(out, size, "%s --no-nee %s in it, %s here", other, a->no_nee ? "on" : "off",
                  b->no_nee ? "on" : "off");
+    else if (a->sobol != b->sobol)
+        snprintf(out, size, "%s --sampler %s in it, %s here", other, a->sobol ? "sobol" : "independent",
+                 b->sobol ? "sobol" : "independent");
     else if ((FloatBits){.value = a->clamp_indirect}.bits !=
              (FloatBits){.value = b->clamp_indirect}.bits)
         snprintf(out, size, "%s --clamp %g in it, %g here", other, (double)a->clamp_indirect,
@@ -299,7 +307,7 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
     }
     const UnitGrid *g = &h.id.grid;
     if (h.header_bytes != CHECKPOINT_HEADER_BYTES || h.film_words != FILM_WORDS || h.reserved ||
-        (h.flags & ~(uint32_t)FLAG_NO_NEE) || g->width > FILM_SIZE_LIMIT ||
+        (h.flags & ~(uint32_t)(FLAG_NO_NEE | FLAG_SOBOL)) || g->width > FILM_SIZE_LIMIT ||
         g->height > FILM_SIZE_LIMIT) {
         error_set(err, ERR_FILE_READ, path, 0, "%s: damaged checkpoint (header fields out of "
                   "range): remove it to start over", path);

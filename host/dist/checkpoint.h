@@ -11,7 +11,7 @@
  *   8  u32 version    CHECKPOINT_VERSION
  *  12  u32 80         bytes of this header
  *  16  u64 scene      scene_hash (scene/scene_hash.h)
- *  24  u32 max_depth, seed, first_sample, flags (1: no_nee), f32 clamp_indirect
+ *  24  u32 max_depth, seed, first_sample, flags (1: no_nee, 2: sobol), f32 clamp_indirect
  *  44  u32 width, height, spp, unit_spp, unit_rows, count  the unit grid (dist/work_units.h)
  *  68  u32 units_done (the bits set below), film_words (FILM_WORDS), reserved 0
  *  80  the done bitmap: (count + 7) / 8 bytes (unit_bitmap_*), zero-padded to a multiple of 8
@@ -41,6 +41,7 @@ typedef struct {
     uint64_t scene;
     uint32_t max_depth, seed, first_sample;
     bool no_nee;
+    bool sobol; /* the sampler (sampler_resolve of the settings and the scene) */
     float clamp_indirect;
     UnitGrid grid;
 } RenderIdentity;

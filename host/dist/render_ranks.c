@@ -20,7 +20,7 @@
 typedef struct {
     uint64_t identity;
     uint32_t width, height, spp, unit_spp, unit_rows, count;
-    uint32_t seed, max_depth, no_nee;
+    uint32_t seed, max_depth, no_nee, sampler;
     float clamp_indirect;
     uint32_t num_devices;
     char version[32];
@@ -31,6 +31,7 @@ static Hello hello_of(const UnitGrid *g, const RenderSettings *s, uint64_t ident
     Hello h = {.identity = identity, .width = g->width, .height = g->height, .spp = g->spp,
                .unit_spp = g->unit_spp, .unit_rows = g->unit_rows, .count = g->count,
                .seed = s->seed, .max_depth = (uint32_t)s->max_depth, .no_nee = s->no_nee,
+               .sampler = (uint32_t)s->sampler,
                .clamp_indirect = s->clamp_indirect, .num_devices = (uint32_t)devices};
     snprintf(h.version, sizeof h.version, "%s", PT_VERSION);
     return h;
@@ -53,6 +54,8 @@ static bool hello_differs(const Hello *a, const Hello *b, char *out, size_t size
         snprintf(out, size, "seed %u, max depth %u, no-nee %u, clamp %g; not %u, %u, %u, %g",
                  b->seed, b->max_depth, b->no_nee, b->clamp_indirect, a->seed, a->max_depth,
                  a->no_nee, a->clamp_indirect);
+    else if (a->sampler != b->sampler)
+        snprintf(out, size, "sampler %u, not %u", b->sampler, a->sampler);
     else if (a->identity != b->identity)
         snprintf(out, size, "render identity %016llx, not %016llx (another scene or settings)",
                  (unsigned long long)b->identity, (unsigned long long)a->identity);

@@ -8,6 +8,7 @@
 #include "base/clock.h"
 #include "base/error.h"
 #include "scene/camera_json.h"
+#include "scene/sampler.h"
 
 static bool apply_overrides(const RenderDesc *o, Scene *scene, Error *err)
 {
@@ -183,5 +184,6 @@ void session_settle_settings(const Session *s, RenderSettings *settings, int sor
     if (!settings->spp)
         settings->spp = s->scene.desc.spp;
     settings->max_depth = s->scene.desc.max_depth;
+    settings->sampler = sampler_resolve(settings->sampler, s->scene.desc.sampler);
     settings->sort_materials = session_sorts_materials(&s->scene.data, sort_request);
 }

@@ -17,6 +17,8 @@
 typedef struct {
     int spp, max_depth;  /* required */
     unsigned seed;
+    int sampler;         /* SAMPLER_* (cl/shared/render.h); 0: the scene's render.sampler, else
+                          * sobol (scene/sampler.h sampler_resolve) */
     uint32_t first_sample; /* the film gets samples first_sample .. first_sample + spp - 1 of each
                             * pixel: films of disjoint blocks add up (film_sums_add) to one render */
     bool no_nee;         /* BSDF sampling only */

@@ -13,6 +13,7 @@
 #include "scene/black_holes.h"
 #include "scene/camera_json.h"
 #include "scene/gltf_scene.h"
+#include "scene/sampler.h"
 #include "scene/transform_json.h"
 
 static bool parse_positive_int(JsonParser *p, const cJSON *obj, const char *name, const char *key,
@@ -38,8 +39,8 @@ static bool parse_film(JsonParser *p, const cJSON *obj, SceneDesc *d)
 
 static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
 {
-    static const char *const keys[] = {"spp", "max_depth", "noise_threshold", "min_spp", "denoise",
-                                       NULL};
+    static const char *const keys[] = {"spp",     "max_depth", "noise_threshold", "min_spp",
+                                       "denoise", "sampler",   NULL};
     if (!json_check_object(p, obj, "render", keys) ||
         !parse_positive_int(p, obj, "spp", "render.spp", 1, INT_MAX, &d->spp) ||
         !parse_positive_int(p, obj, "max_depth", "render.max_depth", 1, MAX_DEPTH_LIMIT,
@@ -58,6 +59,10 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
     if (item && !cJSON_IsBool(item))
         return json_fail(p, ERR_JSON_TYPE, "render.denoise", "expected true or false");
     d->denoise = item && cJSON_IsTrue(item);
+    item = json_member(obj, "sampler");
+    if (item && !(cJSON_IsString(item) && sampler_from_name(item->valuestring, &d->sampler)))
+        return json_fail(p, cJSON_IsString(item) ? ERR_JSON_VALUE : ERR_JSON_TYPE, "render.sampler",
+                         "expected \"sobol\" or \"independent\"");
     return true;
 }
 

@@ -59,6 +59,7 @@ typedef struct {
     float noise_threshold; /* render.noise_threshold: adaptive sampling; 0 = off */
     int min_spp;           /* render.min_spp; 0 = the default (render/wavefront.h) */
     bool denoise;          /* render.denoise: pt render denoises (as --denoise) */
+    int sampler;           /* render.sampler: SAMPLER_* (scene/sampler.h); 0 = not given */
     float background[3];
     char environment[1024];   /* the map's path resolved against the scene file; "" = none */
     float environment_scale;  /* default 1 */

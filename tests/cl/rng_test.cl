@@ -30,3 +30,19 @@ kernel void rng_test_dimension_pair(uint num_pixels, uint seed, uint d0, uint d1
     uint b1 = min((uint)(rng_uniform(pixel, sample, d1, seed) * 256.0f), 255u);
     bins[i] = (ushort)(b0 * 256u + b1);
 }
+
+/* The pair (dimensions 4 tuple, 4 tuple + 1: Sobol dimensions 0 and 1) of tuple `tuple` of the
+ * Sobol sampler for samples first .. first + count - 1 of pixel `pixel`, through the pair call
+ * (use_pair 1), the tuple call (2) or one dimension at a time (0). */
+kernel void rng_test_sobol_tuple(uint pixel, uint seed, uint tuple, uint first, uint count,
+                                 uint use_pair, global uint2 *points)
+{
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    RngKey key = rng_sampler_key(pixel, first + i, seed, RNG_SOBOL);
+    uint d = 4u * tuple;
+    points[i] = use_pair == 1u ? rng_bits2(key, d)
+                : use_pair == 2u ? rng_bits4(key, d).xy
+                                 : (uint2)(rng_bits(key, d), rng_bits(key, d + 1u));
+}

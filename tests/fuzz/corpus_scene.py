@@ -40,7 +40,7 @@ def json_cases(rng):
               "int-overflow": 2147483648, "tiny": 5e-324, "huge-string": "s" * 100000}
     paths = ["camera", "camera.eye", "camera.target", "camera.up", "camera.fov_y", "camera.aperture",
              "camera.focus_distance", "film", "film.width", "film.height", "render", "render.spp",
-             "render.max_depth", "background", "objects", "objects.0", "objects.0.obj"]
+             "render.max_depth", "render.sampler", "background", "objects", "objects.0", "objects.0.obj"]
     for path in paths:
         for vname, value in values.items():
             scene = json.loads(json.dumps(BASE_SCENE))
