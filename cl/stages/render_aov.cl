@@ -118,7 +118,7 @@ kernel void render_coverage(constant RenderParams *p, SCENE_PARAMS uint spp, glo
         float3 origin, dir;
         camera_sample(p, pixel, sample, &origin, &dir);
         float time = PT_FEATURE(MOTION) ? camera_time(p, pixel, sample) : 0.0f;
-        Hit hit = aov_trace(&scene, origin, dir, time, rng_path_key(pixel, sample, p->seed), 0u);
+        Hit hit = aov_trace(&scene, origin, dir, time, render_rng_key(p, pixel, sample), 0u);
         if (hit.prim != HIT_NONE) {
             depth_sum += hit.t;
             hits++;
