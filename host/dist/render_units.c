@@ -207,9 +207,14 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
         if (!ok)
             break;
         double now = seconds_now();
-        if (now >= v.deadline && !sh->stop) {
+        if (now >= v.deadline) {
+            /* Never due again: a deadline left in the past made next_wake return at once, and
+             * the loop spun holding sh->lock, so that no worker could take it to end (with
+             * progress lines, print_progress let go of the lock now and then). */
+            v.deadline = 1e300;
+            if (!sh->stop)
+                *stop = RENDER_STOPPED_BY_TIME_LIMIT;
             sh->stop = true;
-            *stop = RENDER_STOPPED_BY_TIME_LIMIT;
         }
         ok = checkpoint_step(sh, workers, n, &v, now, report, err);
         if (ok && now >= v.next_print)
