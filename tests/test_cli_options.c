@@ -9,7 +9,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <stb_image_write.h>
 
 #include "app/cli.h"
 #include "base/version.h"
@@ -315,4 +318,29 @@ Test(cli_options, clamp_and_adaptive_reach_the_render_settings)
         cr_assert(parse_command(adaptive[i], "--min-spp", "3", &o, &err), "%s", err.message);
         cr_expect_eq(cli_render_settings(&o).min_spp, 3, "pt %s --min-spp", adaptive[i]);
     }
+}
+
+/* --allow-outside-paths end to end (issue 42): an OBJ's MTL whose map_Kd climbs out of the
+ * MTL's folder is one line naming the MTL, the statement and the path; with the option it
+ * renders. */
+Test(cli_options, allow_outside_paths_lets_an_mtl_name_a_texture_above_it, .timeout = 300)
+{
+    const char *dir = test_temp_dir();
+    char sub[600], png[700];
+    snprintf(sub, sizeof sub, "%s/model", dir);
+    cr_assert_eq(mkdir(sub, 0700), 0);
+    snprintf(png, sizeof png, "%s/red.png", dir);
+    const unsigned char red[3] = {255, 0, 0};
+    cr_assert(stbi_write_png(png, 1, 1, 3, red, 3));
+    test_write_file(sub, "m.mtl", "newmtl red\nKd 1 1 1\nmap_Kd ../red.png\n");
+    const char *obj = test_write_file(sub, "m.obj", "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\n"
+                                                    "usemtl red\nf 1 2 3\n");
+    char args[2000];
+    snprintf(args, sizeof args, "render '%s' --width 8 --height 8 --spp 1 --device cpu --quiet "
+             "-o '%s/out.png'", obj, dir);
+    expect_clean_error(run_pt(NULL, args), "confined", "m.mtl: material 'red' map_Kd \"../red.png\"",
+                       "--allow-outside-paths");
+    strncat(args, " --allow-outside-paths", sizeof args - strlen(args) - 1);
+    Run r = run_pt(NULL, args);
+    cr_expect_eq(r.exit_code, 0, "%s", r.err);
 }

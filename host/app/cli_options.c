@@ -2,6 +2,7 @@
 /* cli_options.c: the table of options (app/cli_options.h) and the readers of their values. */
 #include "app/cli_options.h"
 
+#include "base/fs.h"
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
@@ -135,6 +136,15 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     return true;
 }
 
+/* Paths named inside glTF, MTL and foreign scene files stay inside their file's folder unless
+ * this is given (base/fs.h fs_resolve_inside): a render service may be handed untrusted scenes. */
+static bool parse_allow_outside_paths(const char *arg, const char *value, Options *o, Error *err)
+{
+    (void)arg, (void)value, (void)o, (void)err;
+    fs_set_allow_outside_paths(true);
+    return true;
+}
+
 
 /* The columns between kind and commands, per kind. */
 #define INT(f, lo, hi) ARG_INT, offsetof(Options, f), lo, hi, NULL, NULL
@@ -258,6 +268,11 @@ const CliOption cli_options[] = {
      "a scene without any light (no emissive triangles, lights,\n"
      "                     environment or background) stays black; by default it gets a\n"
      "                     uniform white sky (background [1, 1, 1]) and a warning"},
+    {"allow-outside-paths", 0, CUSTOM_FLAG(parse_allow_outside_paths), SCENE_COMMANDS, HELP_OPTIONS,
+     "--allow-outside-paths",
+     "let glTF, MTL and imported scene files name files outside their\n"
+     "                     own folder (absolute paths, \"..\" above it); a JSON scene's\n"
+     "                     own paths are never confined"},
     {"quiet", 'q', CUSTOM_FLAG(parse_quiet), EVERY_COMMAND, HELP_OPTIONS, "--quiet",
      "no progress output (and no summary)"},
     {"progress", 0, FLAG(progress), RENDER, HELP_OPTIONS, "--progress",
