@@ -183,7 +183,7 @@ $(filter $(BUILD)/tests/test_accel_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
-$(BUILD)/tests/test_stop_matrix: $(BUILD)/tests/cli_run.o
+$(BUILD)/tests/test_stop_matrix $(BUILD)/tests/test_checkpoint_faults: $(BUILD)/tests/cli_run.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o
