@@ -53,6 +53,7 @@ Test(checkpoint_faults, special_files_in_the_checkpoints_place_are_refused_by_na
 static int run_with_file_size_limit(rlim_t limit, const char *env, const char *output,
                                     const char *err_path)
 {
+    const char *pt = test_pt_bin(); /* in the parent: it may fail the test */
     pid_t pid = fork();
     cr_assert_neq(pid, -1);
     if (pid == 0) {
@@ -62,7 +63,7 @@ static int run_with_file_size_limit(rlim_t limit, const char *env, const char *o
             _exit(127);
         signal(SIGXFSZ, SIG_IGN);
         putenv((char *)env);
-        execl(test_pt_bin(), test_pt_bin(), "render", "scenes/cornell-box", "--device", "cpu",
+        execl(pt, pt, "render", "scenes/cornell-box", "--device", "cpu",
               "--width", "64", "--height", "48", "--spp", "64", "--unit-rows", "8", "--checkpoint",
               "0.001", "--quiet", "-o", output, (char *)NULL);
         _exit(127);

@@ -134,13 +134,14 @@ Test(stop_matrix, sigterm_from_outside_to_a_quiet_checkpointed_render, .timeout 
     cr_assert(mkdtemp(dir));
     snprintf(exr, sizeof exr, "%s/out.exr", dir);
     snprintf(checkpoint, sizeof checkpoint, "%s.ptckpt", exr);
+    const char *pt = test_pt_bin(); /* in the parent: it may fail the test */
     pid_t pid = fork();
     cr_assert_neq(pid, -1);
     if (pid == 0) {
         if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
             _exit(127);
         signal(SIGTERM, SIG_DFL);
-        execl(test_pt_bin(), test_pt_bin(), "render", "scenes/cornell-box", "--device", "cpu",
+        execl(pt, pt, "render", "scenes/cornell-box", "--device", "cpu",
               "--width", "32", "--height", "32", "--spp", "65536", "--unit-spp", "1",
               "--checkpoint", "0.001", "--quiet", "-o", exr, (char *)NULL);
         _exit(127);
