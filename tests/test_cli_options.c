@@ -390,3 +390,20 @@ Test(cli_options, environment_map_errors_name_the_key_and_say_what_is_wrong, .ti
                   "%s", r.err);
     }
 }
+
+/* environment.scale past 1e9 (1e39 is not even a float) is refused naming the key. */
+Test(cli_options, an_environment_scale_beyond_float_is_refused)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const char *scales[] = {"1e39", "1e10", "-1"};
+    for (int i = 0; i < 3; i++) {
+        char scene[300], args[1000];
+        snprintf(scene, sizeof scene, "{\"objects\": [{\"obj\": \"m.obj\"}], \"environment\": "
+                 "{\"file\": \"../shared/x.hdr\", \"scale\": %s}}", scales[i]);
+        const char *path = test_write_file(dir, "scene.json", scene);
+        snprintf(args, sizeof args, "render '%s' --width 8 --height 8 --spp 1 --device cpu --quiet "
+                 "-o '%s/out.exr'", path, dir);
+        expect_clean_error(run_pt(NULL, args), scales[i], "environment.scale", NULL);
+    }
+}
