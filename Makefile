@@ -204,6 +204,7 @@ $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_gltf_draco: $(BUILD)/tests/draco_fixture.o
 $(BUILD)/tests/test_denoise: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_viewer_denoise: $(BUILD)/tests/viewer_session.o
+$(BUILD)/tests/test_stop_matrix $(BUILD)/tests/test_checkpoint_faults: $(BUILD)/tests/cli_run.o
 # The 'pt view' end-to-end tests share tests/viewer_session.c.
 $(BUILD)/tests/test_viewer $(BUILD)/tests/test_viewer_film $(BUILD)/tests/test_viewer_post: \
     $(BUILD)/tests/viewer_session.o

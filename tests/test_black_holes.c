@@ -195,3 +195,17 @@ Test(black_holes, pt_exits_non_zero_on_a_camera_inside_a_horizon)
     cr_expect(strstr(out, "camera.eye") && strstr(out, "horizon"), "output: %s", out);
     cr_expect(strchr(out, '\n') == out + n - 1, "not one line: %s", out);
 }
+
+/* Every value reaching the geodesic integrator is finite and bounded (issue 42): a hole at 3e38, a
+ * mass whose influence radius overflows when squared, a huge influence_radius or disk radius are
+ * refused naming the key (they used to give inf and NaN in the integrator: a hang, black pixels). */
+Test(black_holes, lengths_the_integrator_cannot_square_are_refused)
+{
+    expect_error("[{\"position\": [3e38, 0, 0], \"mass\": 1}]", "black_holes[0].position", NULL);
+    expect_error("[{\"position\": [0, -2e18, 0], \"mass\": 1}]", "black_holes[0].position", NULL);
+    expect_error("[{\"position\": [0, 0, 0], \"mass\": 1e30}]", "black_holes[0].mass", NULL);
+    expect_error("[{\"position\": [0, 0, 0], \"mass\": 1, \"influence_radius\": 1e30}]",
+                 "black_holes[0].influence_radius", NULL);
+    expect_error("[{\"position\": [0, 0, 0], \"mass\": 1, \"disk\": {\"outer_radius\": 1e30}}]",
+                 "black_holes[0].disk.outer_radius", NULL);
+}

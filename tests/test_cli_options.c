@@ -9,7 +9,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <stb_image_write.h>
 
 #include "app/cli.h"
 #include "base/version.h"
@@ -327,5 +330,93 @@ Test(cli_options, clamp_and_adaptive_reach_the_render_settings)
         cr_expect(s.noise_threshold == 0.05f && s.moments, "pt %s --noise-threshold", adaptive[i]);
         cr_assert(parse_command(adaptive[i], "--min-spp", "3", &o, &err), "%s", err.message);
         cr_expect_eq(cli_render_settings(&o).min_spp, 3, "pt %s --min-spp", adaptive[i]);
+    }
+}
+
+/* --allow-outside-paths end to end (issue 42): an OBJ's MTL whose map_Kd climbs out of the
+ * MTL's folder is one line naming the MTL, the statement and the path; with the option it
+ * renders. */
+Test(cli_options, allow_outside_paths_lets_an_mtl_name_a_texture_above_it, .timeout = 300)
+{
+    const char *dir = test_temp_dir();
+    char sub[600], png[700];
+    snprintf(sub, sizeof sub, "%s/model", dir);
+    cr_assert_eq(mkdir(sub, 0700), 0);
+    snprintf(png, sizeof png, "%s/red.png", dir);
+    const unsigned char red[3] = {255, 0, 0};
+    cr_assert(stbi_write_png(png, 1, 1, 3, red, 3));
+    test_write_file(sub, "m.mtl", "newmtl red\nKd 1 1 1\nmap_Kd ../red.png\n");
+    const char *obj = test_write_file(sub, "m.obj", "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\n"
+                                                    "usemtl red\nf 1 2 3\n");
+    char args[2000];
+    snprintf(args, sizeof args, "render '%s' --width 8 --height 8 --spp 1 --device cpu --quiet "
+             "-o '%s/out.png'", obj, dir);
+    expect_clean_error(run_pt(NULL, args), "confined", "m.mtl: material 'red' map_Kd \"../red.png\"",
+                       "--allow-outside-paths");
+    strncat(args, " --allow-outside-paths", sizeof args - strlen(args) - 1);
+    Run r = run_pt(NULL, args);
+    cr_expect_eq(r.exit_code, 0, "%s", r.err);
+}
+
+/* A flag given a value (--help=1) says so, naming the flag (it was "unknown option '-h'"). */
+Test(cli_options, a_flag_given_a_value_says_it_takes_none)
+{
+    expect_clean_error(run_pt(NULL, "--help=1"), "pt --help=1", "--help takes no value", "--help=1");
+    expect_clean_error(run_pt(NULL, "render --help=1"), "pt render --help=1", "--help takes no value",
+                       NULL);
+    expect_clean_error(run_pt(NULL, "render scenes/cornell-box --quiet=2"), "--quiet=2",
+                       "--quiet takes no value", "'--quiet=2'");
+}
+
+/* An environment map that is missing or damaged is named with its key, as a texture is; an EXR's
+ * damage is a sentence, not OpenEXR's function and code (issue 42). */
+Test(cli_options, environment_map_errors_name_the_key_and_say_what_is_wrong, .timeout = 300)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    char args[1200], exr[600];
+    snprintf(exr, sizeof exr, "%s/good.exr", dir);
+    snprintf(args, sizeof args, "render '%s/m.obj' --width 128 --height 128 --spp 1 --device cpu --quiet "
+             "-o '%s'", dir, exr);
+    cr_assert_eq(run_pt(NULL, args).exit_code, 0);
+    size_t size = 0;
+    char *good = test_read_file(exr, &size);
+    cr_assert(good && size > 100);
+    FILE *f = fopen(exr, "wb"); /* its last pixel rows cut off */
+    cr_assert(f && fwrite(good, 1, size - size / 4, f) == size - size / 4 && fclose(f) == 0);
+    free(good);
+    test_write_file(dir, "header.exr", "this is no image, only text that is long enough");
+    static const char *const cases[][2] = {{"missing.hdr", "no such file"},
+                                           {"good.exr", "its pixel data is damaged or truncated"},
+                                           {"header.exr", "is not an OpenEXR image"}};
+    for (int i = 0; i < 3; i++) {
+        char scene[300];
+        snprintf(scene, sizeof scene,
+                 "{\"objects\": [{\"obj\": \"m.obj\"}], \"environment\": {\"file\": \"%s\"}}",
+                 cases[i][0]);
+        const char *path = test_write_file(dir, "scene.json", scene);
+        snprintf(args, sizeof args, "render '%s' --width 8 --height 8 --spp 1 --device cpu --quiet "
+                 "-o '%s/out.exr'", path, dir);
+        Run r = run_pt(NULL, args);
+        expect_clean_error(r, cases[i][0], "environment.file", cases[i][1]);
+        cr_expect(strstr(r.err, cases[i][0]) && !strstr(r.err, "EXR_ERR") && !strstr(r.err, "failed"),
+                  "%s", r.err);
+    }
+}
+
+/* environment.scale past 1e9 (1e39 is not even a float) is refused naming the key. */
+Test(cli_options, an_environment_scale_beyond_float_is_refused)
+{
+    const char *dir = test_temp_dir();
+    test_write_file(dir, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const char *scales[] = {"1e39", "1e10", "-1"};
+    for (int i = 0; i < 3; i++) {
+        char scene[300], args[1000];
+        snprintf(scene, sizeof scene, "{\"objects\": [{\"obj\": \"m.obj\"}], \"environment\": "
+                 "{\"file\": \"../shared/x.hdr\", \"scale\": %s}}", scales[i]);
+        const char *path = test_write_file(dir, "scene.json", scene);
+        snprintf(args, sizeof args, "render '%s' --width 8 --height 8 --spp 1 --device cpu --quiet "
+                 "-o '%s/out.exr'", path, dir);
+        expect_clean_error(run_pt(NULL, args), scales[i], "environment.scale", NULL);
     }
 }

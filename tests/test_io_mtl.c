@@ -15,6 +15,7 @@
 #include <stb_image_write.h>
 
 #include "app/cli.h"
+#include "base/fs.h"
 #include "io/obj_loader.h"
 #include "scene/scene.h"
 #include "support.h"
@@ -417,5 +418,53 @@ Test(mtl_mapping, windows_backslash_paths_are_found)
     snprintf(expected[3], sizeof expected[3], "%s/gone\\x.png", dir); /* found by neither: as written */
     for (int m = 0; m < 4; m++)
         cr_expect_str_eq(mesh.materials[m].map_kd, expected[m]);
+    mesh_free(&mesh);
+}
+
+/* A texture path in an MTL stays inside the MTL's folder (issue 42): "../" above it or an
+ * absolute path is refused before any file is opened, naming the MTL, the material, the
+ * statement and the path; --allow-outside-paths (fs_set_allow_outside_paths) reads it. A
+ * sub-folder and a ".." that stays inside are fine. */
+Test(mtl_paths, texture_paths_that_leave_the_folder_are_refused_unless_allowed)
+{
+    static const struct {
+        const char *statement, *path;
+    } escaping[] = {{"map_Kd", "../outside.png"},     {"map_Ke", "/etc/hostname"},
+                    {"map_Pr", "a/../../outside.png"}, {"map_d", "../../../../etc/passwd"},
+                    {"norm", "/dev/zero"},             {"map_Bump", "../n.png"}};
+    const char *dir = test_temp_dir();
+    char sub[600];
+    snprintf(sub, sizeof sub, "%s/scene", dir);
+    cr_assert_eq(mkdir(sub, 0700), 0);
+    const char *obj = test_write_file(sub, "m.obj", "mtllib m.mtl\n" TRIANGLE_V "usemtl red\nf 1 2 3\n");
+    warnings_set_quiet(true);
+    for (size_t i = 0; i < sizeof escaping / sizeof escaping[0]; i++) {
+        char mtl[600];
+        snprintf(mtl, sizeof mtl, "newmtl red\nKd 1 0 0\n%s %s\n", escaping[i].statement,
+                 escaping[i].path);
+        const char *mtl_path = test_write_file(sub, "m.mtl", mtl);
+        Mesh mesh;
+        Error err = {0};
+        fs_set_allow_outside_paths(false);
+        cr_expect(!obj_load(obj, &mesh, &err), "%s %s accepted", escaping[i].statement,
+                  escaping[i].path);
+        cr_expect_eq(err.code, ERR_PATH_ESCAPES, "%s", err.message);
+        cr_expect(strstr(err.message, mtl_path) && strstr(err.message, "material 'red'") &&
+                      strstr(err.message, escaping[i].statement) &&
+                      strstr(err.message, escaping[i].path) &&
+                      strstr(err.message, "--allow-outside-paths"),
+                  "%s", err.message);
+        fs_set_allow_outside_paths(true);
+        cr_expect(obj_load(obj, &mesh, &err), "allowed: %s", err.message);
+        fs_set_allow_outside_paths(false);
+        mesh_free(&mesh);
+    }
+    test_write_file(sub, "m.mtl", "newmtl red\nmap_Kd tex/../tex/red.png\nmap_Ke tex/glow.png\n");
+    Mesh mesh;
+    Error err = {0};
+    cr_assert(obj_load(obj, &mesh, &err), "%s", err.message);
+    char expected[700];
+    snprintf(expected, sizeof expected, "%s/tex/glow.png", sub);
+    cr_expect_str_eq(mesh.materials[0].map_ke, expected);
     mesh_free(&mesh);
 }

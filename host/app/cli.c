@@ -133,6 +133,11 @@ static bool parse_command(const char *cmd, Options *o, Error *err)
     else if (!strcmp(cmd, "bench")) o->command = CMD_BENCH;
     else if (!strcmp(cmd, "tonemap")) o->command = CMD_TONEMAP;
     else if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) o->command = CMD_HELP;
+    else if (!strncmp(cmd, "--help=", 7) || !strncmp(cmd, "--version=", 10)) {
+        error_set(err, ERR_USAGE, NULL, 0, "%.*s takes no value (given '%s')",
+                  (int)strcspn(cmd, "="), cmd, cmd);
+        return false;
+    }
     else if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) o->command = CMD_VERSION;
     else {
         error_set(err, ERR_USAGE, NULL, 0, "unknown command '%s' (try 'pt help')", cmd);
@@ -145,8 +150,17 @@ static bool parse_command(const char *cmd, Options *o, Error *err)
 static void getopt_error(int code, char **sub_argv, Error *err)
 {
     const char *written = option_as_written(sub_argv, optind);
+    size_t name_length = strcspn(written, "=");
+    const CliOption *flag = NULL; /* --flag=VALUE of a flag that takes none */
+    for (size_t i = 0; written[name_length] && !strncmp(written, "--", 2) && i < cli_option_count; i++)
+        if (strlen(cli_options[i].name) == name_length - 2 &&
+            !strncmp(cli_options[i].name, written + 2, name_length - 2))
+            flag = &cli_options[i];
     if (code == ':')
         error_set(err, ERR_USAGE, NULL, 0, "%s needs a value", written);
+    else if (flag)
+        error_set(err, ERR_USAGE, NULL, 0, "%.*s takes no value (given '%s')", (int)name_length,
+                  written, written);
     else if (optopt && optopt < 256)
         error_set(err, ERR_USAGE, NULL, 0, "unknown option '-%c' (try 'pt help')", optopt);
     else

@@ -2,6 +2,7 @@
 /* cli_options.c: the table of options (app/cli_options.h) and the readers of their values. */
 #include "app/cli_options.h"
 
+#include "base/fs.h"
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
 #include "render/aov_layers.h"
@@ -177,6 +178,16 @@ static bool parse_define(const char *arg, const char *value, Options *o, Error *
     return mitsuba_import_define(value, err);
 }
 
+/* Paths named inside glTF, MTL and foreign scene files stay inside their file's folder unless
+ * this is given (base/fs.h fs_resolve_inside): a render service may be handed untrusted scenes. */
+static bool parse_allow_outside_paths(const char *arg, const char *value, Options *o, Error *err)
+{
+    (void)arg, (void)value, (void)o, (void)err;
+    fs_set_allow_outside_paths(true);
+    return true;
+}
+
+
 /* The columns between kind and commands, per kind. */
 #define INT(f, lo, hi) ARG_INT, offsetof(Options, f), lo, hi, NULL, NULL
 #define FLOAT(f, lo, hi) ARG_FLOAT, offsetof(Options, f), lo, hi, NULL, NULL
@@ -323,6 +334,11 @@ const CliOption cli_options[] = {
      "                     rig (default y; z for Blender or CAD exports in Z-up)"},
     {"frame", 0, FLAG(frame), SCENE_COMMANDS, HELP_OPTIONS, "--frame",
      "ignore the file's own camera: frame the model in a 3/4 view"},
+    {"allow-outside-paths", 0, CUSTOM_FLAG(parse_allow_outside_paths), SCENE_COMMANDS, HELP_OPTIONS,
+     "--allow-outside-paths",
+     "let glTF, MTL and imported scene files name files outside their\n"
+     "                     own folder (absolute paths, \"..\" above it); a JSON scene's\n"
+     "                     own paths are never confined"},
     {"quiet", 'q', CUSTOM_FLAG(parse_quiet), EVERY_COMMAND, HELP_OPTIONS, "--quiet",
      "no progress output (and no summary)"},
     {"progress", 0, FLAG(progress), RENDER, HELP_OPTIONS, "--progress",

@@ -5,6 +5,8 @@
  * and SIGHUP stop the render and keep the image, marked partial. */
 #include "app/render_cmd.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +36,57 @@ typedef struct {
 /* Without -o: out/<name>.exr, then <name>-2 ... <name>-MAX_NUMBERED_OUTPUTS; past that, an error
  * (never an overwrite). */
 #define MAX_NUMBERED_OUTPUTS 9999
+
+/* Numbered outputs this run claimed: created empty with O_EXCL before the render, so that two pt
+ * started together cannot both pick out/<name>.exr (the image replaces the empty file by an atomic
+ * rename). A claim not written by the end (an error, a stop before the first samples) is removed
+ * at exit. */
+static struct {
+    char path[2][1100];
+    bool written[2];
+} g_claims;
+
+static void remove_unwritten_claims(void)
+{
+    for (int i = 0; i < 2; i++)
+        if (g_claims.path[i][0] && !g_claims.written[i])
+            unlink(g_claims.path[i]);
+}
+
+static void claim_written(const char *path)
+{
+    for (int i = 0; i < 2; i++)
+        g_claims.written[i] = g_claims.written[i] || !strcmp(g_claims.path[i], path);
+}
+
+/* Creates path if nothing is there (0), 1 when something is, -1 (err set) when it cannot. */
+static int claim(const char *path, int slot, Error *err)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno == EEXIST)
+        return 1;
+    if (fd < 0) {
+        error_set(err, ERR_OUTPUT, path, 0, "cannot create %s: %s", path, strerror(errno));
+        return -1;
+    }
+    close(fd);
+    snprintf(g_claims.path[slot], sizeof g_claims.path[slot], "%s", path);
+    return 0;
+}
+
+/* Claims the EXR and the PNG of one numbered name: 0 both, 1 one exists (none kept), -1 error. */
+static int claim_pair(const OutputPaths *paths, Error *err)
+{
+    int exr = claim(paths->exr, 0, err);
+    if (exr != 0)
+        return exr;
+    int png = claim(paths->png, 1, err);
+    if (png != 0) {
+        unlink(paths->exr);
+        g_claims.path[0][0] = '\0';
+    }
+    return png;
+}
 
 /* -o names the output (and may overwrite it: the user asked). Without -o, out/<name>.exr + .png,
  * numbered (<name>-2, -3, ...) so that nothing already there is overwritten. */
@@ -65,6 +118,7 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
             return false;
         }
         bool found = false;
+        atexit(remove_unwritten_claims);
         for (int n = 1; n <= MAX_NUMBERED_OUTPUTS && !found; n++) {
             char stem[600];
             if (n == 1)
@@ -73,7 +127,10 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
                 snprintf(stem, sizeof stem, "out/%s%s-%d", name, suffix, n);
             snprintf(paths->exr, sizeof paths->exr, "%s.exr", stem);
             snprintf(paths->png, sizeof paths->png, "%s.png", stem);
-            found = !fs_exists(paths->exr) && !fs_exists(paths->png);
+            int taken = claim_pair(paths, err);
+            if (taken < 0)
+                return false;
+            found = taken == 0;
         }
         if (!found) {
             error_set(err, ERR_OUTPUT, "out", 0,
@@ -86,6 +143,8 @@ static bool plan_outputs(const Options *o, const char *suffix, OutputPaths *path
         return false;
     if (paths->png[0] && !fs_check_writable(paths->png, err))
         return false;
+    fs_remove_stale_temps(paths->exr); /* a write SIGKILLed earlier ("" names none) */
+    fs_remove_stale_temps(paths->png);
     return true;
 }
 
@@ -233,6 +292,7 @@ static void write_outputs(const Options *o, const OutputPaths *out, RenderImages
                                .partial = stop != RENDER_COMPLETE};
         if (!render_write_exr(out->exr, images, session, &record, &err))
             die("%s", err.message);
+        claim_written(out->exr);
         printf("wrote %s\n", out->exr);
     }
     if (out->png[0]) {
@@ -243,6 +303,7 @@ static void write_outputs(const Options *o, const OutputPaths *out, RenderImages
         DisplaySettings display = {.exposure = o->exposure, .tonemap = o->tonemap};
         if (!image_write_png(out->png, images->rgb, desc->width, desc->height, display, &err))
             die("%s", err.message);
+        claim_written(out->png);
         printf("wrote %s\n", out->png);
     }
 }

@@ -148,6 +148,7 @@ bool render_cmd_units_run(const Options *o, Session *session, const DeviceSpecLi
         checkpoint_path(checkpoint_base, checkpoint, sizeof checkpoint);
         ud.checkpoint_path = checkpoint;
         ud.identity = render_identity(&session->scene, settings, &ud.grid);
+        fs_remove_stale_temps(checkpoint); /* a checkpoint write SIGKILLed earlier */
         /* Never overwrite a checkpoint the user did not ask to continue. */
         if (!o->resume && fs_exists(checkpoint)) {
             error_set(err, ERR_OUTPUT, checkpoint, 0,

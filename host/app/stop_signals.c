@@ -109,6 +109,11 @@ void stop_signals_install(void)
         action.sa_flags = SA_RESTART;
         sigaction(stop_signals[s].number, &action, NULL);
     }
+    /* A file-size limit (ulimit -f) makes a write fail with EFBIG, which pt reports like a full
+     * disk, rather than kill it. Also LLVM (inside PoCL) installs a crash handler for SIGXFSZ
+     * that, when it runs, resets every handler to the default, pt's stop handlers with them: the
+     * next SIGTERM then killed pt without its image. */
+    signal(SIGXFSZ, SIG_IGN);
 }
 
 int stop_signal_received(void) { return g_signal_received; }

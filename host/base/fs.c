@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "base/fs.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <stdio.h>
@@ -182,6 +185,46 @@ bool fs_check_writable(const char *path, Error *err)
 void fs_temp_path(const char *path, char *temp, size_t size)
 {
     snprintf(temp, size, "%s.tmp-%ld", path, (long)getpid());
+}
+
+/* The process id in a name that is prefix followed by digits only (fs_temp_path's form), else 0. */
+static long temp_owner(const char *name, const char *prefix)
+{
+    size_t length = strlen(prefix);
+    if (strncmp(name, prefix, length) != 0 || !name[length] || strlen(name + length) > 9)
+        return 0;
+    for (const char *c = name + length; *c; c++)
+        if (*c < '0' || *c > '9')
+            return 0;
+    return strtol(name + length, NULL, 10);
+}
+
+int fs_remove_stale_temps(const char *path)
+{
+    char folder[PATH_MAX], prefix[NAME_MAX + 1];
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    if (!folder_of(path, folder, sizeof folder) ||
+        (size_t)snprintf(prefix, sizeof prefix, "%s.tmp-", base) >= sizeof prefix)
+        return 0;
+    DIR *dir = opendir(folder);
+    if (!dir)
+        return 0;
+    int removed = 0;
+    struct dirent *entry;
+    while ((entry = readdir(dir))) {
+        long pid = temp_owner(entry->d_name, prefix);
+        char temp[PATH_MAX + NAME_MAX + 2];
+        struct stat info;
+        /* kill(pid, 0) fails with ESRCH only when no such process exists. */
+        if (pid <= 0 || pid == (long)getpid() || kill((pid_t)pid, 0) == 0 || errno != ESRCH ||
+            (size_t)snprintf(temp, sizeof temp, "%s/%s", folder, entry->d_name) >= sizeof temp ||
+            lstat(temp, &info) != 0 || !S_ISREG(info.st_mode))
+            continue;
+        removed += unlink(temp) == 0;
+    }
+    closedir(dir);
+    return removed;
 }
 
 /* Flushes the finished temporary file to disk, then renames it over the target: rename() is

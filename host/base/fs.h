@@ -40,6 +40,10 @@ bool fs_check_writable(const char *path, Error *err);
 /* An atomic write in three steps: fs_check_writable(path), write everything to the file named by
  * fs_temp_path(path), then fs_finish_atomic_write. */
 void fs_temp_path(const char *path, char *temp, size_t size);
+/* Removes what an atomic write of path killed mid-way (SIGKILL, a crash) left: regular files named
+ * exactly fs_temp_path(path) for a process id that is not running here. Another pt writing the
+ * same path now keeps its file. Returns how many were removed. */
+int fs_remove_stale_temps(const char *path);
 /* written: the temporary file is complete. Then it is flushed and renamed over path; otherwise, or
  * when that fails (err set), it is removed. */
 bool fs_finish_atomic_write(const char *temp, const char *path, bool written, Error *err);

@@ -8,8 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "base/fs.h"
+#include "io/input_file.h"
 #include "render/film.h"
 #include "scene/scene_hash.h"
 
@@ -363,16 +365,23 @@ static bool read_checkpoint(const char *path, FILE *file, RenderIdentity *want, 
 
 bool checkpoint_read(const char *path, RenderIdentity identity, UnitFilm *f, Error *err)
 {
-    FILE *file = fopen(path, "rb");
-    if (!file) {
-        if (errno == ENOENT)
-            error_set(err, ERR_FILE_MISSING, path, 0, "no checkpoint at %s: start without --resume",
-                      path);
-        else
-            error_set(err, ERR_FILE_READ, path, 0, "%s: cannot read the checkpoint (%s)", path,
-                      strerror(errno));
-        return false;
+    /* A FIFO, folder or device in its place is refused by name before any read (input_file.h:
+     * fopen would wait for a FIFO's writer forever). */
+    long long size;
+    int fd = input_file_open(path, "a pt checkpoint", &size, err);
+    if (fd < 0 && err->code == ERR_FILE_MISSING) {
+        *err = (Error){0}; /* say what to do instead */
+        error_set(err, ERR_FILE_MISSING, path, 0, "no checkpoint at %s: start without --resume",
+                  path);
     }
+    FILE *file = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (fd >= 0 && !file) {
+        error_set(err, ERR_FILE_READ, path, 0, "%s: cannot read the checkpoint (%s)", path,
+                  strerror(errno));
+        close(fd);
+    }
+    if (!file)
+        return false;
     Reader *r = calloc(1, sizeof *r);
     uint8_t *bitmap = NULL;
     bool ok = r != NULL;

@@ -141,10 +141,25 @@ static double next_wake(const Shared *sh, const Supervision *v)
     return until < v->deadline ? until : v->deadline;
 }
 
+/* Writes the checkpoint. One that fails (a full disk) costs only what it would have saved: the
+ * render goes on and its image is written; the first failure is one warning, later ones are
+ * silent (a disk that stays full would say it at every interval). */
+static void checkpoint_save(Shared *sh, UnitRenderReport *report)
+{
+    const UnitRenderDesc *d = sh->desc;
+    Error err = {0};
+    if (checkpoint_write(d->checkpoint_path, d->identity, sh->film, &err)) {
+        report->checkpoints++;
+    } else if (!sh->checkpoint_failed) {
+        sh->checkpoint_failed = true;
+        warn("checkpoint not written, the render goes on without it: %s", err.message);
+    }
+}
+
 /* A due checkpoint first asks every worker (and every rank) to move its film into the host's, and
- * is written once all have. With sh->lock held; false when the checkpoint cannot be written. */
-static bool checkpoint_step(Shared *sh, const Worker *workers, int n, Supervision *v, double now,
-                            UnitRenderReport *report, Error *err)
+ * is written once all have. With sh->lock held. */
+static void checkpoint_step(Shared *sh, const Worker *workers, int n, Supervision *v, double now,
+                            UnitRenderReport *report)
 {
     const UnitRenderDesc *d = sh->desc;
     RankLink *l = d->ranks;
@@ -159,19 +174,15 @@ static bool checkpoint_step(Shared *sh, const Worker *workers, int n, Supervisio
     }
     if (!v->pending_checkpoint || !units_workers_flushed(workers, n, v->pending_checkpoint) ||
         (l && !rank_link_flushed(l, v->pending_checkpoint)))
-        return true;
+        return;
     pthread_mutex_unlock(&sh->lock);
-    bool ok = checkpoint_write(d->checkpoint_path, d->identity, sh->film, err);
+    checkpoint_save(sh, report);
     pthread_mutex_lock(&sh->lock);
-    if (!ok)
-        return false;
-    report->checkpoints++;
     v->pending_checkpoint = 0;
     v->next_checkpoint = seconds_now() + d->checkpoint_seconds;
     pthread_mutex_unlock(&sh->lock);
     units_test_point(sh, "checkpoint");
     pthread_mutex_lock(&sh->lock);
-    return true;
 }
 
 /* With sh->lock held. Under MPI the other ranks' units reach the film at their end: their paths,
@@ -207,12 +218,17 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
         if (!ok)
             break;
         double now = seconds_now();
-        if (now >= v.deadline && !sh->stop) {
+        if (now >= v.deadline) {
+            /* Never due again: a deadline left in the past made next_wake return at once, and
+             * the loop spun holding sh->lock, so that no worker could take it to end (with
+             * progress lines, print_progress let go of the lock now and then). */
+            v.deadline = 1e300;
+            if (!sh->stop)
+                *stop = RENDER_STOPPED_BY_TIME_LIMIT;
             sh->stop = true;
-            *stop = RENDER_STOPPED_BY_TIME_LIMIT;
         }
-        ok = checkpoint_step(sh, workers, n, &v, now, report, err);
-        if (ok && now >= v.next_print)
+        checkpoint_step(sh, workers, n, &v, now, report);
+        if (now >= v.next_print)
             print_progress(sh, workers, n, &v, now);
     }
     if (!ok)
@@ -332,18 +348,15 @@ static double workers_collect(Worker *workers, int n, double start, RenderStats 
 
 /* Why the render ended, and the checkpoint a stopped render leaves for --resume. */
 static bool render_end(Shared *sh, bool ok, RenderStats *stats, RenderStop *stop,
-                       UnitRenderReport *report, Error *err)
+                       UnitRenderReport *report)
 {
     const UnitRenderDesc *d = sh->desc;
     stats->spp_done = (int)unit_film_spp_done(sh->film);
     if (ok && units_is_root(sh) && *stop == RENDER_COMPLETE && !unit_film_complete(sh->film))
         *stop = RENDER_STOPPED_BY_SIGNAL;
-    if (!ok || !d->checkpoint_path || *stop == RENDER_COMPLETE)
-        return ok;
-    if (!checkpoint_write(d->checkpoint_path, d->identity, sh->film, err))
-        return false;
-    report->checkpoints++;
-    return true;
+    if (ok && d->checkpoint_path && *stop != RENDER_COMPLETE)
+        checkpoint_save(sh, report);
+    return ok;
 }
 
 bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, UnitFilm *film,
@@ -373,7 +386,7 @@ bool render_units_run(const UnitDevices *devices, const UnitRenderDesc *desc, Un
     stats->seconds = workers_collect(workers, n, start, stats, &ok, err) - start;
     report->merge_seconds = sh.merge_seconds;
     ok = units_end_ranks(&sh, report, stats, ok, err);
-    ok = render_end(&sh, ok, stats, stop, report, err);
+    ok = render_end(&sh, ok, stats, stop, report);
     shared_free(&sh);
     return ok;
 }

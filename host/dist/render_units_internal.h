@@ -40,6 +40,7 @@ struct Shared {
     uint64_t flush_request; /* workers with flushed below it move their film to the host's */
     int running;
     double merge_seconds;
+    bool checkpoint_failed; /* warned once: later failures are silent */
 };
 
 /* The hooks (UnitRenderHooks), each a no-op when NULL. */

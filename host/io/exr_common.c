@@ -23,14 +23,45 @@ exr_context_initializer_t exr_quiet_initializer(void)
     return init;
 }
 
+/* What OpenEXR's code means for the user's file, as a sentence; NULL: no plain meaning (the
+ * library's step and code are quoted then: a bug report needs them). */
+static const char *exr_sentence(exr_result_t result)
+{
+    switch (result) {
+    case EXR_ERR_OUT_OF_MEMORY: return "out of memory for this image";
+    case EXR_ERR_FILE_ACCESS: return "cannot be opened";
+    case EXR_ERR_FILE_BAD_HEADER: return "is not an OpenEXR image, or its header is damaged";
+    case EXR_ERR_READ_IO: return "cannot be read (truncated or unreadable)";
+    case EXR_ERR_WRITE_IO: return "cannot be written";
+    case EXR_ERR_MISSING_REQ_ATTR:
+    case EXR_ERR_INVALID_ATTR:
+    case EXR_ERR_ATTR_TYPE_MISMATCH:
+    case EXR_ERR_ATTR_SIZE_MISMATCH: return "its header is damaged (an attribute is missing or invalid)";
+    case EXR_ERR_BAD_CHUNK_LEADER:
+    case EXR_ERR_CORRUPT_CHUNK:
+    case EXR_ERR_INCORRECT_PART:
+    case EXR_ERR_INCORRECT_CHUNK:
+    case EXR_ERR_INVALID_SAMPLE_DATA: return "its pixel data is damaged or truncated";
+    case EXR_ERR_FEATURE_NOT_IMPLEMENTED: return "uses an OpenEXR feature this build cannot read";
+    default: return NULL;
+    }
+}
+
 bool exr_ok(exr_result_t result, const char *step, const char *path, ErrorCode code, Error *err)
 {
     if (result == EXR_ERR_SUCCESS)
         return true;
-    const char *detail =
-        exr_last_message[0] ? exr_last_message : exr_get_default_error_message(result);
-    error_set(err, code, path, 0, "%s: %s failed: %s (%s)", path, step,
-              exr_get_error_code_as_string(result), detail);
+    const char *sentence = exr_sentence(result);
+    bool system = result == EXR_ERR_FILE_ACCESS || result == EXR_ERR_READ_IO ||
+                  result == EXR_ERR_WRITE_IO; /* the detail is the system's reason */
+    if (sentence && system && exr_last_message[0])
+        error_set(err, code, path, 0, "%s: %s (%s)", path, sentence, exr_last_message);
+    else if (sentence)
+        error_set(err, code, path, 0, "%s: %s", path, sentence);
+    else
+        error_set(err, code, path, 0, "%s: %s failed: %s (%s)", path, step,
+                  exr_get_error_code_as_string(result),
+                  exr_last_message[0] ? exr_last_message : exr_get_default_error_message(result));
     return false;
 }
 

@@ -24,11 +24,8 @@ static const char *file_type_name(mode_t mode)
     return "not a regular file";
 }
 
-bool input_file_read(const char *path, const char *kind, size_t limit, char **data, size_t *size,
-                     Error *err)
+int input_file_open(const char *path, const char *kind, long long *size, Error *err)
 {
-    *data = NULL;
-    *size = 0;
     /* O_NONBLOCK: opening a FIFO must not wait for a writer before fstat can refuse it. */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
@@ -37,24 +34,40 @@ bool input_file_read(const char *path, const char *kind, size_t limit, char **da
         else
             error_set(err, ERR_FILE_READ, path, 0, "%s: cannot open %s: %s", path, kind,
                       strerror(errno));
-        return false;
+        return -1;
     }
     struct stat st;
-    bool ok = false;
     if (fstat(fd, &st) != 0) {
         error_set(err, ERR_FILE_READ, path, 0, "%s: %s", path, strerror(errno));
     } else if (!S_ISREG(st.st_mode)) {
         error_set(err, ERR_FILE_READ, path, 0, "%s: is %s, not %s", path,
                   file_type_name(st.st_mode), kind);
-    } else if ((unsigned long long)st.st_size > limit) {
+    } else {
+        *size = (long long)st.st_size;
+        return fd;
+    }
+    close(fd);
+    return -1;
+}
+
+bool input_file_read(const char *path, const char *kind, size_t limit, char **data, size_t *size,
+                     Error *err)
+{
+    *data = NULL;
+    *size = 0;
+    long long file_size = 0;
+    int fd = input_file_open(path, kind, &file_size, err);
+    if (fd < 0)
+        return false;
+    bool ok = false;
+    if ((unsigned long long)file_size > limit) {
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: %lld bytes is over the limit of %zu MiB for %s",
-                  path, (long long)st.st_size, limit >> 20, kind);
-    } else if (!(*data = malloc((size_t)st.st_size + 1))) {
-        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for %lld bytes", path,
-                  (long long)st.st_size);
+                  path, file_size, limit >> 20, kind);
+    } else if (!(*data = malloc((size_t)file_size + 1))) {
+        error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for %lld bytes", path, file_size);
     } else {
         /* The file may shrink while it is read: what was read is what counts. */
-        size_t want = (size_t)st.st_size, got = 0;
+        size_t want = (size_t)file_size, got = 0;
         ok = true;
         while (got < want) {
             ssize_t n = read(fd, *data + got, want - got);

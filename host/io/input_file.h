@@ -24,4 +24,8 @@
 bool input_file_read(const char *path, const char *kind, size_t limit, char **data, size_t *size,
                      Error *err);
 
+/* The same rule for a reader that streams (a checkpoint): the open descriptor of a regular file
+ * and its *size, or -1 with err set as above (nothing read from a FIFO or device). */
+int input_file_open(const char *path, const char *kind, long long *size, Error *err);
+
 #endif

@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 extern "C" {
+#include "base/fs.h"
 #include "io/input_file.h"
 }
 
@@ -101,14 +102,14 @@ void warn_unused(const std::string &path, const UnusedNames &unused)
 
 /* Which materials of one MTL gave illum and Tf/Kt, in the order tinyobj::LoadMtl appends them: a
  * block is appended when the next newmtl starts if it has a name, and the last block always. */
-std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &folder,
+std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const std::string &file,
                                                  UnusedNames *unused)
 {
     struct Block {
         bool named;
         MaterialExtras extras;
     };
-    std::vector<Block> blocks(1, Block{false, MaterialExtras(folder, false, false)});
+    std::vector<Block> blocks(1, Block{false, MaterialExtras(file, false, false)});
     std::string unix_text = text; /* tinyobjloader also ends lines at a lone \r */
     std::replace(unix_text.begin(), unix_text.end(), '\r', '\n');
     std::istringstream lines(unix_text);
@@ -125,7 +126,7 @@ std::vector<MaterialExtras> scan_material_blocks(const std::string &text, const 
                    (record[n] == ' ' || record[n] == '\t');
         };
         if (keyword("newmtl")) {
-            blocks.push_back(Block{record.size() > 7, MaterialExtras(folder, false, false)});
+            blocks.push_back(Block{record.size() > 7, MaterialExtras(file, false, false)});
         } else if (keyword("illum")) {
             blocks.back().extras.has_illum = true;
         } else if (keyword("Tf") || keyword("Kt")) {
@@ -233,44 +234,55 @@ bool MaterialLibraryReader::operator()(const std::string &name,
     tinyobj::LoadMtl(names, materials, &stream, &mtl_warnings, errors);
     warn_lines(path, mtl_warnings);
     UnusedNames unused;
-    std::vector<MaterialExtras> found = scan_material_blocks(text, folder_of(path), &unused);
+    std::vector<MaterialExtras> found = scan_material_blocks(text, path, &unused);
     warn_unused(path, unused);
     if (found.size() != materials->size() - before) /* keep tinyobj's values as they are */
-        found.assign(materials->size() - before, MaterialExtras(folder_of(path)));
+        found.assign(materials->size() - before, MaterialExtras(path));
     extras.insert(extras.end(), found.begin(), found.end());
     return true;
 }
 
-/* A map written on Windows (`map_Kd .\\SpiderTex.jpg`, `textures\\wood.png`): when the path as
- * written names no file, its backslashes are taken as separators (a file name with a backslash
- * in it is rare; an MTL exported on Windows is not). */
-static std::string windows_separators(const std::string &path, const std::string &folder,
-                                      const std::string &name)
-{
-    struct stat st;
-    if (name.find('\\') == std::string::npos || stat(path.c_str(), &st) == 0)
-        return path;
-    std::string slashed = name;
-    std::replace(slashed.begin(), slashed.end(), '\\', '/');
-    std::string candidate = join_path(folder, slashed);
-    return stat(candidate.c_str(), &st) == 0 ? candidate : path;
-}
-
-/* A texture path resolved against the MTL's folder into a 1024-byte field ("" when none). */
-static void copy_path(const char *material, const char *statement, const std::string &folder,
-                      const std::string &name, char out[1024])
+/* A texture path resolved inside the MTL's folder into a 1024-byte field ("" when none). A map
+ * written on Windows (`map_Kd .\\SpiderTex.jpg`, `textures\\wood.png`): when the path as written
+ * names no file, its backslashes are taken as separators (a file name with a backslash in it is
+ * rare; an MTL exported on Windows is not), and that path too must stay inside the folder. */
+static bool copy_path(const char *material, const char *statement, const std::string &file,
+                      const std::string &name, char out[1024], Error *err)
 {
     out[0] = '\0';
     if (name.empty())
-        return;
-    std::string path = windows_separators(join_path(folder, name), folder, name);
-    if (path.size() >= 1024)
+        return true;
+    char what[256];
+    snprintf(what, sizeof what, "material '%s' %s", material, statement);
+    char path[4096];
+    Error resolve_error = {};
+    if (!fs_resolve_inside(file.c_str(), name.c_str(), what, path, sizeof path, &resolve_error)) {
+        if (resolve_error.code == ERR_PATH_ESCAPES) {
+            *err = resolve_error;
+            return false;
+        }
+        path[0] = '\0'; /* too long: warned below */
+    }
+    struct stat st;
+    if (path[0] && name.find('\\') != std::string::npos && stat(path, &st) != 0) {
+        std::string slashed = name;
+        std::replace(slashed.begin(), slashed.end(), '\\', '/');
+        char candidate[4096];
+        if (!fs_resolve_inside(file.c_str(), slashed.c_str(), what, candidate, sizeof candidate,
+                               err))
+            return false;
+        if (stat(candidate, &st) == 0)
+            snprintf(path, sizeof path, "%s", candidate);
+    }
+    if (!path[0] || strlen(path) >= 1024)
         warn("material %s: %s path longer than 1023 characters ignored", material, statement);
     else
-        snprintf(out, 1024, "%s", path.c_str());
+        snprintf(out, 1024, "%s", path);
+    return true;
 }
 
-void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to)
+bool copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to,
+                   Error *err)
 {
     snprintf(to->name, sizeof to->name, "%s", from.name.c_str());
     for (int c = 0; c < 3; c++) {
@@ -291,14 +303,15 @@ void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras
     /* DESIGN: norm, else map_Bump / bump, is the normal map; -bm scales its xy. */
     bool norm = !from.normal_texname.empty();
     to->bump_scale = norm ? from.normal_texopt.bump_multiplier : from.bump_texopt.bump_multiplier;
-    copy_path(to->name, "map_Kd", extras.folder, from.diffuse_texname, to->map_kd);
-    copy_path(to->name, "map_Ke", extras.folder, from.emissive_texname, to->map_ke);
-    copy_path(to->name, "map_Pr", extras.folder, from.roughness_texname, to->map_pr);
-    copy_path(to->name, "map_Pm", extras.folder, from.metallic_texname, to->map_pm);
-    copy_path(to->name, "map_d", extras.folder, from.alpha_texname, to->map_d);
     snprintf(to->normal_statement, sizeof to->normal_statement, "%s", norm ? "norm" : "map_Bump");
-    copy_path(to->name, to->normal_statement, extras.folder,
-              norm ? from.normal_texname : from.bump_texname, to->map_normal);
+    const std::string &file = extras.file;
+    return copy_path(to->name, "map_Kd", file, from.diffuse_texname, to->map_kd, err) &&
+           copy_path(to->name, "map_Ke", file, from.emissive_texname, to->map_ke, err) &&
+           copy_path(to->name, "map_Pr", file, from.roughness_texname, to->map_pr, err) &&
+           copy_path(to->name, "map_Pm", file, from.metallic_texname, to->map_pm, err) &&
+           copy_path(to->name, "map_d", file, from.alpha_texname, to->map_d, err) &&
+           copy_path(to->name, to->normal_statement, file,
+                     norm ? from.normal_texname : from.bump_texname, to->map_normal, err);
 }
 
 } // namespace mtl_reader

@@ -28,12 +28,12 @@ extern "C" {
 namespace mtl_reader {
 
 /* What tinyobj::material_t cannot tell: whether illum, Tf, Ns, Pr and Pm were given, and the
- * MTL's folder. */
+ * MTL file (its texture paths are resolved inside its folder). */
 struct MaterialExtras {
-    std::string folder;
+    std::string file;
     bool has_illum, has_tf, has_ns = false, has_pr = false, has_pm = false;
-    explicit MaterialExtras(const std::string &folder_, bool has_illum_ = true, bool has_tf_ = true)
-        : folder(folder_), has_illum(has_illum_), has_tf(has_tf_)
+    explicit MaterialExtras(const std::string &file_, bool has_illum_ = true, bool has_tf_ = true)
+        : file(file_), has_illum(has_illum_), has_tf(has_tf_)
     {
     }
 };
@@ -60,8 +60,10 @@ class MaterialLibraryReader : public tinyobj::MaterialReader {
 };
 
 /* One tinyobjloader material as an ObjMaterial: absent illum -1, absent Tf 1 1 1, texture paths
- * resolved against the MTL's folder. */
-void copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to);
+ * resolved inside the MTL's folder (fs_resolve_inside: one that leaves it is an error naming the
+ * MTL, the material and the statement, unless --allow-outside-paths). */
+bool copy_material(const tinyobj::material_t &from, const MaterialExtras &extras, ObjMaterial *to,
+                   Error *err);
 
 /* The folder part of a path ("" for none, "/" for the root) and a name resolved against one. */
 std::string folder_of(const std::string &path);

@@ -202,10 +202,10 @@ bool load(const char *path, Mesh *out, Error *err)
     out->num_materials = materials.size();
     out->materials = static_cast<ObjMaterial *>(alloc_array(materials.size(), sizeof(ObjMaterial)));
     for (size_t i = 0; i < materials.size(); i++)
-        copy_material(materials[i],
-                      i < library.extras.size() ? library.extras[i]
-                                                : MaterialExtras(folder_of(path)),
-                      &out->materials[i]);
+        if (!copy_material(materials[i],
+                           i < library.extras.size() ? library.extras[i] : MaterialExtras(path),
+                           &out->materials[i], err))
+            return false;
     return emit_triangles(shapes, text, path, out, err);
 }
 

@@ -8,6 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The largest length (position coordinate, radius, influence) a hole may have: the geodesic
+ * integrator squares lengths and sums three squares in float, which stays finite below 1e18
+ * (3e36 < FLT_MAX 3.4e38); a hole at 3e38 made every value it computed inf or NaN. */
+#define BLACK_HOLE_MAX_LENGTH 1e18f
+
 /* An optional number (def when absent) that must satisfy lo <= v (lo < v when open_lo) and v <= hi. */
 static bool read_number(JsonParser *p, const cJSON *e, const char *name, const char *prefix,
                         float def, float lo, bool open_lo, float hi, float *out)
@@ -54,12 +59,12 @@ static bool parse_disk(JsonParser *p, const cJSON *e, const char *prefix, float 
             return false;
     }
     float inner, outer, temperature, opacity;
-    if (!read_number(p, e, "inner_radius", prefix, 6.0f * mass, 0.0f, true, FLT_MAX, &inner))
+    if (!read_number(p, e, "inner_radius", prefix, 6.0f * mass, 0.0f, true, BLACK_HOLE_MAX_LENGTH, &inner))
         return false;
     snprintf(key, sizeof key, "%s.outer_radius", prefix);
     if (!(item = json_member(e, "outer_radius")))
         return json_fail(p, ERR_JSON_VALUE, key, "missing");
-    if (!read_number(p, e, "outer_radius", prefix, 0.0f, 0.0f, true, FLT_MAX, &outer))
+    if (!read_number(p, e, "outer_radius", prefix, 0.0f, 0.0f, true, BLACK_HOLE_MAX_LENGTH, &outer))
         return false;
     snprintf(key, sizeof key, "%s.inner_radius", prefix);
     if (!((double)inner > 2.0 * mass))
@@ -104,6 +109,11 @@ static bool parse_hole(JsonParser *p, const cJSON *e, const char *prefix, BlackH
         return json_fail(p, ERR_JSON_VALUE, key, "missing");
     if (!json_read_vec3(p, item, key, pos))
         return false;
+    for (int c = 0; c < 3; c++)
+        if (!(fabsf(pos[c]) <= BLACK_HOLE_MAX_LENGTH))
+            return json_fail(p, ERR_JSON_VALUE, key, "[%g, %g, %g]: coordinates must lie within "
+                             "+-%g (the lensing is integrated in float)", pos[0], pos[1], pos[2],
+                             (double)BLACK_HOLE_MAX_LENGTH);
     snprintf(key, sizeof key, "%s.mass", prefix);
     if (!(item = json_member(e, "mass")))
         return json_fail(p, ERR_JSON_VALUE, key, "missing");
@@ -128,6 +138,14 @@ static bool parse_hole(JsonParser *p, const cJSON *e, const char *prefix, BlackH
             return json_fail(p, ERR_JSON_VALUE, key,
                              "%g must lie beyond the photon sphere (3M) and the disk (%g)", influence,
                              extent);
+    }
+    if (!(influence <= BLACK_HOLE_MAX_LENGTH)) { /* from mass (its default) or as given */
+        if (!json_member(e, "influence_radius"))
+            snprintf(key, sizeof key, "%s.mass", prefix);
+        return json_fail(p, ERR_JSON_VALUE, key, "%g gives an influence radius of %g, over %g (the "
+                         "lensing is integrated in float)", json_member(e, "influence_radius") ?
+                         (double)influence : (double)mass, (double)influence,
+                         (double)BLACK_HOLE_MAX_LENGTH);
     }
     h->normal.s[3] = influence;
     return true;

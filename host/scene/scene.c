@@ -316,9 +316,12 @@ bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Er
         memcpy(out->data.analytic_lights, out->desc.lights, bytes);
         out->data.num_analytic = (uint32_t)out->desc.num_lights;
     }
+    Error env_err = {0}; /* named by its key, as a texture's file is (textures.NAME.file) */
     if (out->desc.environment[0] &&
         !environment_load(&out->data.environment, out->desc.environment, out->desc.environment_scale,
-                          out->desc.environment_rotation, err)) {
+                          out->desc.environment_rotation, &env_err)) {
+        error_set(err, env_err.code, out->desc.path, 0, "%s: environment.file: %s", out->desc.path,
+                  env_err.message);
         scene_free(out);
         return false;
     }

@@ -240,8 +240,10 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
     if ((item = json_member(obj, "scale"))) {
         if (!json_read_float(p, item, "environment.scale", &d->environment_scale))
             return false;
-        if (!(d->environment_scale >= 0.0f))
-            return json_fail(p, ERR_JSON_VALUE, "environment.scale", "%g must be >= 0",
+        /* At most 1e9 (a sun-lit sky in physical units is about 1e5): 1e39 became inf in float
+         * and a black image; the map's luminance sums must stay finite. */
+        if (!(d->environment_scale >= 0.0f) || !(d->environment_scale <= 1e9f))
+            return json_fail(p, ERR_JSON_VALUE, "environment.scale", "%g must be in [0, 1e9]",
                              d->environment_scale);
     }
     return !(item = json_member(obj, "rotation")) ||

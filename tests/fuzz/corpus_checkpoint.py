@@ -112,4 +112,17 @@ def checkpoint_cases():
     body = bytearray(good[:-8])
     body[80] |= 2
     checkpoint_case("bitmap-stray", with_checksum(bytes(body)), "error", "made for another scene")
-    checkpoint_case("folder", None, "error", "not a regular file", setup="mkdir out.png.ptckpt")
+    # Special files where the checkpoint is read: refused by name before any read (a FIFO hung).
+    checkpoint_case("folder", None, "error", "is a directory", setup="mkdir out.png.ptckpt")
+    checkpoint_case("fifo", None, "error", "is a FIFO", setup="mkfifo out.png.ptckpt")
+    checkpoint_case("device", None, "error", "is a character device",
+                    setup="ln -s /dev/zero out.png.ptckpt")
+    checkpoint_case("dangling-link", None, "error", "start without --resume",
+                    setup="ln -s absent out.png.ptckpt")
+    # One flipped bit anywhere (header, bitmap, sums, checksum): refused, never read as a film.
+    for offset in (9, 17, 30, 45, 70, 80, len(good) - 9, len(good) - 1):
+        flipped = bytearray(good)
+        flipped[offset] ^= 0x10
+        checkpoint_case("bit-%d" % offset, bytes(flipped), "error", None)
+    for cut in (1, 7, 79, 81, 88, len(good) - 1):
+        checkpoint_case("cut-%d" % cut, good[:cut], "error", None)

@@ -76,6 +76,26 @@ def env_cases():
     for var, values in settings:
         for i, value in enumerate(values):
             case("env-%s-%d" % (var, i), scene, base, "any", env={var: value})
+    # Issue 42: PT_TEST_RAISE with bad values is one line; good ones stop the render (unit path
+    # and --quiet included) and still write the image.
+    for i, value in enumerate(["SEGV@render", "INT@", "@render", "TERM@unit:0", "TERM@unit:x",
+                               "HUP@nowhere", "INT@render:99999999999", "", "TERM"]):
+        case("env-PT_TEST_RAISE-bad-%d" % i, scene, base, "any", env={"PT_TEST_RAISE": value})
+    for i, (value, extra) in enumerate([("TERM@render", []), ("INT@unit", ["--unit-spp", "1"]),
+                                        ("HUP@unit", ["--checkpoint", "1000"])]):
+        case("env-PT_TEST_RAISE-stop-%d" % i, scene, base + extra, "any",
+             env={"PT_TEST_RAISE": value})
+    # Flags given a value, the confinement option, time limits on the unit path.
+    for i, args in enumerate([["--help=1"], ["render", "--help=1"], base + ["--quiet=2"],
+                              base + ["--allow-outside-paths=1"], base + ["--allow-outside-paths"],
+                              base + ["--unit-spp", "1", "--time-limit", "0.001"],
+                              base + ["--checkpoint", "1000", "--time-limit", "0.001"]]):
+        case("cli-issue42-%d" % i, scene, args, "any")
+    # An MTL texture path that leaves the folder: refused unless --allow-outside-paths.
+    mtl_scene = {"m.obj": "mtllib m.mtl\n" + TRIANGLE.replace("f 1", "usemtl a\nf 1"),
+                 "m.mtl": "newmtl a\nmap_Kd ../../../../etc/passwd\n"}
+    case("mtl-escape", mtl_scene, ["render", "m.obj"] + TINY, "error", needle="leaves the file")
+    case("mtl-escape-allowed", mtl_scene, ["render", "m.obj", "--allow-outside-paths"] + TINY, "any")
     cache_env = {"XDG_CACHE_HOME": "cache"}
     for name, xdg, setup in [("file", "f", "touch f"), ("proc", "/proc/cache", None),
                              ("missing-deep", "a/b/c/d", None), ("long", "l" * 3000, None),
