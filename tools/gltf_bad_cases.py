@@ -6,6 +6,7 @@ import json
 import os
 import struct
 
+from gltf_hostile_cases import hostile_variants
 from gltf_writer import glb, with_buffer, write
 
 
@@ -51,7 +52,7 @@ def bad_variants(doc, binary):
     out.append(("nan_vertex.gltf", {"nan_vertex.gltf": json.dumps(with_buffer(doc, "nan.bin", len(binary))),
                                     "nan.bin": bytes(nan_bin)},
                 "meshes[5].primitives[0].attributes.POSITION"))
-    return out
+    return out + hostile_variants(doc, binary)
 
 
 def write_bad_cases(out, doc, binary):

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <cJSON.h>
 
 extern "C" {
@@ -51,22 +53,25 @@ bool supported(const std::string &name)
 struct FileLog {
     std::string failed, reason;
     ErrorCode code = ERR_NONE;
+    bool uris_checked = false; /* gltf_io::check_json vetted the URIs: files may be opened */
 };
 
+/* Only a regular file "exists": opening a FIFO to find out would wait for a writer forever. */
 bool file_exists(const std::string &name, void *user)
 {
-    FILE *f = fopen(name.c_str(), "rb");
-    if (f) {
-        fclose(f);
-        return true;
-    }
     FileLog *log = static_cast<FileLog *>(user);
-    if (log->failed.empty()) {
+    struct stat st;
+    int found = log->uris_checked ? stat(name.c_str(), &st) : -1;
+    bool missing = found != 0 && errno == ENOENT, regular = found == 0 && S_ISREG(st.st_mode);
+    if (!regular && log->failed.empty()) {
         log->failed = name;
-        log->reason = strerror(errno);
-        log->code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
+        log->reason = !log->uris_checked ? "not read (the JSON did not parse)"
+                      : missing ? "no such file" : found != 0 ? strerror(errno)
+                      : S_ISDIR(st.st_mode) ? "is a directory, not a file"
+                      : "is not a regular file (a FIFO or device is never read)";
+        log->code = missing ? ERR_FILE_MISSING : ERR_FILE_READ;
     }
-    return false;
+    return regular;
 }
 
 std::string expand_path(const std::string &name, void *) { return name; }
@@ -75,7 +80,9 @@ bool read_file(std::vector<unsigned char> *out, std::string *err, const std::str
 {
     char *data;
     size_t size;
-    Error e;
+    Error e = {};
+    if (!static_cast<FileLog *>(user)->uris_checked)
+        return false;
     if (!input_file_read(name.c_str(), "a glTF buffer or image", INPUT_LIMIT_OBJ, &data, &size, &e)) {
         FileLog *log = static_cast<FileLog *>(user);
         if (log->failed.empty()) {
@@ -97,12 +104,13 @@ bool write_file(std::string *, const std::string &, const std::vector<unsigned c
     return false;
 }
 
-/* Keeps an embedded image's encoded bytes (data URI or buffer view) undecoded in image->image;
- * an external image keeps only its uri (the material mapping reads the file). */
+/* Keeps a data URI image's encoded bytes undecoded in image->image; an external image keeps only
+ * its uri (the material mapping reads the file); one in a buffer view is copied after its range
+ * is checked (gltf_io::read_image_views: tinygltf passes the view's bytes unchecked). */
 bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
                       const unsigned char *bytes, int size, void *)
 {
-    if (image->uri.empty() && size > 0)
+    if (image->uri.empty() && image->bufferView < 0 && size > 0)
         image->image.assign(bytes, bytes + size);
     image->width = image->height = 0;
     return true;
@@ -129,6 +137,11 @@ bool check_glb(const char *path, const unsigned char *b, size_t size, Error *err
     if (length > size) {
         error_set(err, ERR_OBJ_PARSE, path, 0, "%s: truncated GLB: the header says %u bytes, the "
                   "file has %zu", path, length, size);
+        return false;
+    }
+    if (length < 20) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: GLB without a JSON chunk (the header says %u "
+                  "bytes)", path, length);
         return false;
     }
     size_t at = 12;
@@ -198,7 +211,17 @@ bool parse(const char *path, tinygltf::Model *model, Error *err)
         free(data);
         return false;
     }
+    if (size == 0 || strspn(data, " \t\r\n") == size) {
+        free(data);
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: empty file (neither glTF JSON nor GLB)", path);
+        return false;
+    }
     FileLog log;
+    if (!gltf_io::check_json(path, glb ? data + 20 : data, glb ? le32(bytes + 12) : size,
+                             &log.uris_checked, err)) {
+        free(data);
+        return false;
+    }
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({file_exists, expand_path, read_file, write_file, &log});
     loader.SetImageLoader(keep_image_bytes, nullptr);
@@ -220,7 +243,7 @@ bool parse(const char *path, tinygltf::Model *model, Error *err)
         }
     }
     free(data);
-    return ok;
+    return ok && gltf_io::read_image_views(*model, path, err);
 }
 
 bool check_extensions(const char *path, const tinygltf::Model &m, Error *err)

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+/* Hostile input to the v2 readers (issue 42) that a generated file cannot carry by itself: a FIFO
+ * named by a glTF buffer or image URI (opening one to see whether it exists waited for a writer
+ * forever), URIs leaving the file's folder (refused unless --allow-outside-paths), and JSON
+ * nested 100,000 deep in a pt scene (one clear line, not cJSON's "malformed" at its limit). The
+ * glTF memory-error cases are files: tools/gltf_hostile_cases.py, run by test_io_gltf. */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "base/fs.h"
+#include "scene/scene.h"
+#include "support.h"
+
+static const char *generate(void)
+{
+    const char *dir = test_temp_dir();
+    char command[2048];
+    snprintf(command, sizeof command, "python3 tools/make_gltf_tests.py '%s' >/dev/null", dir);
+    cr_assert_eq(system(command), 0, "%s failed", command);
+    return dir;
+}
+
+/* features.gltf with its first `from` replaced by `to`, written as dir/name. */
+static const char *features_with(const char *dir, const char *name, const char *from, const char *to)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/features.gltf", dir);
+    size_t size;
+    char *text = test_read_file(path, &size);
+    char *at = strstr(text, from);
+    cr_assert(at, "features.gltf has no %s", from);
+    size_t out_size = size + strlen(to) + 1;
+    char *out = malloc(out_size);
+    snprintf(out, out_size, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    const char *written = test_write_file(dir, name, out);
+    free(text);
+    free(out);
+    return written;
+}
+
+static void expect_refused(const char *path, const char *needle)
+{
+    Scene s;
+    Error err = {0};
+    cr_assert_not(scene_load(path, &s, &err), "%s loaded", path);
+    cr_expect(strstr(err.message, needle) && !strchr(err.message, '\n'),
+              "\"%s\" should name \"%s\" on one line", err.message, needle);
+}
+
+Test(hostile_readers, gltf_fifo_uris_are_refused_without_waiting, .timeout = 120)
+{
+    const char *dir = generate();
+    char fifo[1024];
+    snprintf(fifo, sizeof fifo, "%s/pipe.bin", dir);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    expect_refused(features_with(dir, "fifo_buffer.gltf", "\"features.bin\"", "\"pipe.bin\""),
+                   "buffers[0].uri \"");
+    /* A FIFO image used by a material: the texture reader refuses it by name. */
+    const char *image = features_with(dir, "fifo_image.gltf", "\"asset\": {",
+                                      "\"images\": [{\"uri\": \"pipe.bin\"}], \"textures\": "
+                                      "[{\"source\": 0}], \"asset\": {");
+    char *text = test_read_file(image, NULL);
+    char *pbr = strstr(text, "\"pbrMetallicRoughness\": {");
+    cr_assert(pbr);
+    pbr += strlen("\"pbrMetallicRoughness\": {");
+    char *used = malloc(strlen(text) + 64);
+    sprintf(used, "%.*s\"baseColorTexture\": {\"index\": 0}, %s", (int)(pbr - text), text, pbr);
+    expect_refused(test_write_file(dir, "fifo_texture.gltf", used), "pipe.bin");
+    free(used);
+    free(text);
+}
+
+Test(hostile_readers, gltf_uris_stay_in_the_folder_unless_allowed, .timeout = 120)
+{
+    const char *dir = generate();
+    const char *slash = strrchr(dir, '/');
+    char escaping[1200];
+    snprintf(escaping, sizeof escaping, "\"../%s/features.bin\"", slash + 1);
+    const char *path = features_with(dir, "outside.gltf", "\"features.bin\"", escaping);
+    expect_refused(path, "buffers[0].uri \"../");
+    fs_set_allow_outside_paths(true);
+    Scene s;
+    Error err = {0};
+    bool ok = scene_load(path, &s, &err);
+    fs_set_allow_outside_paths(false);
+    cr_assert(ok, "with --allow-outside-paths: %s", err.message);
+    scene_free(&s);
+}
+
+Test(hostile_readers, json_scene_nested_too_deep_is_one_clear_line)
+{
+    const char *dir = test_temp_dir();
+    size_t depth = 100000, size = 2 * depth + 64;
+    char *text = malloc(size);
+    int n = sprintf(text, "{\"version\": 2, \"x\": ");
+    memset(text + n, '[', depth);
+    memset(text + n + depth, ']', depth);
+    strcpy(text + n + 2 * depth, "}");
+    const char *path = test_write_file(dir, "deep.json", text);
+    free(text);
+    expect_refused(path, "deep.json:1: JSON nested more than 1000 levels deep");
+}
