@@ -12,6 +12,7 @@
 
 #include "base/fs.h"
 #include "scene/scene.h"
+#include "scene/scene_data.h"
 #include "support.h"
 
 static const char *generate(void)
@@ -102,4 +103,56 @@ Test(hostile_readers, json_scene_nested_too_deep_is_one_clear_line)
     const char *path = test_write_file(dir, "deep.json", text);
     free(text);
     expect_refused(path, "deep.json:1: JSON nested more than 1000 levels deep");
+}
+
+/* 10^5 nodes placing one mesh, and 10^5 primitives in one mesh, load (they took minutes: every
+ * object grew the scene's arrays by its own size, O(n^2) bytes copied), and the arrays grow
+ * geometrically: at most ~log2(n) reallocations, counted, not timed. */
+static void load_many(const char *kind, Scene *s)
+{
+    const char *dir = test_temp_dir();
+    char command[2048], path[1024];
+    snprintf(path, sizeof path, "%s/many_%s.glb", dir, kind);
+    snprintf(command, sizeof command, "python3 tools/gltf_hostile_cases.py %s 100000 '%s'", kind, path);
+    cr_assert_eq(system(command), 0, "%s failed", command);
+    Error err = {0};
+    cr_assert(scene_load(path, s, &err), "%s", err.message);
+}
+
+Test(hostile_readers, gltf_with_1e5_nodes_or_primitives_loads, .timeout = 600)
+{
+    Scene s;
+    load_many("nodes", &s);
+    cr_expect_eq(s.data.num_instances, 100000);
+    scene_free(&s);
+    load_many("primitives", &s);
+    cr_expect_eq(s.data.num_triangles, 100000);
+    scene_free(&s);
+}
+
+Test(hostile_readers, scene_arrays_grow_geometrically)
+{
+    SceneData data;
+    scene_data_init(&data);
+    int grew[3] = {0, 0, 0};
+    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    int32_t corners[9] = {0, -1, -1, 1, -1, -1, 2, -1, -1}, material = -1;
+    Mesh mesh = {.positions = positions, .num_positions = 3, .corners = corners,
+                 .material_ids = &material, .num_triangles = 1, .num_faces = 1};
+    for (int i = 0; i < 100000; i++) {
+        size_t before[3] = {data.vertex_capacity, data.mesh_capacity, data.instance_capacity};
+        uint32_t first_triangle = data.num_triangles, first_vertex = data.num_vertices;
+        Error err = {0};
+        SceneInstance inst = {.mesh = data.num_meshes, .object = i, .to_world = affine_identity()};
+        cr_assert(scene_data_append_mesh(&data, &mesh, "tri", &err) &&
+                  scene_data_add_mesh(&data, first_triangle, first_vertex, &err) &&
+                  scene_data_add_instance(&data, &inst, &err), "%s", err.message);
+        size_t after[3] = {data.vertex_capacity, data.mesh_capacity, data.instance_capacity};
+        for (int k = 0; k < 3; k++)
+            grew[k] += after[k] != before[k];
+    }
+    for (int k = 0; k < 3; k++)
+        cr_expect_leq(grew[k], 40, "array %d reallocated %d times for 100000 objects", k, grew[k]);
+    cr_expect_geq(data.triangle_capacity, data.num_triangles);
+    scene_data_free(&data);
 }

@@ -84,3 +84,26 @@ def hostile_variants(doc, binary):
     out.append(("sparse_value_max.gltf", {"sparse_value_max.gltf": json.dumps(d), "big.bin": big},
                 "meshes[2].primitives[0].indices: index 4294967295"))
     return out
+
+
+def many(kind, n):
+    """A GLB of one triangle in one mesh placed n times ("nodes"), or of one mesh of n primitives
+    sharing the triangle's accessor ("primitives"): 10^5 of either took minutes to load (a
+    realloc per object copied O(n^2) bytes)."""
+    pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    doc = {"asset": {"version": "2.0"}, "buffers": [{"byteLength": len(pos)}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                          "min": [0, 0, 0], "max": [1, 1, 0]}]}
+    prims = n if kind == "primitives" else 1
+    doc["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}}] * prims}]
+    doc["nodes"] = ([{"mesh": 0, "translation": [i % 1000, i // 1000, 0]} for i in range(n)]
+                    if kind == "nodes" else [{"mesh": 0}])
+    doc["scenes"] = [{"nodes": list(range(len(doc["nodes"])))}]
+    return glb(doc, pos)
+
+
+if __name__ == "__main__":  # gltf_hostile_cases.py nodes|primitives N OUT.glb
+    import sys
+    with open(sys.argv[3], "wb") as f:
+        f.write(many(sys.argv[1], int(sys.argv[2])))

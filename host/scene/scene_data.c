@@ -80,6 +80,13 @@ static CornerSlot *corner_map_find(CornerMap *map, const int32_t key[3])
     }
 }
 
+size_t scene_data_grown_capacity(size_t capacity, size_t needed)
+{
+    if (needed <= capacity)
+        return capacity;
+    return needed > 2 * capacity ? needed : 2 * capacity;
+}
+
 static bool grow(void **array, size_t count, size_t element_size)
 {
     void *grown = realloc(*array, (count ? count : 1) * element_size);
@@ -273,25 +280,32 @@ bool scene_data_append_object(SceneData *data, const Mesh *mesh, const char *mes
     }
     size_t num_triangles = data->num_triangles + mesh->num_triangles;
     uint32_t *first_corner = malloc((max_new_vertices ? max_new_vertices : 1) * sizeof *first_corner);
-    if (!first_corner || !grow((void **)&data->triangles, num_triangles, sizeof(Triangle)) ||
-        !grow((void **)&data->material_ids, num_triangles, sizeof(uint32_t))) {
+    size_t triangle_capacity = scene_data_grown_capacity(data->triangle_capacity, num_triangles);
+    if (!first_corner || (triangle_capacity != data->triangle_capacity &&
+                          (!grow((void **)&data->triangles, triangle_capacity, sizeof(Triangle)) ||
+                           !grow((void **)&data->material_ids, triangle_capacity, sizeof(uint32_t))))) {
         free(first_corner);
         free(mesh_to_scene);
         error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         return false;
     }
+    data->triangle_capacity = triangle_capacity;
     uint32_t num_new = 0;
     bool normals_ok = true;
     bool ok = unify_corners(data, mesh, mesh_path, mesh_to_scene, options->material, first_corner,
                             &num_new, err);
     free(mesh_to_scene);
     size_t num_vertices = (size_t)data->num_vertices + num_new;
-    if (ok && !(grow((void **)&data->positions, num_vertices, sizeof(float4)) &&
-                grow((void **)&data->normals, num_vertices, sizeof(float4)) &&
-                grow((void **)&data->uvs, num_vertices, sizeof(float2)))) {
+    size_t vertex_capacity = scene_data_grown_capacity(data->vertex_capacity, num_vertices);
+    if (ok && vertex_capacity != data->vertex_capacity &&
+        !(grow((void **)&data->positions, vertex_capacity, sizeof(float4)) &&
+          grow((void **)&data->normals, vertex_capacity, sizeof(float4)) &&
+          grow((void **)&data->uvs, vertex_capacity, sizeof(float2)))) {
         error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         ok = false;
     }
+    if (ok)
+        data->vertex_capacity = vertex_capacity;
     ok = ok && fill_vertices(data, mesh, mesh_path, first_corner, num_new, &normals_ok, err);
     uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
     if (ok) {
