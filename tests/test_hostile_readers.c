@@ -8,9 +8,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "base/fs.h"
+#include "io/gltf_loader.h"
 #include "scene/scene.h"
 #include "scene/scene_data.h"
 #include "support.h"
@@ -155,4 +158,87 @@ Test(hostile_readers, scene_arrays_grow_geometrically)
         cr_expect_leq(grew[k], 40, "array %d reallocated %d times for 100000 objects", k, grew[k]);
     cr_expect_geq(data.triangle_capacity, data.num_triangles);
     scene_data_free(&data);
+}
+
+/* A POINTS or LINES primitive is skipped (one warning) and the triangles render: the quad of
+ * the features file (meshes[1], 2 triangles, placed once) as LINES leaves 2 triangles fewer. */
+Test(hostile_readers, gltf_lines_primitive_is_skipped_not_refused, .timeout = 120)
+{
+    const char *dir = generate();
+    Scene all, lines;
+    Error err = {0};
+    char path[1024];
+    snprintf(path, sizeof path, "%s/features.gltf", dir);
+    cr_assert(scene_load(path, &all, &err), "%s", err.message);
+    const char *skipped = features_with(dir, "lines.gltf", "\"indices\": 5,",
+                                        "\"mode\": 1, \"indices\": 5,");
+    cr_assert(scene_load(skipped, &lines, &err), "%s", err.message);
+    cr_expect_eq(lines.data.num_triangles + 2, all.data.num_triangles);
+    scene_free(&all);
+    scene_free(&lines);
+}
+
+/* The warnings of scene_load(path) (stderr captured), or NULL when it fails. */
+static char *load_warnings(const char *dir, const char *path)
+{
+    char log[1024];
+    snprintf(log, sizeof log, "%s/stderr.txt", dir);
+    fflush(stderr);
+    int saved = dup(2), fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    cr_assert(saved >= 0 && fd >= 0);
+    dup2(fd, 2);
+    close(fd);
+    Scene s;
+    Error err = {0};
+    bool ok = scene_load(path, &s, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    cr_assert(ok, "%s", err.message);
+    scene_free(&s);
+    return test_read_file(log, NULL);
+}
+
+static int count(const char *text, const char *needle)
+{
+    int n = 0;
+    for (const char *at = text; (at = strstr(at, needle)); at++)
+        n++;
+    return n;
+}
+
+/* Skins, morph targets, animations and orthographic cameras: one warning each (none --quiet). */
+Test(hostile_readers, gltf_dropped_features_warn_once_each, .timeout = 120)
+{
+    const char *dir = generate();
+    const char *path = features_with(dir, "dropped.gltf", "\"asset\": {",
+                                     "\"skins\": [{\"joints\": [0]}, {\"joints\": [1]}], "
+                                     "\"animations\": [{\"channels\": [], \"samplers\": []}], "
+                                     "\"asset\": {");
+    char *text = test_read_file(path, NULL);
+    char *more = malloc(strlen(text) + 256);
+    char *cams = strstr(text, "\"cameras\": [");
+    cr_assert(cams);
+    cams += strlen("\"cameras\": [");
+    sprintf(more, "%.*s{\"type\": \"orthographic\", \"orthographic\": {\"xmag\": 1, \"ymag\": 1, "
+            "\"znear\": 0.1, \"zfar\": 10}}, %s", (int)(cams - text), text, cams);
+    char *weights = strstr(more, "\"primitives\": [");
+    cr_assert(weights);
+    const char *insert = "\"weights\": [0.5], ";
+    memmove(weights + strlen(insert), weights, strlen(weights) + 1);
+    memcpy(weights, insert, strlen(insert));
+    path = test_write_file(dir, "dropped.gltf", more);
+    free(more);
+    free(text);
+    char *warnings = load_warnings(dir, path);
+    const char *features[] = {"skins: pt ignores 2 skins", "morph targets: pt ignores those of 1 mesh",
+                              "animations: pt ignores 1 animation", "cameras: pt ignores 1 orthographic"};
+    for (int i = 0; i < 4; i++)
+        cr_expect_eq(count(warnings, features[i]), 1, "\"%s\" once in:\n%s", features[i], warnings);
+    free(warnings);
+    gltf_loader_set_quiet(true);
+    warnings = load_warnings(dir, path);
+    gltf_loader_set_quiet(false);
+    cr_expect_eq(count(warnings, "pt ignores"), 0, "--quiet:\n%s", warnings);
+    free(warnings);
 }

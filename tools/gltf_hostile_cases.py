@@ -66,6 +66,11 @@ def hostile_variants(doc, binary):
         ("image_escapes.gltf", variant(lambda d: d.update(images=[{"uri": "a/%2E%2E/../../x.png"}])),
          "images[0].uri"),
         ("empty.glb", b"", "empty file"),
+        ("huge_matrix.gltf", variant(lambda d: d["nodes"][5].update(matrix=[1e308, 0, 0, 0, 0, 1e308, 0, 0,
+                                                                         0, 0, 1e308, 0, 0, 0, 0, 1])),
+         "nodes[5]: its world matrix has an entry of 1e+308"),
+        ("huge_scale.gltf", variant(lambda d: d["nodes"][6].update(scale=[1e300] * 3)),
+         "nodes[6]: its world matrix has an entry of"),
     ]
     out = [(name, {name: data, "features.bin": binary}, expect) for name, data, expect in cases]
     d = with_buffer(doc, "big.bin", len(big))

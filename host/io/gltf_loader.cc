@@ -263,6 +263,85 @@ bool check_extensions(const char *path, const tinygltf::Model &m, Error *err)
     return true;
 }
 
+/* What pt reads nothing of: one warning per kind of feature (as for unknown extensions), so that
+ * a rest pose or a perspective view is not a surprise. */
+void warn_dropped(const char *path, const tinygltf::Model &m)
+{
+    if (g_quiet)
+        return;
+    size_t morphed = 0, orthographic = 0;
+    for (const tinygltf::Mesh &mesh : m.meshes) {
+        bool targets = !mesh.weights.empty();
+        for (const tinygltf::Primitive &prim : mesh.primitives)
+            targets = targets || !prim.targets.empty();
+        morphed += targets;
+    }
+    for (const tinygltf::Camera &camera : m.cameras)
+        orthographic += camera.type == "orthographic";
+    if (!m.skins.empty())
+        warn("%s: skins: pt ignores %zu skin%s (meshes are drawn in their bind pose)", path,
+             m.skins.size(), m.skins.size() == 1 ? "" : "s");
+    if (morphed)
+        warn("%s: morph targets: pt ignores those of %zu mesh%s (drawn without weights)", path,
+             morphed, morphed == 1 ? "" : "es");
+    if (!m.animations.empty())
+        warn("%s: animations: pt ignores %zu animation%s (the scene is drawn at rest)", path,
+             m.animations.size(), m.animations.size() == 1 ? "" : "s");
+    if (orthographic)
+        warn("%s: cameras: pt ignores %zu orthographic camera%s (it renders perspective views)",
+             path, orthographic, orthographic == 1 ? "" : "s");
+}
+
+bool is_points_or_lines(int mode)
+{
+    return mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP;
+}
+
+/* Decodes every placed primitive but POINTS and LINES ones, which are skipped with one warning
+ * (a file of nothing else is an error): the total is bounded so that a small file whose
+ * primitives share one accessor cannot decode without bound. */
+bool decode_placed(const char *path, const tinygltf::Model &model, GltfFile *out, Error *err)
+{
+    size_t total = 0;
+    int skipped = 0, decoded = 0, first_skipped = -1;
+    for (int p = 0; p < out->num_primitives; p++) {
+        GltfPrimitive *prim = &out->primitives[p];
+        if (!prim->placed)
+            continue;
+        if (is_points_or_lines(model.meshes[prim->mesh_index].primitives[prim->primitive_index].mode)) {
+            prim->skipped = true;
+            first_skipped = skipped++ ? first_skipped : p;
+            continue;
+        }
+        decoded++;
+        if (!gltf_io::decode_primitive(model, prim->mesh_index, prim->primitive_index, path,
+                                       &prim->mesh, err))
+            return false;
+        total += prim->mesh.num_positions + prim->mesh.num_triangles;
+        if (total > DECODED_LIMIT) {
+            error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
+                      "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
+            return false;
+        }
+    }
+    if (skipped) {
+        const GltfPrimitive *first = &out->primitives[first_skipped];
+        int mode = model.meshes[first->mesh_index].primitives[first->primitive_index].mode;
+        const char *names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+        if (!decoded) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: meshes[%d].primitives[%d].mode: %s, and "
+                      "every other placed primitive is points or lines too: pt renders triangles",
+                      path, first->mesh_index, first->primitive_index, names[mode]);
+            return false;
+        }
+        if (!g_quiet)
+            warn("%s: %d POINTS or LINES primitive%s skipped (the first: meshes[%d].primitives[%d], "
+                 "%s): pt renders triangles", path, skipped, skipped == 1 ? "" : "s",
+                 first->mesh_index, first->primitive_index, names[mode]);
+    }
+    return true;
+}
+
 } // namespace
 
 /* gltf_scene_graph.cc: nodes, cameras and lights. */
@@ -285,24 +364,11 @@ extern "C" bool gltf_load(const char *path, GltfFile *out, Error *err)
     out->model = model;
     bool ok;
     try {
+        /* Only the meshes that nodes place are decoded, each once. */
         ok = parse(path, model, err) && check_extensions(path, *model, err) &&
-             gltf_walk_scene(*model, path, out, err);
-        /* Only the meshes that nodes place are decoded, each once. Primitives may share one
-         * accessor: the total is bounded so that a small file cannot decode without bound. */
-        size_t total = 0;
-        for (int p = 0; ok && p < out->num_primitives; p++) {
-            GltfPrimitive *prim = &out->primitives[p];
-            if (!prim->placed)
-                continue;
-            ok = gltf_io::decode_primitive(*model, prim->mesh_index, prim->primitive_index, path,
-                                           &prim->mesh, err);
-            total += prim->mesh.num_positions + prim->mesh.num_triangles;
-            if (ok && total > DECODED_LIMIT) {
-                ok = false;
-                error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
-                          "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
-            }
-        }
+             gltf_walk_scene(*model, path, out, err) && decode_placed(path, *model, out, err);
+        if (ok)
+            warn_dropped(path, *model);
     } catch (const std::bad_alloc &) {
         ok = false;
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);
