@@ -4,6 +4,7 @@
 
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
+#include "io/ply_reader.h"
 #include "render/aov_layers.h"
 #include "render/session.h"
 #include "scene/scene.h"
@@ -132,6 +133,7 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     o->quiet = true;
     obj_loader_set_quiet(true);  /* MTL statements pt does not use: no warnings */
     gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
+    ply_reader_set_quiet(true);  /* nor PLY header lines of other writers */
     return true;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/fs.h"
 #include "scene/vertex_normals.h"
 
 /* Triangles that use the default material carry this id until scene_data_finish appends the one
@@ -241,6 +242,11 @@ static void note_faceless(SceneData *data, const Mesh *mesh, const char *mesh_pa
                  "all %zu faces are degenerate", mesh->num_faces);
     else if (stat(mesh_path, &st) == 0 && st.st_size == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "the file is empty");
+    else if (fs_has_suffix(mesh_path, ".ply") && mesh->num_positions) /* PLY's words, not OBJ's */
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "a point cloud: %zu vertices "
+                 "and no face or tristrips element; pt renders triangles", mesh->num_positions);
+    else if (fs_has_suffix(mesh_path, ".ply"))
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "no vertices and no faces");
     else if (mesh->num_positions == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "no 'v' or 'f' records");
     else
