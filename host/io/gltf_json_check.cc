@@ -47,8 +47,13 @@ bool check_uris(const char *path, const cJSON *root, Error *err)
                 continue;
             char what[64], resolved[4096];
             snprintf(what, sizeof what, "%s[%d].uri", section, i);
-            if (!fs_resolve_inside(path, url_decode(uri->valuestring).c_str(), what, resolved,
-                                   sizeof resolved, err))
+            std::string decoded = url_decode(uri->valuestring);
+            if (decoded.find('\0') != std::string::npos) { /* "a.bin%00.png" would open a.bin */
+                error_set(err, ERR_OBJ_PARSE, path, 0, "%s: %s \"%s\" decodes to a NUL byte", path,
+                          what, uri->valuestring);
+                return false;
+            }
+            if (!fs_resolve_inside(path, decoded.c_str(), what, resolved, sizeof resolved, err))
                 return false;
         }
     }

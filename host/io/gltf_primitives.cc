@@ -163,20 +163,21 @@ template <typename T> bool read_values(Reader &r, int index, int comps, std::vec
     if (a.bufferView < 0 && a.count > ZEROS_LIMIT) /* zeros cost memory but no file bytes */
         return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu without a buffer view is above pt's "
                       "limit %zu", index, a.count, ZEROS_LIMIT);
-    out.assign(a.count * comps, (T)0); /* no buffer view: zeros (then sparse values) */
-    size_t size = csize * comps;
+    size_t size = csize * comps, stride = size;
     char what[48];
     snprintf(what, sizeof what, "accessors[%d]", index);
-    if (a.bufferView >= 0) {
-        size_t stride = size;
+    const unsigned char *src = nullptr;
+    if (a.bufferView >= 0) { /* checked before the allocation: a count the view cannot hold */
         if (a.bufferView < (int)m.bufferViews.size() && m.bufferViews[a.bufferView].byteStride)
             stride = m.bufferViews[a.bufferView].byteStride;
         if (stride < size)
             return r.fail(ERR_OBJ_PARSE, "bufferViews[%d].byteStride %zu is below accessors[%d]'s "
                           "element size %zu", a.bufferView, stride, index, size);
-        const unsigned char *src;
         if (!view_range(r, a.bufferView, a.byteOffset, a.count, size, stride, what, &src))
             return false;
+    }
+    out.assign(a.count * comps, (T)0); /* no buffer view: zeros (then sparse values) */
+    if (src) {
         T *dst = out.data();
         if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && stride == size && sizeof(T) == 4) {
             memcpy(dst, src, a.count * size);

@@ -131,7 +131,8 @@ def gltf_v2_cases():
     import struct
     for name, data, needle in [
             ("glb-empty", b"", "empty file"), ("glb-magic-only", b"glTF", "truncated GLB"),
-            ("glb-header-only", struct.pack("<4sII", b"glTF", 2, 12), "JSON chunk"),
+            ("glb-header-only", struct.pack("<4sII", b"glTF", 2, 12), "truncated GLB"),
+            ("glb-header-only-padded", struct.pack("<4sII", b"glTF", 2, 12) + bytes(8), "JSON chunk"),
             ("glb-version-1", good[:4] + struct.pack("<I", 1) + good[8:], "version 1"),
             ("glb-length-short", good[:8] + struct.pack("<I", 19) + good[12:], None),
             ("glb-length-huge", good[:8] + struct.pack("<I", 2 ** 32 - 1) + good[12:], "truncated GLB"),
@@ -152,7 +153,7 @@ def gltf_v2_cases():
                   needle="images[0].uri")
     for name, uri, needle in [("folder", ".", "buffers[0].uri"), ("sub-folder", "sub", "buffers[0].uri"),
                               ("empty", "", None), ("missing", "none.bin", "buffers[0].uri"),
-                              ("nul", "features.bin%00x", None), ("long", "a" * 5000, None),
+                              ("nul", "features.bin%00x", "NUL byte"), ("long", "a" * 5000, None),
                               ("data-bad-base64", "data:application/octet-stream;base64,!!!!", None),
                               ("data-short", gen.data_uri(binary[:100]), None),
                               ("data-no-comma", "data:application/octet-stream;base64", None)]:
