@@ -11,6 +11,7 @@
 
 #include "io/obj_loader.h"
 #include "io/ply_reader.h"
+#include "scene/scene.h"
 #include "support.h"
 #include "xorshift.h"
 
@@ -204,7 +205,8 @@ Test(ply, bad_header)
     expect_error("ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", ERR_OBJ_PARSE, "line 3: element count '-3'");
     expect_error("ply\nformat ascii 1.0\nelement vertex 99999999999999999999\nend_header\n", ERR_OBJ_PARSE,
                  "element count '99999999999999999999'");
-    expect_error("ply\nformat ascii 1.0\nelemental vertex 3\nend_header\n", ERR_OBJ_PARSE, "line 3: unknown header keyword 'elemental'");
+    /* A line of no PLY keyword is ignored (one warning): here the vertex element is lost. */
+    expect_error("ply\nformat ascii 1.0\nelemental vertex 3\nend_header\n", ERR_OBJ_PARSE, "no 'vertex' element");
     expect_error(HEAD "property list float int vertex_indices\nend_header\n", ERR_OBJ_PARSE,
                  "list count type 'float' is not an integer type");
     expect_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
@@ -382,4 +384,92 @@ Test(ply, renders_like_the_obj)
     cr_assert(!memcmp(images[0], images[1], n * sizeof(float)), "the PLY renders differently");
     free(images[0]);
     free(images[1]);
+}
+
+/* Corners of triangle t of a loaded mesh (position indices). */
+static void expect_triangle(const Mesh *m, size_t t, int a, int b, int c)
+{
+    const int32_t *k = m->corners + 9 * t;
+    cr_expect(k[0] == a && k[3] == b && k[6] == c, "triangle %zu is %d %d %d, expected %d %d %d", t,
+              k[0], k[3], k[6], a, b, c);
+}
+
+/* tristrips (Cyberware scans): each index after two makes a triangle, every other one swapped so
+ * that all wind like the first; -1 restarts; repeated corners make no triangle. The same strip
+ * in ascii and binary big-endian (the scans' order). */
+Test(ply, tristrips_with_restarts_keep_their_winding)
+{
+    const char *dir = test_temp_dir();
+    static const int strip[] = {0, 1, 2, 3, 4, -1, 5, 1, 1, 2, 3};
+    const int n = sizeof strip / sizeof strip[0];
+    char text[2048];
+    int len = snprintf(text, sizeof text, "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\n"
+                       "property float y\nproperty float z\nelement tristrips 1\n"
+                       "property list int int vertex_indices\nend_header\n");
+    for (int v = 0; v < 6; v++)
+        len += snprintf(text + len, sizeof text - len, "%d %d 0\n", v % 3, v / 3);
+    len += snprintf(text + len, sizeof text - len, "%d", n);
+    for (int i = 0; i < n; i++)
+        len += snprintf(text + len, sizeof text - len, " %d", strip[i]);
+    snprintf(text + len, sizeof text - len, "\n");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/big.ply", dir);
+    FILE *f = fopen(path, "wb");
+    cr_assert(f);
+    fprintf(f, "ply\nformat binary_big_endian 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+            "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n");
+    for (int v = 0; v < 6; v++) {
+        float xyz[3] = {(float)(v % 3), (float)(v / 3), 0};
+        for (int c = 0; c < 3; c++) {
+            uint32_t bits;
+            memcpy(&bits, &xyz[c], 4);
+            unsigned char be[4] = {bits >> 24, bits >> 16, bits >> 8, bits};
+            fwrite(be, 1, 4, f);
+        }
+    }
+    for (int i = -1; i < n; i++) {
+        uint32_t value = (uint32_t)(i < 0 ? n : strip[i]);
+        unsigned char be[4] = {value >> 24, value >> 16, value >> 8, value};
+        fwrite(be, 1, 4, f);
+    }
+    fclose(f);
+    const char *paths[] = {test_write_file(dir, "strip.ply", text), path};
+    for (int i = 0; i < 2; i++) {
+        Mesh m;
+        load_ply_ok(paths[i], &m);
+        /* 0 1 2 3 4: (0 1 2) (2 1 3) (2 3 4); restart 5 1 1 2 3: (5 1 1) and (1 1 2) are
+         * degenerate (not drawn, but they count for the winding), then (1 2 3) at even parity. */
+        cr_assert_eq(m.num_triangles, 4, "%s: %zu triangles", paths[i], m.num_triangles);
+        expect_triangle(&m, 0, 0, 1, 2);
+        expect_triangle(&m, 1, 2, 1, 3);
+        expect_triangle(&m, 2, 2, 3, 4);
+        expect_triangle(&m, 3, 1, 2, 3);
+        mesh_free(&m);
+    }
+    expect_error("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement tristrips 1\nproperty list int int vertex_indices\n"
+                 "end_header\n" TRI "4 0 1 2 -2\n", ERR_OBJ_INDEX, "tristrips 0: vertex index -2");
+}
+
+/* Header lines of other writers (Blender 2.47's "Created by ...", one over 255 bytes) are
+ * ignored; a point cloud's message is in PLY's words, not OBJ's records. */
+Test(ply, unknown_header_lines_are_ignored_and_point_clouds_named)
+{
+    const char *dir = test_temp_dir();
+    char long_line[400];
+    memset(long_line, 'x', sizeof long_line - 1);
+    long_line[sizeof long_line - 1] = '\0';
+    char text[1024];
+    snprintf(text, sizeof text, "ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, "
+             "source file: 'x.blend'\n%s\n" HEAD FACE "end_header\n" TRI "3 0 1 2\n", long_line);
+    Mesh m;
+    load_ply_ok(test_write_file(dir, "blender.ply", text), &m);
+    cr_expect_eq(m.num_triangles, 1);
+    mesh_free(&m);
+    const char *cloud = test_write_file(dir, "cloud.ply", HEAD "end_header\n" TRI);
+    Scene s;
+    Error err = {0};
+    cr_assert_not(scene_load(cloud, &s, &err));
+    cr_expect(strstr(err.message, "a point cloud: 3 vertices and no face or tristrips element") &&
+              !strstr(err.message, "'f'"), "%s", err.message);
 }

@@ -6,6 +6,7 @@ import json
 import os
 import struct
 
+from gltf_hostile_cases import hostile_variants
 from gltf_writer import glb, with_buffer, write
 
 
@@ -29,9 +30,10 @@ def bad_variants(doc, binary):
          "meshes[1].primitives[0].indices: index 5"),
         ("inf_matrix.gltf",  # JSON has no infinity: scales of 1e300 under 1e300 overflow
          variant(lambda d: (d["nodes"][0].update(scale=[1e300] * 3), d["nodes"][2].update(scale=[1e300] * 3))),
-         "nodes[2]: its world matrix is not finite"),
-        ("lines.gltf", variant(lambda d: d["meshes"][1]["primitives"][0].update(mode=1)),
-         "meshes[1].primitives[0].mode"),
+         "nodes[1]: its world matrix"),  # nodes[1] (1e300 x 0.5) is met first
+        ("lines.gltf",  # every primitive LINES (one of several is skipped with a warning)
+         variant(lambda d: [p.update(mode=1) for m in d["meshes"] for p in m["primitives"]]),
+         "meshes[0].primitives[0].mode: LINES"),
         ("required_ext.gltf", variant(lambda d: d["extensionsRequired"].append("EXT_meshopt_compression")),
          "EXT_meshopt_compression"),
         ("cycle.gltf", variant(lambda d: d["nodes"][4].update(children=[2])), "nodes[2]"),
@@ -51,7 +53,7 @@ def bad_variants(doc, binary):
     out.append(("nan_vertex.gltf", {"nan_vertex.gltf": json.dumps(with_buffer(doc, "nan.bin", len(binary))),
                                     "nan.bin": bytes(nan_bin)},
                 "meshes[5].primitives[0].attributes.POSITION"))
-    return out
+    return out + hostile_variants(doc, binary)
 
 
 def write_bad_cases(out, doc, binary):

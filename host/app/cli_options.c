@@ -5,6 +5,7 @@
 #include "base/fs.h"
 #include "io/gltf_loader.h"
 #include "io/obj_loader.h"
+#include "io/ply_reader.h"
 #include "render/aov_layers.h"
 #include "render/denoise.h"
 #include "render/session.h"
@@ -167,6 +168,7 @@ static bool parse_quiet(const char *arg, const char *value, Options *o, Error *e
     o->quiet = true;
     obj_loader_set_quiet(true);  /* MTL statements pt does not use: no warnings */
     gltf_loader_set_quiet(true); /* nor glTF extensions pt ignores */
+    ply_reader_set_quiet(true);  /* nor PLY header lines of other writers */
     device_set_build_notice(false); /* nor the first-time kernel build */
     return true;
 }

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <cJSON.h>
 
 extern "C" {
@@ -51,22 +53,25 @@ bool supported(const std::string &name)
 struct FileLog {
     std::string failed, reason;
     ErrorCode code = ERR_NONE;
+    bool uris_checked = false; /* gltf_io::check_json vetted the URIs: files may be opened */
 };
 
+/* Only a regular file "exists": opening a FIFO to find out would wait for a writer forever. */
 bool file_exists(const std::string &name, void *user)
 {
-    FILE *f = fopen(name.c_str(), "rb");
-    if (f) {
-        fclose(f);
-        return true;
-    }
     FileLog *log = static_cast<FileLog *>(user);
-    if (log->failed.empty()) {
+    struct stat st;
+    int found = log->uris_checked ? stat(name.c_str(), &st) : -1;
+    bool missing = found != 0 && errno == ENOENT, regular = found == 0 && S_ISREG(st.st_mode);
+    if (!regular && log->failed.empty()) {
         log->failed = name;
-        log->reason = strerror(errno);
-        log->code = errno == ENOENT ? ERR_FILE_MISSING : ERR_FILE_READ;
+        log->reason = !log->uris_checked ? "not read (the JSON did not parse)"
+                      : missing ? "no such file" : found != 0 ? strerror(errno)
+                      : S_ISDIR(st.st_mode) ? "is a directory, not a file"
+                      : "is not a regular file (a FIFO or device is never read)";
+        log->code = missing ? ERR_FILE_MISSING : ERR_FILE_READ;
     }
-    return false;
+    return regular;
 }
 
 std::string expand_path(const std::string &name, void *) { return name; }
@@ -75,7 +80,9 @@ bool read_file(std::vector<unsigned char> *out, std::string *err, const std::str
 {
     char *data;
     size_t size;
-    Error e;
+    Error e = {};
+    if (!static_cast<FileLog *>(user)->uris_checked)
+        return false;
     if (!input_file_read(name.c_str(), "a glTF buffer or image", INPUT_LIMIT_OBJ, &data, &size, &e)) {
         FileLog *log = static_cast<FileLog *>(user);
         if (log->failed.empty()) {
@@ -97,12 +104,13 @@ bool write_file(std::string *, const std::string &, const std::vector<unsigned c
     return false;
 }
 
-/* Keeps an embedded image's encoded bytes (data URI or buffer view) undecoded in image->image;
- * an external image keeps only its uri (the material mapping reads the file). */
+/* Keeps a data URI image's encoded bytes undecoded in image->image; an external image keeps only
+ * its uri (the material mapping reads the file); one in a buffer view is copied after its range
+ * is checked (gltf_io::read_image_views: tinygltf passes the view's bytes unchecked). */
 bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
                       const unsigned char *bytes, int size, void *)
 {
-    if (image->uri.empty() && size > 0)
+    if (image->uri.empty() && image->bufferView < 0 && size > 0)
         image->image.assign(bytes, bytes + size);
     image->width = image->height = 0;
     return true;
@@ -129,6 +137,11 @@ bool check_glb(const char *path, const unsigned char *b, size_t size, Error *err
     if (length > size) {
         error_set(err, ERR_OBJ_PARSE, path, 0, "%s: truncated GLB: the header says %u bytes, the "
                   "file has %zu", path, length, size);
+        return false;
+    }
+    if (length < 20) {
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: GLB without a JSON chunk (the header says %u "
+                  "bytes)", path, length);
         return false;
     }
     size_t at = 12;
@@ -198,7 +211,17 @@ bool parse(const char *path, tinygltf::Model *model, Error *err)
         free(data);
         return false;
     }
+    if (size == 0 || strspn(data, " \t\r\n") == size) {
+        free(data);
+        error_set(err, ERR_OBJ_PARSE, path, 0, "%s: empty file (neither glTF JSON nor GLB)", path);
+        return false;
+    }
     FileLog log;
+    if (!gltf_io::check_json(path, glb ? data + 20 : data, glb ? le32(bytes + 12) : size,
+                             &log.uris_checked, err)) {
+        free(data);
+        return false;
+    }
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({file_exists, expand_path, read_file, write_file, &log});
     loader.SetImageLoader(keep_image_bytes, nullptr);
@@ -225,7 +248,7 @@ bool parse(const char *path, tinygltf::Model *model, Error *err)
         }
     }
     free(data);
-    return ok;
+    return ok && gltf_io::read_image_views(*model, path, err);
 }
 
 bool check_extensions(const char *path, const tinygltf::Model &m, Error *err)
@@ -242,6 +265,85 @@ bool check_extensions(const char *path, const tinygltf::Model &m, Error *err)
             unknown += (unknown.empty() ? "" : ", ") + name;
     if (!unknown.empty() && !g_quiet)
         warn("%s: extensionsUsed: pt ignores %s", path, unknown.c_str());
+    return true;
+}
+
+/* What pt reads nothing of: one warning per kind of feature (as for unknown extensions), so that
+ * a rest pose or a perspective view is not a surprise. */
+void warn_dropped(const char *path, const tinygltf::Model &m)
+{
+    if (g_quiet)
+        return;
+    size_t morphed = 0, orthographic = 0;
+    for (const tinygltf::Mesh &mesh : m.meshes) {
+        bool targets = !mesh.weights.empty();
+        for (const tinygltf::Primitive &prim : mesh.primitives)
+            targets = targets || !prim.targets.empty();
+        morphed += targets;
+    }
+    for (const tinygltf::Camera &camera : m.cameras)
+        orthographic += camera.type == "orthographic";
+    if (!m.skins.empty())
+        warn("%s: skins: pt ignores %zu skin%s (meshes are drawn in their bind pose)", path,
+             m.skins.size(), m.skins.size() == 1 ? "" : "s");
+    if (morphed)
+        warn("%s: morph targets: pt ignores those of %zu mesh%s (drawn without weights)", path,
+             morphed, morphed == 1 ? "" : "es");
+    if (!m.animations.empty())
+        warn("%s: animations: pt ignores %zu animation%s (the scene is drawn at rest)", path,
+             m.animations.size(), m.animations.size() == 1 ? "" : "s");
+    if (orthographic)
+        warn("%s: cameras: pt ignores %zu orthographic camera%s (it renders perspective views)",
+             path, orthographic, orthographic == 1 ? "" : "s");
+}
+
+bool is_points_or_lines(int mode)
+{
+    return mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP;
+}
+
+/* Decodes every placed primitive but POINTS and LINES ones, which are skipped with one warning
+ * (a file of nothing else is an error): the total is bounded so that a small file whose
+ * primitives share one accessor cannot decode without bound. */
+bool decode_placed(const char *path, const tinygltf::Model &model, GltfFile *out, Error *err)
+{
+    size_t total = 0;
+    int skipped = 0, decoded = 0, first_skipped = -1;
+    for (int p = 0; p < out->num_primitives; p++) {
+        GltfPrimitive *prim = &out->primitives[p];
+        if (!prim->placed)
+            continue;
+        if (is_points_or_lines(model.meshes[prim->mesh_index].primitives[prim->primitive_index].mode)) {
+            prim->skipped = true;
+            first_skipped = skipped++ ? first_skipped : p;
+            continue;
+        }
+        decoded++;
+        if (!gltf_io::decode_primitive(model, prim->mesh_index, prim->primitive_index, path,
+                                       &prim->mesh, err))
+            return false;
+        total += prim->mesh.num_positions + prim->mesh.num_triangles;
+        if (total > DECODED_LIMIT) {
+            error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
+                      "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
+            return false;
+        }
+    }
+    if (skipped) {
+        const GltfPrimitive *first = &out->primitives[first_skipped];
+        int mode = model.meshes[first->mesh_index].primitives[first->primitive_index].mode;
+        const char *names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+        if (!decoded) {
+            error_set(err, ERR_OBJ_PARSE, path, 0, "%s: meshes[%d].primitives[%d].mode: %s, and "
+                      "every other placed primitive is points or lines too: pt renders triangles",
+                      path, first->mesh_index, first->primitive_index, names[mode]);
+            return false;
+        }
+        if (!g_quiet)
+            warn("%s: %d POINTS or LINES primitive%s skipped (the first: meshes[%d].primitives[%d], "
+                 "%s): pt renders triangles", path, skipped, skipped == 1 ? "" : "s",
+                 first->mesh_index, first->primitive_index, names[mode]);
+    }
     return true;
 }
 
@@ -267,24 +369,11 @@ extern "C" bool gltf_load(const char *path, GltfFile *out, Error *err)
     out->model = model;
     bool ok;
     try {
+        /* Only the meshes that nodes place are decoded, each once. */
         ok = parse(path, model, err) && check_extensions(path, *model, err) &&
-             gltf_walk_scene(*model, path, out, err);
-        /* Only the meshes that nodes place are decoded, each once. Primitives may share one
-         * accessor: the total is bounded so that a small file cannot decode without bound. */
-        size_t total = 0;
-        for (int p = 0; ok && p < out->num_primitives; p++) {
-            GltfPrimitive *prim = &out->primitives[p];
-            if (!prim->placed)
-                continue;
-            ok = gltf_io::decode_primitive(*model, prim->mesh_index, prim->primitive_index, path,
-                                           &prim->mesh, err);
-            total += prim->mesh.num_positions + prim->mesh.num_triangles;
-            if (ok && total > DECODED_LIMIT) {
-                ok = false;
-                error_set(err, ERR_TOO_LARGE, path, 0, "%s: meshes[%d]: the primitives decode to "
-                          "more than %zu vertices and triangles", path, prim->mesh_index, DECODED_LIMIT);
-            }
-        }
+             gltf_walk_scene(*model, path, out, err) && decode_placed(path, *model, out, err);
+        if (ok)
+            warn_dropped(path, *model);
     } catch (const std::bad_alloc &) {
         ok = false;
         error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory", path);

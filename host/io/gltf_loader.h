@@ -25,6 +25,7 @@ typedef struct {
     int material;    /* glTF material index; -1: the glTF default material */
     int mesh_index, primitive_index;
     bool placed;     /* a node of the scene places its mesh: only those are decoded */
+    bool skipped;    /* POINTS or LINES (one warning; pt renders triangles): not decoded */
 } GltfPrimitive;
 
 /* A node of the scene that places a mesh, with its world matrix (parents' matrices applied). */

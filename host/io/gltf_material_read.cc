@@ -5,6 +5,7 @@
  * as the file states them; scene/gltf_material.c checks their ranges and maps them. */
 #include "io/gltf_primitives.h" /* tinygltf, the C++ spellings of base/'s C11 */
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +38,17 @@ float number(const tinygltf::Value &obj, const char *key, float def)
     return (float)obj.Get(key).GetNumberAsDouble();
 }
 
+/* An integer of an extension object; gltf_io::check_json refused one outside [0, 2^31 - 1]
+ * under "index" and "texCoord", so the conversion cannot overflow (a float could round 2^31 - 1
+ * up to 2^31). */
+int integer(const tinygltf::Value &obj, const char *key, int def)
+{
+    if (!obj.IsObject() || !obj.Has(key) || !obj.Get(key).IsNumber())
+        return def;
+    double v = obj.Get(key).GetNumberAsDouble();
+    return v >= 0 && v <= 2147483647.0 ? (int)v : def;
+}
+
 void numbers(const tinygltf::Value &obj, const char *key, float *out, int n)
 {
     if (!obj.IsObject() || !obj.Has(key) || !obj.Get(key).IsArray() ||
@@ -57,8 +69,9 @@ void texture_ref(const tinygltf::Model &m, int texture, int texcoord,
     if (texture < 0)
         return;
     out->texcoord = texcoord;
-    /* An index out of range stays visible to the mapping, which names it. */
-    out->image = (size_t)texture < m.textures.size() ? m.textures[texture].source : texture + (1 << 24);
+    /* An index out of range stays visible to the mapping, which names it (INT_MAX: no image
+     * has that index; texture + a constant overflowed near 2^31). */
+    out->image = (size_t)texture < m.textures.size() ? m.textures[texture].source : INT_MAX;
     if ((size_t)texture < m.textures.size()) {
         int s = m.textures[texture].sampler;
         if (s >= 0 && (size_t)s < m.samplers.size()) {
@@ -73,7 +86,7 @@ void texture_ref(const tinygltf::Model &m, int texture, int texcoord,
         numbers(t->second, "offset", out->offset, 2);
         out->rotation = number(t->second, "rotation", 0.0f);
         numbers(t->second, "scale", out->scale, 2);
-        out->texcoord = (int)number(t->second, "texCoord", (float)out->texcoord);
+        out->texcoord = integer(t->second, "texCoord", out->texcoord);
     }
 }
 
@@ -88,8 +101,8 @@ void texture_ref_value(const tinygltf::Model &m, const tinygltf::Value &ext, con
     if (info.Has("extensions") && info.Get("extensions").IsObject())
         for (const std::string &k : info.Get("extensions").Keys())
             extensions[k] = info.Get("extensions").Get(k);
-    texture_ref(m, (int)number(info, "index", -1.0f), (int)number(info, "texCoord", 0.0f),
-                extensions, 1.0f, where + "." + key, out);
+    texture_ref(m, integer(info, "index", -1), integer(info, "texCoord", 0), extensions, 1.0f,
+                where + "." + key, out);
 }
 
 const tinygltf::Value *extension(const tinygltf::Material &mat, const char *name)

@@ -17,9 +17,11 @@ namespace gltf_io {
 namespace {
 
 /* An accessor may not describe more elements than this (pt indexes vertices with 32 bits; an
- * accessor without a buffer view costs memory without costing file bytes). */
+ * accessor without a buffer view costs memory without costing file bytes: its zeros are a base
+ * for sparse values, which no real file spreads over more than 2^20 elements; 2^24 of them took
+ * seconds per file under the fuzzer, a libFuzzer timeout). */
 const size_t MAX_ELEMENTS = (size_t)1 << 28;
-const size_t ZEROS_LIMIT = (size_t)1 << 24;
+const size_t ZEROS_LIMIT = (size_t)1 << 20;
 
 struct Reader {
     const tinygltf::Model &model;
@@ -70,8 +72,9 @@ template <typename T> T load(const unsigned char *p)
     return v;
 }
 
-/* One component as the specification decodes it: normalized signed types clamp at -1. */
-float component(const unsigned char *p, int type, bool normalized)
+/* One component as the specification decodes it: normalized signed types clamp at -1. T is
+ * float for attributes, double for indices (exact up to 2^32 - 1, which a float is not). */
+template <typename T> T component(const unsigned char *p, int type, bool normalized)
 {
     switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
@@ -86,7 +89,7 @@ float component(const unsigned char *p, int type, bool normalized)
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
         return normalized ? load<uint16_t>(p) / 65535.0f : load<uint16_t>(p);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        return normalized ? (float)(load<uint32_t>(p) / 4294967295.0) : (float)load<uint32_t>(p);
+        return normalized ? (T)(load<uint32_t>(p) / 4294967295.0) : (T)load<uint32_t>(p);
     default: return load<float>(p);
     }
 }
@@ -128,9 +131,21 @@ bool view_range(Reader &r, int view, size_t offset, size_t count, size_t size, s
     return true;
 }
 
-/* Accessor `index` as floats, `comps` per element (its type must have that many), sparse
- * substitution applied. */
-bool read_floats(Reader &r, int index, int comps, std::vector<float> &out)
+/* glTF's count is at least 1 (an empty accessor is a writer's bug: its data pointer is null). */
+bool count_in_range(Reader &r, int index, const tinygltf::Accessor &a)
+{
+    if (a.count < 1)
+        return r.fail(ERR_OBJ_PARSE, "accessors[%d].count is 0 (the specification's minimum is 1)",
+                      index);
+    if (a.count > MAX_ELEMENTS)
+        return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu is above pt's limit %zu", index,
+                      a.count, MAX_ELEMENTS);
+    return true;
+}
+
+/* Accessor `index` as floats (or doubles), `comps` per element (its type must have that many),
+ * sparse substitution applied. */
+template <typename T> bool read_values(Reader &r, int index, int comps, std::vector<T> &out)
 {
     const tinygltf::Model &m = r.model;
     if (index < 0 || (size_t)index >= m.accessors.size())
@@ -143,33 +158,33 @@ bool read_floats(Reader &r, int index, int comps, std::vector<float> &out)
                       index, a.componentType);
     if (tinygltf::GetNumComponentsInType((uint32_t)a.type) != comps)
         return r.fail(ERR_OBJ_PARSE, "accessors[%d] is not %s", index, type_name(comps));
-    if (a.count > MAX_ELEMENTS)
-        return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu is above pt's limit %zu", index,
-                      a.count, MAX_ELEMENTS);
+    if (!count_in_range(r, index, a))
+        return false;
     if (a.bufferView < 0 && a.count > ZEROS_LIMIT) /* zeros cost memory but no file bytes */
         return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu without a buffer view is above pt's "
                       "limit %zu", index, a.count, ZEROS_LIMIT);
-    out.assign(a.count * comps, 0.0f); /* no buffer view: zeros (then sparse values) */
-    size_t size = csize * comps;
+    size_t size = csize * comps, stride = size;
     char what[48];
     snprintf(what, sizeof what, "accessors[%d]", index);
-    if (a.bufferView >= 0) {
-        size_t stride = size;
+    const unsigned char *src = nullptr;
+    if (a.bufferView >= 0) { /* checked before the allocation: a count the view cannot hold */
         if (a.bufferView < (int)m.bufferViews.size() && m.bufferViews[a.bufferView].byteStride)
             stride = m.bufferViews[a.bufferView].byteStride;
         if (stride < size)
             return r.fail(ERR_OBJ_PARSE, "bufferViews[%d].byteStride %zu is below accessors[%d]'s "
                           "element size %zu", a.bufferView, stride, index, size);
-        const unsigned char *src;
         if (!view_range(r, a.bufferView, a.byteOffset, a.count, size, stride, what, &src))
             return false;
-        float *dst = out.data();
-        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && stride == size) {
+    }
+    out.assign(a.count * comps, (T)0); /* no buffer view: zeros (then sparse values) */
+    if (src) {
+        T *dst = out.data();
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && stride == size && sizeof(T) == 4) {
             memcpy(dst, src, a.count * size);
         } else {
             for (size_t e = 0; e < a.count; e++, src += stride)
                 for (int c = 0; c < comps; c++)
-                    *dst++ = component(src + c * csize, a.componentType, a.normalized);
+                    *dst++ = component<T>(src + c * csize, a.componentType, a.normalized);
         }
     }
     if (!a.sparse.isSparse)
@@ -198,7 +213,7 @@ bool read_floats(Reader &r, int index, int comps, std::vector<float> &out)
             return r.fail(ERR_OBJ_INDEX, "accessors[%d].sparse.indices[%zu] = %u is beyond the "
                           "accessor's %zu elements", index, s, e, a.count);
         for (int c = 0; c < comps; c++)
-            out[(size_t)e * comps + c] = component(val + c * csize, a.componentType, a.normalized);
+            out[(size_t)e * comps + c] = component<T>(val + c * csize, a.componentType, a.normalized);
     }
     return true;
 }
@@ -218,18 +233,17 @@ bool read_indices(Reader &r, int index, std::vector<uint32_t> &out)
                       "byte, short or int", index, t);
     if (a.type != TINYGLTF_TYPE_SCALAR || a.normalized)
         return r.fail(ERR_OBJ_PARSE, "accessors[%d]: indices must be SCALAR, not normalized", index);
-    if (a.sparse.isSparse || a.bufferView < 0) { /* rare: the general path */
-        std::vector<float> values;
-        if (!read_floats(r, index, 1, values))
+    if (a.sparse.isSparse || a.bufferView < 0) { /* rare: the general path, exact in doubles */
+        std::vector<double> values;
+        if (!read_values(r, index, 1, values))
             return false;
         out.resize(values.size());
         for (size_t i = 0; i < values.size(); i++)
             out[i] = (uint32_t)values[i];
         return true;
     }
-    if (a.count > MAX_ELEMENTS)
-        return r.fail(ERR_TOO_LARGE, "accessors[%d].count %zu is above pt's limit %zu", index,
-                      a.count, MAX_ELEMENTS);
+    if (!count_in_range(r, index, a))
+        return false;
     size_t size = component_size(t), stride = size;
     if (a.bufferView < (int)m.bufferViews.size() && m.bufferViews[a.bufferView].byteStride)
         stride = m.bufferViews[a.bufferView].byteStride; /* not allowed for indices; tolerated */
@@ -297,7 +311,7 @@ bool read_attribute(Reader &r, const tinygltf::Primitive &prim, const char *pref
     if (!*present)
         return true;
     snprintf(r.where, sizeof r.where, "%s.attributes.%s", prefix, name);
-    if (!read_floats(r, it->second, comps, out))
+    if (!read_values(r, it->second, comps, out))
         return false;
     if (expected != (size_t)-1 && out.size() != expected * comps)
         return r.fail(ERR_OBJ_PARSE, "%zu elements where POSITION has %zu", out.size() / comps,
@@ -402,6 +416,24 @@ bool mesh_from_arrays(const tinygltf::Model &model, const char *path, const char
         out->material_ids[t] = -1;
     }
     out->num_triangles = out->num_faces = nt;
+    return true;
+}
+
+bool read_image_views(tinygltf::Model &model, const char *path, Error *err)
+{
+    Reader r{model, path, err, {0}};
+    for (size_t i = 0; i < model.images.size(); i++) {
+        tinygltf::Image &image = model.images[i];
+        if (image.bufferView < 0 || !image.uri.empty())
+            continue;
+        snprintf(r.where, sizeof r.where, "images[%zu].bufferView", i);
+        const unsigned char *bytes;
+        size_t length = (size_t)image.bufferView < model.bufferViews.size()
+                            ? model.bufferViews[image.bufferView].byteLength : 0;
+        if (!view_range(r, image.bufferView, 0, 1, length, length ? length : 1, "the image", &bytes))
+            return false;
+        image.image.assign(bytes, bytes + length);
+    }
     return true;
 }
 

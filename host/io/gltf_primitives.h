@@ -43,6 +43,17 @@ bool draco_prepare(const unsigned char *data, size_t size, bool glb, std::string
 bool decode_draco_primitive(const tinygltf::Model &model, int mesh, int primitive,
                             const char *path, Mesh *out, Error *err);
 
+/* Before tinygltf reads the JSON text (gltf_json_check.cc): its nesting depth (ERR_JSON_SYNTAX),
+ * and the external URIs of buffers and images, which must stay inside path's folder
+ * (ERR_PATH_ESCAPES naming "images[0].uri"). *uris_checked: false when the text is not JSON to
+ * cJSON (tinygltf then says why), and no external file may be opened. */
+bool check_json(const char *path, const char *json, size_t size, bool *uris_checked, Error *err);
+
+/* The encoded bytes of every image stored in a buffer view, copied into image.image after the
+ * view is checked against its buffer (tinygltf passes the view's bytes unchecked: the image
+ * loader callback leaves them). Errors name "images[0].bufferView". */
+bool read_image_views(tinygltf::Model &model, const char *path, Error *err);
+
 } // namespace gltf_io
 
 #endif

@@ -12,6 +12,10 @@
 
 namespace {
 
+/* The largest entry of a world matrix (scale or translation): 1e300 is finite, but the vertices
+ * it places overflow float and the scene had "no triangles"; as CAMERA_COORDINATE_LIMIT. */
+const double WORLD_LIMIT = 1e15;
+
 struct Walk {
     const tinygltf::Model &m;
     const char *path;
@@ -204,7 +208,17 @@ bool walk(Walk &w, int n, const Affine &parent, int depth)
                   "finite", w.path, n);
         return false;
     }
+    double largest = 0;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            largest = fmax(largest, fabs(world.m[r][c]));
     const tinygltf::Node &node = w.m.nodes[n];
+    if (node.mesh >= 0 && largest > WORLD_LIMIT) { /* finite in double, infinite once a vertex */
+        error_set(w.err, ERR_OBJ_NONFINITE, w.path, 0, "%s: nodes[%d]: its world matrix has an "
+                  "entry of %g (pt's limit is %g: vertices are floats)", w.path, n, largest,
+                  WORLD_LIMIT);
+        return false;
+    }
     if (node.mesh >= 0) {
         Affine inverse;
         if ((size_t)node.mesh >= w.m.meshes.size()) {

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* ply_header.c: the PLY header, line by line: "ply", format, element, property (scalar or list),
- * comment / obj_info (ignored), end_header; then the element counts are checked against the size
+ * comment / obj_info (ignored), end_header, and lines of other writers' own (counted, ignored); then the element counts are checked against the size
  * of the body before the reader allocates anything by them. */
 #include "io/ply_header.h"
 
@@ -23,6 +23,7 @@ typedef struct {
     const char *data;
     size_t size, pos; /* pos: the start of the next header line */
     PlyHeader *h;
+    const char *line_text; /* the current line, whole (for an unknown line's warning) */
 } HeaderParser;
 
 bool ply_failv(const char *path, Error *err, ErrorCode code, int line, const char *fmt,
@@ -121,6 +122,26 @@ static bool parse_property(HeaderParser *p, int line, char **words, int n)
     return true;
 }
 
+/* A line of no PLY keyword: other writers put their own lines in the header (Blender 2.47's
+ * "Created by ..."); what pt needs is in the keywords, so such a line is counted, not refused. */
+static bool note_unknown(HeaderParser *p, int line, const char *text)
+{
+    if (p->h->unknown_lines++ == 0) {
+        p->h->first_unknown_line = line;
+        snprintf(p->h->first_unknown, sizeof p->h->first_unknown, "%.40s", text);
+    }
+    return true;
+}
+
+static bool is_keyword(const char *word, size_t len)
+{
+    static const char *const keywords[] = {"ply", "format", "element", "property", "end_header"};
+    for (size_t i = 0; i < sizeof keywords / sizeof keywords[0]; i++)
+        if (strlen(keywords[i]) == len && memcmp(word, keywords[i], len) == 0)
+            return true;
+    return false;
+}
+
 /* One header line (words split); sets *done at end_header. */
 static bool parse_header_line(HeaderParser *p, int line, char **words, int n, bool *have_format)
 {
@@ -152,7 +173,7 @@ static bool parse_header_line(HeaderParser *p, int line, char **words, int n, bo
     }
     if (strcmp(words[0], "property") == 0)
         return parse_property(p, line, words, n);
-    return fail(p, ERR_OBJ_PARSE, line, "unknown header keyword '%s'", words[0]);
+    return note_unknown(p, line, p->line_text);
 }
 
 static bool parse_header(HeaderParser *p)
@@ -177,13 +198,24 @@ static bool parse_header(HeaderParser *p)
                            strncmp(start + skip, "obj_info", 8) == 0))
             continue;
         char text[256], *words[6];
-        if (len >= sizeof text)
+        if (len >= sizeof text) {
+            size_t word = strcspn(start + skip, " \t\r\n");
+            if (!is_keyword(start + skip, word)) {
+                snprintf(text, 41, "%s", start + skip);
+                text[strcspn(text, "\r\n")] = '\0';
+                note_unknown(p, line, text);
+                continue;
+            }
             return fail(p, ERR_OBJ_PARSE, line, "header line longer than %zu bytes",
                         sizeof text - 1);
+        }
         memcpy(text, start, len);
         text[len] = '\0';
         if (memchr(text, '\0', len))
             return fail(p, ERR_OBJ_PARSE, line, "NUL byte in the header");
+        char whole[sizeof text];
+        memcpy(whole, text, len + 1);
+        p->line_text = whole;
         int n = split_words(text, words, 5);
         if (n == 0)
             continue;
@@ -193,6 +225,10 @@ static bool parse_header(HeaderParser *p)
             p->h->body_line = line + 1;
             p->h->body = p->pos;
             return true;
+        }
+        if (n > 5 && !is_keyword(words[0], strlen(words[0]))) {
+            note_unknown(p, line, whole);
+            continue;
         }
         if (n > 5)
             return fail(p, ERR_OBJ_PARSE, line, "too many words in '%s' line", words[0]);

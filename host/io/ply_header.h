@@ -45,10 +45,14 @@ typedef struct {
     int num_elements;
     size_t body;   /* offset of the first byte after end_header's line */
     int body_line; /* the line number of that byte (ascii) */
+    /* Lines of no PLY keyword (Blender 2.47 writes "Created by ..."), ignored: the reader warns
+     * once, naming the first. */
+    int unknown_lines, first_unknown_line;
+    char first_unknown[64];
 } PlyHeader;
 
 /* Parses the header of the PLY text data[0..size) (NUL-terminated). comment and obj_info lines are
- * ignored. Also refuses element counts the body cannot hold (an item takes at least a byte per
+ * ignored, and so are lines of no PLY keyword (counted in unknown_lines). Also refuses element counts the body cannot hold (an item takes at least a byte per
  * property in ascii, its scalars and list counts in binary), so nothing sized by a count is
  * allocated for a file too small for it. Errors (ERR_OBJ_PARSE, ERR_TOO_LARGE) name the path and
  * the header line. */

@@ -20,6 +20,8 @@
 
 #define PLY_MAX_FACE_CORNERS 255 /* as OBJ (tinyobjloader's limit); ear clipping is quadratic */
 
+static bool g_quiet;
+
 /* The vertex properties read, in the order of a vertex's values. */
 enum { ROLE_X, ROLE_Y, ROLE_Z, ROLE_NX, ROLE_NY, ROLE_NZ, ROLE_U, ROLE_V, NUM_ROLES };
 
@@ -143,6 +145,19 @@ static bool grow(void **array, size_t *capacity, size_t needed, size_t element_s
     return true;
 }
 
+/* Appends one face of n corners, which the caller fills: face_corners[num_corners - n, ...).
+ * (n may be 0: a face PLY allows, skipped later with a warning.) */
+static bool add_face(Ply *p, size_t n)
+{
+    if (!grow((void **)&p->face_sizes, &p->faces_capacity, p->num_faces + 1, sizeof *p->face_sizes) ||
+        !grow((void **)&p->face_corners, &p->corners_capacity, p->num_corners + n,
+              sizeof *p->face_corners))
+        return fail(p, ERR_TOO_LARGE, 0, "out of memory reading faces");
+    p->face_sizes[p->num_faces++] = (uint16_t)n;
+    p->num_corners += n;
+    return true;
+}
+
 /* One face's vertex_indices list, every index checked against the vertex count. */
 static bool read_face_list(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t face,
                            uint64_t num_vertices)
@@ -153,11 +168,9 @@ static bool read_face_list(Ply *p, const PlyProperty *prop, const PlyElement *e,
     if (n > PLY_MAX_FACE_CORNERS)
         return fail(p, ERR_TOO_LARGE, body_line(p), "face %llu has %zu vertices (the limit is %d)",
                     (unsigned long long)face, n, PLY_MAX_FACE_CORNERS);
-    if (!grow((void **)&p->face_sizes, &p->faces_capacity, p->num_faces + 1,
-              sizeof *p->face_sizes) ||
-        !grow((void **)&p->face_corners, &p->corners_capacity, p->num_corners + n,
-              sizeof *p->face_corners))
-        return fail(p, ERR_TOO_LARGE, 0, "out of memory reading faces");
+    size_t first = p->num_corners;
+    if (!add_face(p, n))
+        return false;
     for (size_t k = 0; k < n; k++) {
         double index;
         if (!read_item_value(p, prop->type, e, face, &index))
@@ -166,10 +179,8 @@ static bool read_face_list(Ply *p, const PlyProperty *prop, const PlyElement *e,
             return fail(p, ERR_OBJ_INDEX, body_line(p),
                         "face %llu: vertex index %g out of range (%llu vertices)",
                         (unsigned long long)face, index, (unsigned long long)num_vertices);
-        p->face_corners[p->num_corners + k] = (int32_t)index;
+        p->face_corners[first + k] = (int32_t)index;
     }
-    p->face_sizes[p->num_faces++] = (uint16_t)n;
-    p->num_corners += n;
     return true;
 }
 
@@ -189,19 +200,81 @@ static int vertex_role(const PlyProperty *prop)
 
 /* Which properties a mesh needs, found once from the header. */
 typedef struct {
-    int vertex_element, face_element;
+    int vertex_element, face_element, strip_element;
     int roles[PLY_MAX_PROPERTIES]; /* vertex property -> ROLE_*, -1 skipped */
-    int face_list;                 /* the face element's vertex_indices property */
+    int face_list, strip_list;     /* the face / tristrips element's vertex_indices property */
     bool has_normals, has_uvs;
 } MeshLayout;
 
+/* One tristrips item (Cyberware scans): a list of vertex indices where -1 restarts the strip;
+ * each index after the first two makes a triangle with the two before it, every other one with
+ * its first two corners swapped so that all keep the strip's winding. Triangles with a repeated
+ * corner (used to turn a strip) are not emitted. */
+static bool read_strip_list(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t item,
+                            uint64_t num_vertices)
+{
+    size_t n, have = 0, parity = 0;
+    if (!read_list_count(p, prop, e, item, &n))
+        return false;
+    int32_t a = -1, b = -1;
+    for (size_t k = 0; k < n; k++) {
+        double index;
+        if (!read_item_value(p, prop->type, e, item, &index))
+            return false;
+        if (index == -1.0) {
+            have = parity = 0;
+            continue;
+        }
+        if (!(index >= 0.0) || index != floor(index) || index >= (double)num_vertices)
+            return fail(p, ERR_OBJ_INDEX, body_line(p),
+                        "tristrips %llu: vertex index %g out of range (%llu vertices; -1 restarts)",
+                        (unsigned long long)item, index, (unsigned long long)num_vertices);
+        int32_t c = (int32_t)index;
+        if (have >= 2) {
+            if (a != b && b != c && a != c) {
+                if (!add_face(p, 3))
+                    return false;
+                int32_t *t = p->face_corners + p->num_corners - 3;
+                t[0] = parity ? b : a;
+                t[1] = parity ? a : b;
+                t[2] = c;
+            }
+            parity ^= 1;
+        }
+        a = b;
+        b = c;
+        have++;
+    }
+    return true;
+}
+
+/* The vertex_indices (or vertex_index) list of element e (face or tristrips), when present. */
+static bool find_index_list(Ply *p, int e, int *list)
+{
+    if (e < 0)
+        return true;
+    const PlyElement *f = &p->h.elements[e];
+    for (int k = 0; k < f->num_properties && *list < 0; k++) {
+        const char *name = f->properties[k].name;
+        if (f->properties[k].count_type >= 0 &&
+            (strcmp(name, "vertex_indices") == 0 || strcmp(name, "vertex_index") == 0))
+            *list = k;
+    }
+    if (*list < 0)
+        return fail(p, ERR_OBJ_PARSE, 0, "the %s element lacks a vertex_indices list", f->name);
+    if (PLY_TYPES[f->properties[*list].type].kind == PLY_FLOAT)
+        return fail(p, ERR_OBJ_PARSE, 0, "%s: vertex_indices has a float index type", f->name);
+    return true;
+}
+
 static bool find_layout(Ply *p, MeshLayout *m)
 {
-    m->vertex_element = m->face_element = m->face_list = -1;
+    m->vertex_element = m->face_element = m->face_list = m->strip_element = m->strip_list = -1;
     for (int i = 0; i < p->h.num_elements; i++) {
         const char *name = p->h.elements[i].name;
         int *slot = strcmp(name, "vertex") == 0 ? &m->vertex_element
-                    : strcmp(name, "face") == 0 ? &m->face_element : NULL;
+                    : strcmp(name, "face") == 0 ? &m->face_element
+                    : strcmp(name, "tristrips") == 0 ? &m->strip_element : NULL;
         if (slot && *slot >= 0)
             return fail(p, ERR_OBJ_PARSE, 0, "two '%s' elements", name);
         if (slot)
@@ -223,20 +296,8 @@ static bool find_layout(Ply *p, MeshLayout *m)
         return fail(p, ERR_OBJ_PARSE, 0, "the vertex element lacks property x, y or z");
     m->has_normals = seen[ROLE_NX] && seen[ROLE_NY] && seen[ROLE_NZ];
     m->has_uvs = seen[ROLE_U] && seen[ROLE_V];
-    if (m->face_element >= 0) {
-        const PlyElement *f = &p->h.elements[m->face_element];
-        for (int k = 0; k < f->num_properties && m->face_list < 0; k++) {
-            const char *name = f->properties[k].name;
-            if (f->properties[k].count_type >= 0 &&
-                (strcmp(name, "vertex_indices") == 0 || strcmp(name, "vertex_index") == 0))
-                m->face_list = k;
-        }
-        if (m->face_list < 0)
-            return fail(p, ERR_OBJ_PARSE, 0, "the face element lacks a vertex_indices list");
-        if (PLY_TYPES[f->properties[m->face_list].type].kind == PLY_FLOAT)
-            return fail(p, ERR_OBJ_PARSE, 0, "vertex_indices has a float index type");
-    }
-    return true;
+    return find_index_list(p, m->face_element, &m->face_list) &&
+           find_index_list(p, m->strip_element, &m->strip_list);
 }
 
 /* Reads one vertex's values into out (positions, normals, uvs as the mesh has them). */
@@ -287,6 +348,11 @@ static bool read_element(Ply *p, const MeshLayout *m, int e_index, Mesh *out)
             const PlyProperty *prop = &e->properties[k];
             if (e_index == m->face_element && k == m->face_list) {
                 if (!read_face_list(p, prop, e, i, num_vertices))
+                    return false;
+                continue;
+            }
+            if (e_index == m->strip_element && k == m->strip_list) {
+                if (!read_strip_list(p, prop, e, i, num_vertices))
                     return false;
                 continue;
             }
@@ -351,6 +417,10 @@ static bool load(Ply *p, Mesh *out)
         return false;
     p->pos = p->h.body;
     p->line = p->h.body_line;
+    if (p->h.unknown_lines && !g_quiet)
+        warn("%s: line %d: %d header line%s of no PLY keyword ignored (the first: '%s')", p->path,
+             p->h.first_unknown_line, p->h.unknown_lines, p->h.unknown_lines == 1 ? "" : "s",
+             p->h.first_unknown);
     if (!find_layout(p, &m))
         return false;
     size_t n = (size_t)p->h.elements[m.vertex_element].count;
@@ -370,6 +440,11 @@ static bool load(Ply *p, Mesh *out)
         if (!read_element(p, &m, e, out))
             return false;
     return emit_triangles(p, out);
+}
+
+void ply_reader_set_quiet(bool quiet)
+{
+    g_quiet = quiet;
 }
 
 bool ply_load(const char *path, Mesh *out, Error *err)

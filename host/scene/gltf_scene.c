@@ -151,6 +151,8 @@ bool gltf_scene_add(SceneDesc *d, const char *path, const ObjectOptions *options
         const GltfPlacement *pl = &f->placements[i];
         for (int p = f->mesh_first[pl->mesh]; p < f->mesh_first[pl->mesh + 1]; p++) {
             const GltfPrimitive *prim = &f->primitives[p];
+            if (prim->skipped) /* POINTS or LINES: gltf_load warned */
+                continue;
             int o = d->num_objects++;
             snprintf(d->objects[o], sizeof d->objects[o], "%.900s#meshes[%d].primitives[%d]",
                      canonical, prim->mesh_index, prim->primitive_index);

@@ -4,6 +4,7 @@
 #include "scene/gltf_texture.h"
 
 #include <math.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,7 +68,10 @@ static bool image_source(GltfTextures *t, const GltfTextureRef *ref, TextureDesc
 {
     if (ref->image >= t->num_images) {
         char what[64];
-        snprintf(what, sizeof what, "images[%d]", ref->image);
+        if (ref->image == INT_MAX) /* gltf_material_read: the index is beyond textures */
+            snprintf(what, sizeof what, "its texture");
+        else
+            snprintf(what, sizeof what, "images[%d]", ref->image);
         return fail(t, ERR_JSON_VALUE, "%s: %s.index: %s does not exist", ref->json_path, what);
     }
     const GltfImage *img = &t->images[ref->image];

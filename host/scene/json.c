@@ -3,6 +3,8 @@
  * key's path (key_line); it keeps the parser a plain library. */
 #include "scene/json.h"
 
+#include "base/json_depth.h"
+
 #include <ctype.h>
 #include <float.h>
 #include <limits.h>
@@ -23,6 +25,8 @@ int json_line_at(const char *text, size_t offset)
 cJSON *json_parse_text(const char *file, const char *text, Error *err)
 {
     const char *end = NULL;
+    if (!json_depth_check(file, text, strlen(text), err)) /* else cJSON's "malformed" at the limit */
+        return NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
     if (!root) {
         size_t offset = end ? (size_t)(end - text) : 0;

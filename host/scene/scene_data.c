@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/fs.h"
 #include "scene/vertex_normals.h"
 
 /* Triangles that use the default material carry this id until scene_data_finish appends the one
@@ -78,6 +79,13 @@ static CornerSlot *corner_map_find(CornerMap *map, const int32_t key[3])
             return s;
         i = (i + 1) & map->mask;
     }
+}
+
+size_t scene_data_grown_capacity(size_t capacity, size_t needed)
+{
+    if (needed <= capacity)
+        return capacity;
+    return needed > 2 * capacity ? needed : 2 * capacity;
 }
 
 static bool grow(void **array, size_t count, size_t element_size)
@@ -234,6 +242,11 @@ static void note_faceless(SceneData *data, const Mesh *mesh, const char *mesh_pa
                  "all %zu faces are degenerate", mesh->num_faces);
     else if (stat(mesh_path, &st) == 0 && st.st_size == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "the file is empty");
+    else if (fs_has_suffix(mesh_path, ".ply") && mesh->num_positions) /* PLY's words, not OBJ's */
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "a point cloud: %zu vertices "
+                 "and no face or tristrips element; pt renders triangles", mesh->num_positions);
+    else if (fs_has_suffix(mesh_path, ".ply"))
+        snprintf(data->faceless_reason, sizeof data->faceless_reason, "no vertices and no faces");
     else if (mesh->num_positions == 0)
         snprintf(data->faceless_reason, sizeof data->faceless_reason, "no 'v' or 'f' records");
     else
@@ -273,25 +286,32 @@ bool scene_data_append_object(SceneData *data, const Mesh *mesh, const char *mes
     }
     size_t num_triangles = data->num_triangles + mesh->num_triangles;
     uint32_t *first_corner = malloc((max_new_vertices ? max_new_vertices : 1) * sizeof *first_corner);
-    if (!first_corner || !grow((void **)&data->triangles, num_triangles, sizeof(Triangle)) ||
-        !grow((void **)&data->material_ids, num_triangles, sizeof(uint32_t))) {
+    size_t triangle_capacity = scene_data_grown_capacity(data->triangle_capacity, num_triangles);
+    if (!first_corner || (triangle_capacity != data->triangle_capacity &&
+                          (!grow((void **)&data->triangles, triangle_capacity, sizeof(Triangle)) ||
+                           !grow((void **)&data->material_ids, triangle_capacity, sizeof(uint32_t))))) {
         free(first_corner);
         free(mesh_to_scene);
         error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         return false;
     }
+    data->triangle_capacity = triangle_capacity;
     uint32_t num_new = 0;
     bool normals_ok = true;
     bool ok = unify_corners(data, mesh, mesh_path, mesh_to_scene, options->material, first_corner,
                             &num_new, err);
     free(mesh_to_scene);
     size_t num_vertices = (size_t)data->num_vertices + num_new;
-    if (ok && !(grow((void **)&data->positions, num_vertices, sizeof(float4)) &&
-                grow((void **)&data->normals, num_vertices, sizeof(float4)) &&
-                grow((void **)&data->uvs, num_vertices, sizeof(float2)))) {
+    size_t vertex_capacity = scene_data_grown_capacity(data->vertex_capacity, num_vertices);
+    if (ok && vertex_capacity != data->vertex_capacity &&
+        !(grow((void **)&data->positions, vertex_capacity, sizeof(float4)) &&
+          grow((void **)&data->normals, vertex_capacity, sizeof(float4)) &&
+          grow((void **)&data->uvs, vertex_capacity, sizeof(float2)))) {
         error_set(err, ERR_TOO_LARGE, mesh_path, 0, "%s: out of memory", mesh_path);
         ok = false;
     }
+    if (ok)
+        data->vertex_capacity = vertex_capacity;
     ok = ok && fill_vertices(data, mesh, mesh_path, first_corner, num_new, &normals_ok, err);
     uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
     if (ok) {

@@ -64,7 +64,15 @@ typedef struct {
      * none ("x.obj: no faces (the file is empty)"). */
     char faceless_mesh[512];
     char faceless_reason[128];
+    /* Allocated lengths of the arrays that grow while objects are added (positions, normals and
+     * uvs share one; triangles and material_ids one): they grow geometrically, since growing by
+     * each object's size copied O(n^2) bytes for 10^5 objects (minutes under ASan). */
+    size_t vertex_capacity, triangle_capacity, mesh_capacity, instance_capacity;
 } SceneData;
+
+/* The capacity to allocate for `needed` elements: `capacity` when it suffices, else at least
+ * double it. */
+size_t scene_data_grown_capacity(size_t capacity, size_t needed);
 
 /* How one object of the scene is added. */
 typedef struct {

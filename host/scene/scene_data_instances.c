@@ -45,10 +45,13 @@ void scene_data_bake_transform(SceneData *data, uint32_t first_triangle, uint32_
 bool scene_data_add_mesh(SceneData *data, uint32_t first_triangle, uint32_t first_vertex,
                          Error *err)
 {
-    if (!grow_array((void **)&data->meshes, (size_t)data->num_meshes + 1, sizeof *data->meshes)) {
+    size_t capacity = scene_data_grown_capacity(data->mesh_capacity, (size_t)data->num_meshes + 1);
+    if (capacity != data->mesh_capacity &&
+        !grow_array((void **)&data->meshes, capacity, sizeof *data->meshes)) {
         error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for meshes");
         return false;
     }
+    data->mesh_capacity = capacity;
     SceneMesh *m = &data->meshes[data->num_meshes++];
     memset(m, 0, sizeof *m);
     m->first_triangle = first_triangle;
@@ -71,10 +74,13 @@ bool scene_data_add_mesh(SceneData *data, uint32_t first_triangle, uint32_t firs
 
 bool scene_data_add_instance(SceneData *data, const SceneInstance *instance, Error *err)
 {
-    if (!grow_array((void **)&data->instances, (size_t)data->num_instances + 1, sizeof *data->instances)) {
+    size_t capacity = scene_data_grown_capacity(data->instance_capacity, (size_t)data->num_instances + 1);
+    if (capacity != data->instance_capacity &&
+        !grow_array((void **)&data->instances, capacity, sizeof *data->instances)) {
         error_set(err, ERR_TOO_LARGE, NULL, 0, "out of memory for instances");
         return false;
     }
+    data->instance_capacity = capacity;
     data->instances[data->num_instances++] = *instance;
     return true;
 }

@@ -21,7 +21,8 @@ The cases come from one module per input kind: corpus_scene.py, corpus_obj.py (O
 corpus_texture.py, corpus_materials.py (materials v2: JSON blocks and MTL statements),
 corpus_transform.py (objects' transforms, the camera's shutter),
 corpus_ply.py (PLY files, and scenes naming them with "ply"), corpus_gltf.py (glTF and GLB files,
-and scenes naming them with "gltf"), corpus_checkpoint.py (checkpoints read by --resume),
+and scenes naming them with "gltf"), corpus_gltf_v2.py, corpus_ply_v2.py and corpus_scene_v2.py
+(hostile cases for the v2 readers), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
 corpus_mitsuba.py (Mitsuba 3 XML scenes),
 corpus_collada.py (COLLADA, the Assimp formats, Draco glTF); corpus_cases.py holds the
@@ -39,12 +40,15 @@ from corpus_checkpoint import checkpoint_cases, checkpoint_seeds  # noqa: E402
 from corpus_cli import cli_cases, env_cases  # noqa: E402
 from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
+from corpus_gltf_v2 import gltf_v2_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
 from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_pbrt import pbrt_cases  # noqa: E402
 from corpus_ply import ply_cases  # noqa: E402
+from corpus_ply_v2 import ply_v2_cases  # noqa: E402
 from corpus_scene import json_cases  # noqa: E402
+from corpus_scene_v2 import scene_v2_cases  # noqa: E402
 from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
 from corpus_transform import transform_cases  # noqa: E402
 
@@ -107,6 +111,9 @@ def main():
     pbrt_cases(random.Random(20261206))  # after the others: earlier cases keep their numbers
     mitsuba_cases(random.Random(20261207))  # after: the cases above keep their numbers
     collada_cases(random.Random(20261208))
+    gltf_v2_cases()  # issue 42's hostile cases for the v2 readers
+    ply_v2_cases()
+    scene_v2_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
