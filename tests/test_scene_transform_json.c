@@ -181,6 +181,9 @@ Test(transform_json, bad_transforms_name_the_object_and_key)
         BAD("[{\"translate\": [1e308, 0, 0]}, {\"scale\": 1e10}]", ": the composed transform is not finite");
         BAD("[{\"scale\": 1e200}, {\"scale\": 1e200}]", ": the composed transform is not finite");
         BAD("[{\"matrix\": [1e200, 0, 0, 0,  0, 1e200, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}]", "[0].matrix: is not finite");
+        /* Finite, but past float once it places a point (a motion's bound of inf hung the BVH). */
+        BAD("[{\"translate\": [0, 1e300, 0]}]", ": the composed transform has an entry 1e+300 beyond");
+        BAD("[{\"scale\": 1e16}]", ": the composed transform has an entry 1e+16 beyond");
 #undef BAD
     }
 }

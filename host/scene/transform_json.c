@@ -4,6 +4,8 @@
  * when no operation is. */
 #include "scene/transform_json.h"
 
+#include "scene/camera.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -83,6 +85,13 @@ static bool check_regular(JsonParser *p, const Affine *m, const char *key, const
     Affine inverse;
     if (!affine_is_finite(m) || !isfinite(det))
         return json_fail(p, ERR_JSON_VALUE, key, "%sis not finite (overflow; det %g)", what, det);
+    /* 1e300 is finite, but the points it places overflow float (a bound of inf made the BVH and
+     * the motion's interpolation loop): the camera's coordinate limit holds for transforms too. */
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            if (fabs(m->m[r][c]) > CAMERA_COORDINATE_LIMIT)
+                return json_fail(p, ERR_JSON_VALUE, key, "%shas an entry %g beyond %g (pt's "
+                                 "coordinate limit)", what, m->m[r][c], CAMERA_COORDINATE_LIMIT);
     if (!affine_invert(m, &inverse))
         return json_fail(p, ERR_JSON_VALUE, key, "%sis singular or too close to it (det %g)", what,
                          det);
