@@ -9,7 +9,8 @@
  * that part's kernels; the wavefront's part is built first, the others when a kernel of theirs is
  * first asked for. A build with no -DPT_PARTS (the tests' programs with kernels of their own) has
  * every part. The host's list of which kernels live where is PROGRAM_PARTS in
- * host/device/program_parts.h, by these bits. */
+ * host/device/device.h, by these bits; a kernel in several parts is taken from a part already
+ * built. */
 #ifndef PT_SHARED_PROGRAM_PARTS_H
 #define PT_SHARED_PROGRAM_PARTS_H
 
@@ -17,8 +18,7 @@
 #define PT_PART_BIT_MEGAKERNEL 2u /* trace_paths, trace_paths_packets */
 #define PT_PART_BIT_AOV 4u        /* render_aov */
 #define PT_PART_BIT_ABLATION 8u   /* the brute-force intersection kernels (--brute-force) */
-#define PT_PART_BIT_COVERAGE 16u  /* render_coverage (the alpha and depth without shading) */
-#define PT_PARTS_ALL 31u
+#define PT_PARTS_ALL 15u
 
 #ifdef __OPENCL_C_VERSION__
 #ifndef PT_PARTS

@@ -102,8 +102,9 @@ kernel void render_aov(constant RenderParams *p, SCENE_PARAMS uint spp, global f
 /* render_coverage: render_aov's first hits alone, for the beauty's alpha (coverage) and the depth
  * AOV: the same camera samples and the same writes to albedo.w and normal.w, the rest 0, without
  * the shading that makes render_aov as slow to compile as shade_surface (every render writes the
- * alpha; only --aov albedo,normal needs render_aov). */
-#if PT_PART(COVERAGE)
+ * alpha; only --aov albedo,normal needs render_aov). In both parts a render starts with, so that
+ * the alpha costs no second build. */
+#if PT_PART(CORE) || PT_PART(MEGAKERNEL)
 kernel void render_coverage(constant RenderParams *p, SCENE_PARAMS uint spp, global float4 *albedo,
                             global float4 *normal)
 {

@@ -15,13 +15,13 @@
 #include "base/shared_types.h"
 
 /* The parts the program is built in (cl/shared/program_parts.h says why): X(NAME, the kernels
- * that only part NAME has, space-separated). A kernel of no list is CORE's (or in every part). */
+ * that only part NAME has, space-separated). A kernel of no list is in CORE and maybe in other
+ * parts too: device_kernel takes it from a part already built before building CORE for it. */
 #define PROGRAM_PARTS(X)                                                                           \
     X(CORE, "")                                                                                    \
     X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
     X(AOV, "render_aov")                                                                           \
-    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                      \
-    X(COVERAGE, "render_coverage")
+    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
 #undef PROGRAM_PART_ENUM

@@ -258,22 +258,31 @@ bool device_build(Device *dev, ProgramFeatures features, const char *extra_sourc
                                                              : PROGRAM_PART_CORE, err);
 }
 
-/* The program that has kernel `name`, its part built first if need be. */
-static cl_program program_of_kernel(Device *dev, const char *name)
+/* Kernel `name` from the parts already built (a kernel in no part's list may be in several), else
+ * from its own part, built first; *status as clCreateKernel's. */
+static cl_kernel create_kernel(Device *dev, const char *name, cl_int *status)
 {
     int part = dev->whole_program ? 0 : part_of_kernel(name);
+    if (!dev->whole_program && part == PROGRAM_PART_CORE)
+        for (int i = 0; i < PROGRAM_PART_COUNT; i++) {
+            if (!dev->programs[i])
+                continue;
+            cl_kernel kernel = clCreateKernel(dev->programs[i], name, status);
+            if (*status != CL_INVALID_KERNEL_NAME)
+                return kernel;
+        }
     if (!dev->programs[part]) {
         Error err = {0};
         if (!build_part(dev, part, &err))
             die("%s", err.message);
     }
-    return dev->programs[part];
+    return clCreateKernel(dev->programs[part], name, status);
 }
 
 cl_kernel device_kernel_if_built(Device *dev, const char *name)
 {
     cl_int status;
-    cl_kernel kernel = clCreateKernel(program_of_kernel(dev, name), name, &status);
+    cl_kernel kernel = create_kernel(dev, name, &status);
     if (status == CL_INVALID_KERNEL_NAME)
         return NULL;
     if (status != CL_SUCCESS)
@@ -284,7 +293,7 @@ cl_kernel device_kernel_if_built(Device *dev, const char *name)
 cl_kernel device_kernel(Device *dev, const char *name)
 {
     cl_int status;
-    cl_kernel kernel = clCreateKernel(program_of_kernel(dev, name), name, &status);
+    cl_kernel kernel = create_kernel(dev, name, &status);
     if (status != CL_SUCCESS) {
         fprintf(stderr, "pt: kernel '%s' not found\n", name);
         cl_fail(status, "clCreateKernel", __FILE__, __LINE__);

@@ -29,16 +29,17 @@ def hash64(data):
 
 def checkpoint(width, height, spp, unit_spp, unit_rows, count, done, scene=0x0123456789abcdef,
                max_depth=8, seed=7, version=1, header_bytes=80, sums=None, fix_checksum=True,
-               bitmap_bytes=None):
+               bitmap_bytes=None, flags=2):
     """done: the finished units (a list of unit numbers); bitmap_bytes: a shorter bitmap than count
-    needs (a file that claims more than it holds)."""
+    needs (a file that claims more than it holds); flags: 2 is the Sobol sampler, pt's default (a
+    checkpoint of other settings is refused for that before anything else is compared)."""
     if bitmap_bytes is None:
         bitmap_bytes = (count + 7) // 8 + (-((count + 7) // 8) % 8)
     bitmap = bytearray(bitmap_bytes)
     for u in done:
         bitmap[u // 8] |= 1 << (u % 8)
     header = b"PTCKPT\r\n" + struct.pack("<IIQIIIIfIIIIIIIII", version, header_bytes, scene,
-                                         max_depth, seed, 0, 0, 0.0, width, height, spp, unit_spp,
+                                         max_depth, seed, 0, flags, 0.0, width, height, spp, unit_spp,
                                          unit_rows, count, len(done), FILM_WORDS, 0)
     words = width * height * FILM_WORDS
     body = header + bytes(bitmap) + (sums if sums is not None else
@@ -79,6 +80,8 @@ def checkpoint_cases():
     tiny = dict(width=8, height=8, spp=1, unit_spp=1, unit_rows=8, count=1, max_depth=2, seed=0)
     good = checkpoint(done=[0], **tiny)
     checkpoint_case("other-scene", good, "error", "made for another scene")
+    checkpoint_case("other-sampler", checkpoint(done=[0], flags=0, **tiny), "error",
+                    "--sampler independent in it")
     checkpoint_case("other-spp", checkpoint(done=[0], **dict(tiny, spp=2, count=2)), "error",
                     "spp 2 in it, 1 here")
     checkpoint_case("other-units", checkpoint(done=[0], **dict(tiny, unit_rows=4, count=2)),

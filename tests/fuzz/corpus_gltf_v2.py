@@ -113,7 +113,10 @@ def gltf_v2_cases():
     glb_case("chain-900", chain(900), "ok")
     glb_case("chain-1100", chain(1100), "error", needle="nested more than 1000")
     # Required and used extensions.
-    for ext in ("KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_texture_basisu",
+    # KHR_draco_mesh_compression is read (io/gltf_draco.cc): required, it refuses nothing.
+    glb_case("required-KHR_draco_mesh_compression",
+             lambda d: d["extensionsRequired"].append("KHR_draco_mesh_compression"), "ok")
+    for ext in ("EXT_meshopt_compression", "KHR_texture_basisu",
                 "KHR_materials_clearcoat", "", "x" * 300):
         glb_case("required-%s" % ext[:40], lambda d, e=ext: d["extensionsRequired"].append(e),
                  "error", needle="extensionsRequired")

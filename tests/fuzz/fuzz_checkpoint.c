@@ -42,7 +42,7 @@ static void check(const char *path, RenderIdentity id)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    RenderIdentity id = {.scene = 0x0123456789abcdefull, .max_depth = 8, .seed = 7};
+    RenderIdentity id = {.scene = 0x0123456789abcdefull, .max_depth = 8, .seed = 7, .sobol = true};
     Error err = {0};
     if (!unit_grid_init(&id.grid, 5, 6, 4, 1, 2, &err))
         abort();
