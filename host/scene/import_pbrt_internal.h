@@ -138,4 +138,11 @@ bool pbrt_camera_json(PbrtImport *imp, cJSON *root);
 /* LightSource "infinite" (import_pbrt_environment.c). */
 bool pbrt_infinite_light(PbrtImport *imp, PbrtParams *params);
 
+/* Transforms and the graphics state (import_pbrt_transforms.c). *handled: word was a transform
+ * directive. coord_system: define (CoordinateSystem) or restore (CoordSysTransform) name. */
+bool pbrt_transform_directive(PbrtImport *imp, const char *word, bool *handled);
+bool pbrt_coord_system(PbrtImport *imp, const char *name, bool define);
+bool pbrt_push_state(PbrtImport *imp, const char *directive);
+bool pbrt_pop_state(PbrtImport *imp, const char *directive, bool transform_only);
+
 #endif

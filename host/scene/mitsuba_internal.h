@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* mitsuba_internal.h: what the parts of the Mitsuba 3 importer share: the import's state, the
- * property readers (mitsuba_values.c), textures and parameters (mitsuba_texture.c), BSDFs
- * (mitsuba_bsdf.c), shapes and emitters (mitsuba_shapes.c), the sensor and integrator
- * (mitsuba_sensor.c). Private to scene/import_mitsuba*.c and scene/mitsuba_*.c. */
+ * property readers (mitsuba_values.c, mitsuba_transform.c), textures and parameters
+ * (mitsuba_texture.c), BSDFs (mitsuba_bsdf.c), shapes and emitters (mitsuba_shapes.c), the
+ * sensor and integrator (mitsuba_sensor.c). Private to scene/import_mitsuba*.c and
+ * scene/mitsuba_*.c. */
 #ifndef PT_MITSUBA_INTERNAL_H
 #define PT_MITSUBA_INTERNAL_H
 
@@ -57,12 +58,14 @@ bool mi_bool(Mitsuba *m, const XmlElement *e, const char *name, bool fallback, b
 /* NULL when absent (fallback returned) */
 const char *mi_string(Mitsuba *m, const XmlElement *e, const char *name, const char *fallback);
 bool mi_parse_number(Mitsuba *m, const XmlElement *e, const char *attribute, double *out);
+/* text "a, b, c" or "a b c": exactly n numbers (e is for messages). */
+bool mi_parse_list(Mitsuba *m, const XmlElement *e, const char *text, double *out, int n);
 /* A <rgb>, <spectrum>, <float> element's colour. */
 bool mi_spectrum_rgb(Mitsuba *m, const XmlElement *e, double rgb[3]);
 /* A <point>/<vector> property (x y z attributes or value="x, y, z"). */
 bool mi_point(Mitsuba *m, const XmlElement *e, const char *name, const double fallback[3], double out[3]);
-/* A <transform name=...> property: its operations composed as Mitsuba does (each one
- * left-multiplies what came before); identity when absent. */
+/* A <transform name=...> property (mitsuba_transform.c): its operations composed as Mitsuba
+ * does (each one left-multiplies what came before); identity when absent. */
 bool mi_transform(Mitsuba *m, const XmlElement *e, const char *name, Affine *out);
 /* Warns about the properties of e nobody read. */
 void mi_warn_unused(Mitsuba *m, const XmlElement *e);
