@@ -200,6 +200,7 @@ $(filter $(BUILD)/tests/test_accel_bvh_%,$(TESTS)): $(patsubst tests/%.c,$(BUILD
 # The 'pt' end-to-end tests share tests/cli_run.c.
 $(BUILD)/tests/test_cli $(BUILD)/tests/test_cli_options $(BUILD)/tests/test_checkpoint: $(BUILD)/tests/cli_run.o
 $(BUILD)/tests/test_multi_device: $(BUILD)/tests/cli_run.o
+$(BUILD)/tests/test_io_ply $(BUILD)/tests/test_io_ply_bad_input: $(BUILD)/tests/ply_fixtures.o
 # The Draco tests write their glTF twins with libdraco's encoder (tests/draco_fixture.cc).
 $(BUILD)/tests/test_gltf_draco: $(BUILD)/tests/draco_fixture.o
 $(BUILD)/tests/test_denoise: $(BUILD)/tests/cli_run.o

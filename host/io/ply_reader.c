@@ -4,7 +4,8 @@
  * (a 1 KB file claiming 10^12 vertices is refused, not allocated); then the body is read
  * value by value (ascii tokens or binary scalars of either byte order). Faces are kept until every
  * element is read (PLY lets the face element come first) and then triangulated like OBJ n-gons.
- * Element items in messages count from 0, like PLY's vertex indices. */
+ * Element items in messages count from 0, like PLY's vertex indices. This file reads values,
+ * vertices and the layout; ply_faces.c keeps the face and tristrips lists and triangulates them. */
 #include "io/ply_reader.h"
 
 #include <math.h>
@@ -16,31 +17,14 @@
 
 #include "io/input_file.h"
 #include "io/ply_header.h"
-#include "io/triangulate.h"
-
-#define PLY_MAX_FACE_CORNERS 255 /* as OBJ (tinyobjloader's limit); ear clipping is quadratic */
+#include "io/ply_internal.h"
 
 static bool g_quiet;
 
 /* The vertex properties read, in the order of a vertex's values. */
 enum { ROLE_X, ROLE_Y, ROLE_Z, ROLE_NX, ROLE_NY, ROLE_NZ, ROLE_U, ROLE_V, NUM_ROLES };
 
-typedef struct {
-    const char *path;
-    Error *err;
-    const char *data;
-    size_t size, pos; /* pos: the next byte to read */
-    int line;         /* ascii: the line of pos */
-    PlyHeader h;
-    /* Faces as read: corner counts, and their vertex indices one after another. */
-    uint16_t *face_sizes;
-    int32_t *face_corners;
-    size_t num_faces, faces_capacity, num_corners, corners_capacity;
-} Ply;
-
-static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
+bool ply_fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
 {
     va_list args;
     va_start(args, fmt);
@@ -50,7 +34,7 @@ static bool fail(Ply *p, ErrorCode code, int line, const char *fmt, ...)
 }
 
 /* The line to name for an error in the body: ascii has lines, binary does not. */
-static int body_line(const Ply *p)
+int ply_body_line(const Ply *p)
 {
     return p->h.format == PLY_ASCII ? p->line : 0;
 }
@@ -73,7 +57,7 @@ static ReadStatus read_value(Ply *p, int type, double *out)
         char *end;
         *out = strtod(start, &end);
         if (len == 0 || end != start + len) {
-            fail(p, ERR_OBJ_PARSE, p->line, "bad number '%.*s'", (int)(len < 40 ? len : 40), start);
+            ply_fail(p, ERR_OBJ_PARSE, p->line, "bad number '%.*s'", (int)(len < 40 ? len : 40), start);
             return READ_BAD;
         }
         p->pos += len;
@@ -105,82 +89,28 @@ static ReadStatus read_value(Ply *p, int type, double *out)
 }
 
 /* Reads a value of an element item, naming the item when the data ends. */
-static bool read_item_value(Ply *p, int type, const PlyElement *e, uint64_t item, double *out)
+bool ply_read_item_value(Ply *p, int type, const PlyElement *e, uint64_t item, double *out)
 {
     ReadStatus status = read_value(p, type, out);
     if (status == READ_END)
-        return fail(p, ERR_OBJ_PARSE, 0, "%s (%s %llu of %llu)",
+        return ply_fail(p, ERR_OBJ_PARSE, 0, "%s (%s %llu of %llu)",
                     p->h.format == PLY_ASCII ? "unexpected end of data" : "truncated binary data",
                     e->name, (unsigned long long)item, (unsigned long long)e->count);
     return status == READ_OK;
 }
 
 /* Reads a list's count: a whole number the rest of the data can hold. */
-static bool read_list_count(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t item,
+bool ply_read_list_count(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t item,
                             size_t *count)
 {
     double value;
-    if (!read_item_value(p, prop->count_type, e, item, &value))
+    if (!ply_read_item_value(p, prop->count_type, e, item, &value))
         return false;
     uint64_t least = p->h.format == PLY_ASCII ? 1u : PLY_TYPES[prop->type].size;
     if (!(value >= 0.0) || value != floor(value) || value > (double)((p->size - p->pos) / least))
-        return fail(p, ERR_OBJ_PARSE, body_line(p), "%s %llu: list '%s' has a bad length %g",
+        return ply_fail(p, ERR_OBJ_PARSE, ply_body_line(p), "%s %llu: list '%s' has a bad length %g",
                     e->name, (unsigned long long)item, prop->name, value);
     *count = (size_t)value;
-    return true;
-}
-
-static bool grow(void **array, size_t *capacity, size_t needed, size_t element_size)
-{
-    if (needed <= *capacity)
-        return true;
-    size_t wanted = *capacity ? 2 * *capacity : 256;
-    while (wanted < needed)
-        wanted *= 2;
-    void *grown = realloc(*array, wanted * element_size);
-    if (!grown)
-        return false;
-    *array = grown;
-    *capacity = wanted;
-    return true;
-}
-
-/* Appends one face of n corners, which the caller fills: face_corners[num_corners - n, ...).
- * (n may be 0: a face PLY allows, skipped later with a warning.) */
-static bool add_face(Ply *p, size_t n)
-{
-    if (!grow((void **)&p->face_sizes, &p->faces_capacity, p->num_faces + 1, sizeof *p->face_sizes) ||
-        !grow((void **)&p->face_corners, &p->corners_capacity, p->num_corners + n,
-              sizeof *p->face_corners))
-        return fail(p, ERR_TOO_LARGE, 0, "out of memory reading faces");
-    p->face_sizes[p->num_faces++] = (uint16_t)n;
-    p->num_corners += n;
-    return true;
-}
-
-/* One face's vertex_indices list, every index checked against the vertex count. */
-static bool read_face_list(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t face,
-                           uint64_t num_vertices)
-{
-    size_t n;
-    if (!read_list_count(p, prop, e, face, &n))
-        return false;
-    if (n > PLY_MAX_FACE_CORNERS)
-        return fail(p, ERR_TOO_LARGE, body_line(p), "face %llu has %zu vertices (the limit is %d)",
-                    (unsigned long long)face, n, PLY_MAX_FACE_CORNERS);
-    size_t first = p->num_corners;
-    if (!add_face(p, n))
-        return false;
-    for (size_t k = 0; k < n; k++) {
-        double index;
-        if (!read_item_value(p, prop->type, e, face, &index))
-            return false;
-        if (!(index >= 0.0) || index != floor(index) || index >= (double)num_vertices)
-            return fail(p, ERR_OBJ_INDEX, body_line(p),
-                        "face %llu: vertex index %g out of range (%llu vertices)",
-                        (unsigned long long)face, index, (unsigned long long)num_vertices);
-        p->face_corners[first + k] = (int32_t)index;
-    }
     return true;
 }
 
@@ -206,48 +136,6 @@ typedef struct {
     bool has_normals, has_uvs;
 } MeshLayout;
 
-/* One tristrips item (Cyberware scans): a list of vertex indices where -1 restarts the strip;
- * each index after the first two makes a triangle with the two before it, every other one with
- * its first two corners swapped so that all keep the strip's winding. Triangles with a repeated
- * corner (used to turn a strip) are not emitted. */
-static bool read_strip_list(Ply *p, const PlyProperty *prop, const PlyElement *e, uint64_t item,
-                            uint64_t num_vertices)
-{
-    size_t n, have = 0, parity = 0;
-    if (!read_list_count(p, prop, e, item, &n))
-        return false;
-    int32_t a = -1, b = -1;
-    for (size_t k = 0; k < n; k++) {
-        double index;
-        if (!read_item_value(p, prop->type, e, item, &index))
-            return false;
-        if (index == -1.0) {
-            have = parity = 0;
-            continue;
-        }
-        if (!(index >= 0.0) || index != floor(index) || index >= (double)num_vertices)
-            return fail(p, ERR_OBJ_INDEX, body_line(p),
-                        "tristrips %llu: vertex index %g out of range (%llu vertices; -1 restarts)",
-                        (unsigned long long)item, index, (unsigned long long)num_vertices);
-        int32_t c = (int32_t)index;
-        if (have >= 2) {
-            if (a != b && b != c && a != c) {
-                if (!add_face(p, 3))
-                    return false;
-                int32_t *t = p->face_corners + p->num_corners - 3;
-                t[0] = parity ? b : a;
-                t[1] = parity ? a : b;
-                t[2] = c;
-            }
-            parity ^= 1;
-        }
-        a = b;
-        b = c;
-        have++;
-    }
-    return true;
-}
-
 /* The vertex_indices (or vertex_index) list of element e (face or tristrips), when present. */
 static bool find_index_list(Ply *p, int e, int *list)
 {
@@ -261,9 +149,9 @@ static bool find_index_list(Ply *p, int e, int *list)
             *list = k;
     }
     if (*list < 0)
-        return fail(p, ERR_OBJ_PARSE, 0, "the %s element lacks a vertex_indices list", f->name);
+        return ply_fail(p, ERR_OBJ_PARSE, 0, "the %s element lacks a vertex_indices list", f->name);
     if (PLY_TYPES[f->properties[*list].type].kind == PLY_FLOAT)
-        return fail(p, ERR_OBJ_PARSE, 0, "%s: vertex_indices has a float index type", f->name);
+        return ply_fail(p, ERR_OBJ_PARSE, 0, "%s: vertex_indices has a float index type", f->name);
     return true;
 }
 
@@ -276,15 +164,15 @@ static bool find_layout(Ply *p, MeshLayout *m)
                     : strcmp(name, "face") == 0 ? &m->face_element
                     : strcmp(name, "tristrips") == 0 ? &m->strip_element : NULL;
         if (slot && *slot >= 0)
-            return fail(p, ERR_OBJ_PARSE, 0, "two '%s' elements", name);
+            return ply_fail(p, ERR_OBJ_PARSE, 0, "two '%s' elements", name);
         if (slot)
             *slot = i;
     }
     if (m->vertex_element < 0)
-        return fail(p, ERR_OBJ_PARSE, 0, "no 'vertex' element");
+        return ply_fail(p, ERR_OBJ_PARSE, 0, "no 'vertex' element");
     const PlyElement *v = &p->h.elements[m->vertex_element];
     if (v->count > INT32_MAX)
-        return fail(p, ERR_TOO_LARGE, 0, "%llu vertices (the limit is %d)",
+        return ply_fail(p, ERR_TOO_LARGE, 0, "%llu vertices (the limit is %d)",
                     (unsigned long long)v->count, INT32_MAX);
     bool seen[NUM_ROLES] = {false};
     for (int k = 0; k < v->num_properties; k++) {
@@ -293,7 +181,7 @@ static bool find_layout(Ply *p, MeshLayout *m)
             seen[m->roles[k]] = true;
     }
     if (!seen[ROLE_X] || !seen[ROLE_Y] || !seen[ROLE_Z])
-        return fail(p, ERR_OBJ_PARSE, 0, "the vertex element lacks property x, y or z");
+        return ply_fail(p, ERR_OBJ_PARSE, 0, "the vertex element lacks property x, y or z");
     m->has_normals = seen[ROLE_NX] && seen[ROLE_NY] && seen[ROLE_NZ];
     m->has_uvs = seen[ROLE_U] && seen[ROLE_V];
     return find_index_list(p, m->face_element, &m->face_list) &&
@@ -308,16 +196,16 @@ static bool read_vertex(Ply *p, const MeshLayout *m, uint64_t i, Mesh *out)
     for (int k = 0; k < e->num_properties; k++) {
         const PlyProperty *prop = &e->properties[k];
         size_t n = 1;
-        if (prop->count_type >= 0 && !read_list_count(p, prop, e, i, &n))
+        if (prop->count_type >= 0 && !ply_read_list_count(p, prop, e, i, &n))
             return false;
         for (size_t j = 0; j < n; j++) {
             double value;
-            if (!read_item_value(p, prop->type, e, i, &value))
+            if (!ply_read_item_value(p, prop->type, e, i, &value))
                 return false;
             if (m->roles[k] >= 0) {
                 values[m->roles[k]] = (float)value;
                 if (!isfinite(values[m->roles[k]]))
-                    return fail(p, ERR_OBJ_NONFINITE, body_line(p),
+                    return ply_fail(p, ERR_OBJ_NONFINITE, ply_body_line(p),
                                 "vertex %llu: property %s is not finite (%g)",
                                 (unsigned long long)i, prop->name, value);
             }
@@ -347,66 +235,25 @@ static bool read_element(Ply *p, const MeshLayout *m, int e_index, Mesh *out)
         for (int k = 0; k < e->num_properties; k++) {
             const PlyProperty *prop = &e->properties[k];
             if (e_index == m->face_element && k == m->face_list) {
-                if (!read_face_list(p, prop, e, i, num_vertices))
+                if (!ply_read_face_list(p, prop, e, i, num_vertices))
                     return false;
                 continue;
             }
             if (e_index == m->strip_element && k == m->strip_list) {
-                if (!read_strip_list(p, prop, e, i, num_vertices))
+                if (!ply_read_strip_list(p, prop, e, i, num_vertices))
                     return false;
                 continue;
             }
             size_t n = 1;
-            if (prop->count_type >= 0 && !read_list_count(p, prop, e, i, &n))
+            if (prop->count_type >= 0 && !ply_read_list_count(p, prop, e, i, &n))
                 return false;
             for (size_t j = 0; j < n; j++) {
                 double skipped;
-                if (!read_item_value(p, prop->type, e, i, &skipped))
+                if (!ply_read_item_value(p, prop->type, e, i, &skipped))
                     return false;
             }
         }
     }
-    return true;
-}
-
-/* Triangulates the faces read, in file order, like OBJ n-gons. */
-static bool emit_triangles(Ply *p, Mesh *out)
-{
-    size_t max_triangles = 0, short_faces = 0;
-    for (size_t f = 0; f < p->num_faces; f++)
-        max_triangles += p->face_sizes[f] >= 3 ? p->face_sizes[f] - 2u : 0u;
-    out->corners = malloc((max_triangles ? 9 * max_triangles : 1) * sizeof *out->corners);
-    out->material_ids = malloc((max_triangles ? max_triangles : 1) * sizeof *out->material_ids);
-    if (!out->corners || !out->material_ids)
-        return fail(p, ERR_TOO_LARGE, 0, "out of memory for %zu triangles", max_triangles);
-    float points[3 * PLY_MAX_FACE_CORNERS];
-    uint32_t triangles[3 * PLY_MAX_FACE_CORNERS];
-    size_t first = 0; /* the face's first corner in face_corners (NULL when no face has one) */
-    for (size_t f = 0; f < p->num_faces; first += p->face_sizes[f++]) {
-        size_t n = p->face_sizes[f];
-        if (n < 3) {
-            short_faces++;
-            continue;
-        }
-        const int32_t *corner = p->face_corners + first;
-        out->num_faces++;
-        for (size_t k = 0; k < n; k++)
-            memcpy(points + 3 * k, out->positions + 3 * (size_t)corner[k], 3 * sizeof(float));
-        size_t count = triangulate_polygon(points, n, triangles);
-        for (size_t t = 0; t < count; t++) {
-            int32_t *emitted = out->corners + 9 * out->num_triangles;
-            for (int c = 0; c < 3; c++) {
-                int32_t v = corner[triangles[3 * t + c]];
-                emitted[3 * c + 0] = v;
-                emitted[3 * c + 1] = out->texcoords ? v : -1;
-                emitted[3 * c + 2] = out->normals ? v : -1;
-            }
-            out->material_ids[out->num_triangles++] = -1;
-        }
-    }
-    if (short_faces > 0)
-        warn("%s: %zu face%s with fewer than 3 vertices skipped", p->path, short_faces,
-             short_faces == 1 ? "" : "s");
     return true;
 }
 
@@ -435,11 +282,11 @@ static bool load(Ply *p, Mesh *out)
         out->texcoords = calloc(n ? 2 * n : 1, sizeof(float));
     }
     if (!out->positions || (m.has_normals && !out->normals) || (m.has_uvs && !out->texcoords))
-        return fail(p, ERR_TOO_LARGE, 0, "out of memory for %zu vertices", n);
+        return ply_fail(p, ERR_TOO_LARGE, 0, "out of memory for %zu vertices", n);
     for (int e = 0; e < p->h.num_elements; e++)
         if (!read_element(p, &m, e, out))
             return false;
-    return emit_triangles(p, out);
+    return ply_emit_triangles(p, out);
 }
 
 void ply_reader_set_quiet(bool quiet)
