@@ -12,6 +12,8 @@
  * so that a render that never stops fails the test (exit 137) instead of outliving it. */
 #define _XOPEN_SOURCE 700 /* mkdtemp */
 #include <criterion/criterion.h>
+#include <poll.h>
+#include <sys/inotify.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,6 +137,8 @@ Test(stop_matrix, sigterm_from_outside_to_a_quiet_checkpointed_render, .timeout 
     snprintf(exr, sizeof exr, "%s/out.exr", dir);
     snprintf(checkpoint, sizeof checkpoint, "%s.ptckpt", exr);
     const char *pt = test_pt_bin(); /* in the parent: it may fail the test */
+    int watch = inotify_init1(IN_CLOEXEC);
+    cr_assert(watch >= 0 && inotify_add_watch(watch, dir, IN_MOVED_TO | IN_CREATE) >= 0);
     pid_t pid = fork();
     cr_assert_neq(pid, -1);
     if (pid == 0) {
@@ -148,11 +152,18 @@ Test(stop_matrix, sigterm_from_outside_to_a_quiet_checkpointed_render, .timeout 
     }
     struct stat st;
     int status = 0;
-    /* Bounded by the test's timeout; the child ending first (it cannot: 65536 spp) fails. */
+    /* Waits for the checkpoint's rename into place (an inotify event, not a timed poll); poll's
+     * second only looks whether pt died first (it cannot: 65536 spp). Bounded by the test's
+     * timeout. */
     while (stat(checkpoint, &st) != 0) {
+        struct pollfd event = {.fd = watch, .events = POLLIN};
+        if (poll(&event, 1, 1000) > 0) {
+            char buffer[4096];
+            cr_assert(read(watch, buffer, sizeof buffer) > 0);
+        }
         cr_assert_eq(waitpid(pid, &status, WNOHANG), 0, "pt ended before its first checkpoint");
-        nanosleep(&(struct timespec){.tv_nsec = 10000000}, NULL); /* polls an event */
     }
+    close(watch);
     cr_assert_eq(kill(pid, SIGTERM), 0);
     cr_assert_eq(waitpid(pid, &status, 0), pid);
     cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 143, "status %d", status);
