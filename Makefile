@@ -39,7 +39,7 @@ Q := @
 endif
 
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
-CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shared/geometry.h cl/shared/material.h cl/shared/render.h \
+CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shared/geometry.h cl/shared/material.h cl/shared/medium.h cl/shared/render.h \
               cl/core/util.cl cl/core/sobol.cl cl/core/rng.cl cl/core/sampling.cl cl/core/camera.cl \
               cl/geometry/intersect_triangle.cl cl/geometry/instance.cl cl/geometry/bvh_traverse.cl \
               cl/geometry/bvh_traverse_wide.cl cl/geometry/bvh_traverse_packet.cl \
@@ -47,7 +47,8 @@ CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shar
               cl/geometry/ray_offset.cl cl/geometry/surface.cl cl/material/texture.cl \
               cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \
-              cl/material/bsdf.cl cl/material/shading_point.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
+              cl/material/bsdf.cl cl/material/shading_point.cl \
+              cl/medium/phase.cl cl/medium/medium_grid.cl cl/medium/medium_track.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
               cl/light/accretion_disk.cl \
               cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \

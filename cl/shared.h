@@ -25,6 +25,7 @@ typedef cl_uint uint;
 #include "shared/program_parts.h"
 #include "shared/geometry.h"
 #include "shared/material.h"
+#include "shared/medium.h"
 #include "shared/render.h"
 #endif
 
@@ -46,30 +47,33 @@ typedef cl_uint uint;
     STRUCT(TrianglePack4, 160) FIELD(TrianglePack4, v) FIELD(TrianglePack4, prim)                   \
     STRUCT(BvhNode8, 224) FIELD(BvhNode8, lo) FIELD(BvhNode8, hi) FIELD(BvhNode8, child)            \
     STRUCT(TrianglePack8, 320) FIELD(TrianglePack8, v) FIELD(TrianglePack8, prim)                   \
-    STRUCT(Material, 176) FIELD(Material, base) FIELD(Material, emission) FIELD(Material, eta)     \
+    STRUCT(Material, 192) FIELD(Material, base) FIELD(Material, emission) FIELD(Material, eta)     \
         FIELD(Material, k) FIELD(Material, absorption) FIELD(Material, specular_color)              \
         FIELD(Material, roughness) FIELD(Material, anisotropy) FIELD(Material, metallic)            \
         FIELD(Material, opacity) FIELD(Material, ior) FIELD(Material, specular)                     \
         FIELD(Material, weight) FIELD(Material, bump_scale) FIELD(Material, type)                   \
         FIELD(Material, flags) FIELD(Material, mix_a) FIELD(Material, mix_b) FIELD(Material, tex)   \
+        FIELD(Material, interior) FIELD(Material, exterior) FIELD(Material, pad0)                   \
+        FIELD(Material, pad1)                                                                       \
     STRUCT(TextureInfo, 48) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
         FIELD(TextureInfo, height) FIELD(TextureInfo, format) FIELD(TextureInfo, flags)             \
         FIELD(TextureInfo, scale) FIELD(TextureInfo, transform)                                     \
     STRUCT(Camera, 64) FIELD(Camera, eye) FIELD(Camera, right) FIELD(Camera, up)                    \
         FIELD(Camera, forward)                                                                      \
-    STRUCT(SceneParams, 36) FIELD(SceneParams, num_bvh_prims) FIELD(SceneParams, num_instances)    \
+    STRUCT(SceneParams, 48) FIELD(SceneParams, num_bvh_prims) FIELD(SceneParams, num_instances)    \
         FIELD(SceneParams, num_emissive) FIELD(SceneParams, num_analytic)                           \
         FIELD(SceneParams, emissive_power) FIELD(SceneParams, env_pick_pdf)                         \
         FIELD(SceneParams, env_width) FIELD(SceneParams, env_height)                                \
-        FIELD(SceneParams, env_rotation)                                                            \
-    STRUCT(RenderParams, 176) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
+        FIELD(SceneParams, env_rotation) FIELD(SceneParams, num_media)                              \
+        FIELD(SceneParams, world_medium) FIELD(SceneParams, camera_medium)                          \
+    STRUCT(RenderParams, 192) FIELD(RenderParams, camera) FIELD(RenderParams, background)           \
         FIELD(RenderParams, scene) FIELD(RenderParams, width) FIELD(RenderParams, height)           \
         FIELD(RenderParams, seed) FIELD(RenderParams, max_depth) FIELD(RenderParams, sample_index)  \
         FIELD(RenderParams, aov) FIELD(RenderParams, flags) FIELD(RenderParams, window_start)       \
         FIELD(RenderParams, window_size) FIELD(RenderParams, shutter_open)                          \
         FIELD(RenderParams, shutter_close) FIELD(RenderParams, window_pixels)                       \
         FIELD(RenderParams, clamp_indirect) FIELD(RenderParams, pixel_offset)                       \
-        FIELD(RenderParams, pad0)                                                                   \
+        FIELD(RenderParams, pad0) FIELD(RenderParams, pad1)                                         \
     STRUCT(LightEntry, 32) FIELD(LightEntry, prob) FIELD(LightEntry, alias)                         \
         FIELD(LightEntry, triangle) FIELD(LightEntry, pdf) FIELD(LightEntry, instance)              \
         FIELD(LightEntry, pad0) FIELD(LightEntry, pad1) FIELD(LightEntry, pad2)                     \
@@ -84,7 +88,12 @@ typedef cl_uint uint;
         FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)          \
     STRUCT(BlackHole, 96) FIELD(BlackHole, centre) FIELD(BlackHole, normal)                        \
         FIELD(BlackHole, tangent) FIELD(BlackHole, radii) FIELD(BlackHole, emission)               \
-        FIELD(BlackHole, noise)
+        FIELD(BlackHole, noise)                                                                     \
+    STRUCT(Medium, 144) FIELD(Medium, sigma_a) FIELD(Medium, sigma_s) FIELD(Medium, emission)      \
+        FIELD(Medium, to_index) FIELD(Medium, type) FIELD(Medium, flags) FIELD(Medium, res_x)       \
+        FIELD(Medium, res_y) FIELD(Medium, res_z) FIELD(Medium, bricks_x) FIELD(Medium, bricks_y)   \
+        FIELD(Medium, bricks_z) FIELD(Medium, brick_table) FIELD(Medium, values)                    \
+        FIELD(Medium, majorants) FIELD(Medium, pad0)
 
 /* Words written by report_layout: per struct its size, per field its offset and size. */
 #define SHARED_LAYOUT_STRUCT_WORDS(type, size) +1

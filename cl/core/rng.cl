@@ -102,7 +102,8 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
  *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light u, v, light pick, alias coin,
  *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
  *   the shadow ray, environment texel pick, its alias coin, black-hole disk pass-through coins
- *   (14, DIM_DISK_COIN in integrate_geodesic.cl); 15 spare. */
+ *   (14, DIM_DISK_COIN in integrate_geodesic.cl), the medium tracking of the segment that reached
+ *   the vertex and of its shadow ray (15, cl/medium/medium_track.cl). */
 #define DIM_CAMERA_JITTER_X 0u
 #define DIM_CAMERA_JITTER_Y 1u
 #define DIM_LENS_U 2u
@@ -124,6 +125,7 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_SHADOW_OPACITY 11u /* the same along the bounce's shadow ray */
 #define DIM_ENV_PICK 12u  /* the environment map's alias-table entry (32 bits) */
 #define DIM_ENV_COIN 13u  /* that entry or its alias */
+#define DIM_MEDIUM 15u    /* the first free-flight distance; seeds the tracking's stream */
 
 inline float rng_from_key(RngKey key, uint dimension) { return uint_to_unit(rng_bits(key, dimension)); }
 

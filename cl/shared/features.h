@@ -34,7 +34,9 @@
     X(CUTOUT, "cutout")           /* cut-out materials: a material read per hit in traversal */    \
     X(INSTANCES, "instances")     /* the two-level BVH (shared/geometry.h "Instances") */          \
     X(MOTION, "motion")           /* moving instances (path_time) */                               \
-    X(BLACK_HOLES, "black-holes") /* the integrate_geodesic stage */
+    X(BLACK_HOLES, "black-holes") /* the integrate_geodesic stage */                               \
+    X(MEDIA, "media")             /* media that scatter or emit: tracking (cl/medium/) */          \
+    X(GRID_MEDIA, "grid-media")   /* grid media: density lookups and the majorant walk */
 #define PROGRAM_FEATURES(X) MATERIAL_FEATURES(X) SCENE_FEATURES(X)
 
 /* FEATURE_<NAME>: the feature's bit in a ProgramFeatures set. */

@@ -12,7 +12,8 @@
     X(CONDUCTOR, "conductor")   /* GGX, complex Fresnel; roughness 0 = perfect mirror */           \
     X(DIELECTRIC, "dielectric") /* GGX (Walter 2007); roughness 0 = smooth glass */                \
     X(PRINCIPLED, "principled") /* glTF 2.0 metallic-roughness */                                  \
-    X(MIX, "mix")               /* (1 - weight) a + weight b, resolved stochastically per hit */
+    X(MIX, "mix")               /* (1 - weight) a + weight b, resolved stochastically per hit */  \
+    X(INTERFACE, "interface")   /* invisible: only the boundary of a medium (shared/medium.h) */
 #define MATERIAL_TYPE_ENUM(name, json) MATERIAL_##name,
 enum { MATERIAL_TYPES(MATERIAL_TYPE_ENUM) MATERIAL_TYPE_COUNT };
 #undef MATERIAL_TYPE_ENUM
@@ -37,6 +38,7 @@ enum { MATERIAL_TEXTURE_SLOTS(MATERIAL_TEXTURE_SLOT_ENUM) MATERIAL_TEX_COUNT };
 #define MATERIAL_FLAG_BASE_ALPHA 4u   /* the BASE texture's alpha multiplies the opacity */
 #define MATERIAL_FLAG_ALPHA_MASK 8u   /* opacity is 1 where it reaches base.w (the cutoff), else 0:
                                          glTF's alphaMode MASK */
+#define MATERIAL_FLAG_MEDIUM_INTERFACE 16u /* the surface bounds media: interior / exterior apply */
 
 #define NO_TEXTURE 0xffffffffu
 /* Material features a scene may use (MATERIAL_FEATURE_*): shared/features.h. */
@@ -68,6 +70,9 @@ typedef struct {
     uint flags;            /* MATERIAL_FLAG_* */
     uint mix_a, mix_b;     /* mix: material indices */
     uint tex[MATERIAL_TEX_COUNT]; /* MATERIAL_TEX_* slots: texture index or NO_TEXTURE */
+    uint interior;         /* MATERIAL_FLAG_MEDIUM_INTERFACE: medium slot behind the surface (0 none) */
+    uint exterior;         /* ... and in front of it (MEDIUM_SLOT_WORLD: the world medium) */
+    uint pad0, pad1;
 } Material;
 
 #define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */

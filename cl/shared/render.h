@@ -32,6 +32,9 @@ typedef struct {
     uint env_width;       /* environment map texels across (0: no map, background is the sky) */
     uint env_height;
     float env_rotation;   /* the map's rotation theta as a fraction of a turn */
+    uint num_media;       /* entries of media (shared/medium.h) */
+    uint world_medium;    /* the medium slot that fills the world (0: none) */
+    uint camera_medium;   /* the medium slot camera rays start in */
 } SceneParams;
 
 typedef struct {
@@ -57,7 +60,7 @@ typedef struct {
     uint pixel_offset;   /* the first pixel of the block being rendered (dist/work_units.h:
                           * a unit's tile is pixels pixel_offset .. + window_pixels - 1); 0
                           * under RENDER_ADAPTIVE, whose active_pixels name whole-film pixels */
-    uint pad0;           /* to a multiple of 16 bytes */
+    uint pad0, pad1; /* to a multiple of 16 bytes */
 } RenderParams;
 
 #define RENDER_NO_NEE 1u
@@ -165,7 +168,11 @@ typedef struct {
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
     X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */           \
     X(Instance, instances)                                                                          \
-    X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */
+    X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */         \
+    X(Medium, media)           /* medium slot k is media[k - 1] (shared/medium.h) */              \
+    X(uint, grid_bricks)       /* the grid media's brick tables */                                 \
+    X(float, grid_values)      /* their bricks' voxel values */                                    \
+    X(float, grid_majorants)   /* their bricks' largest densities */
 
 #define SCENE_BUFFER_COUNT_ONE(type, name) +1
 #define SCENE_BUFFER_COUNT (0 SCENE_BUFFERS(SCENE_BUFFER_COUNT_ONE))
@@ -232,10 +239,19 @@ inline float4 ray_direction_pack(float3 direction, float pdf_w)
 }
 inline float ray_direction_pdf_w(float4 direction) { return direction.w; }
 
-/* medium: 1 + the material index of the absorbing dielectric the segment runs inside, 0 outside
- * any (the camera starts outside). */
+/* medium: the path's medium state (medium_state below): which medium the segment runs in, and
+ * how many interfaces the path has crossed. */
 inline float4 throughput_pack(float3 beta, uint medium) { return (float4)(beta, as_float(medium)); }
 inline uint throughput_medium(float4 throughput) { return as_uint(throughput.w); }
+
+/* A medium state: the slot of the medium (shared/medium.h; low 16 bits, 0 = none) and the count
+ * of `interface` surfaces the path has passed through (high bits, at most MEDIUM_CROSSING_LIMIT).
+ * A crossing is no bounce (max_depth does not count it, as pbrt's volpath) but the next vertex
+ * must draw new numbers: its bounce for the sampler is depth - 1 + crossings. */
+#define MEDIUM_CROSSING_LIMIT 32767u
+inline uint medium_state(uint slot, uint crossings) { return slot | crossings << 16; }
+inline uint medium_state_slot(uint state) { return state & 0xffffu; }
+inline uint medium_state_crossings(uint state) { return state >> 16; }
 
 /* t, u, v: distance and barycentrics; prim: the triangle, HIT_NONE for an escaped ray. */
 inline float4 hit_pack(float t, float u, float v, uint prim)
@@ -250,12 +266,14 @@ inline float4 shadow_origin_pack(float3 origin, float tmax) { return (float4)(or
 inline float shadow_origin_tmax(float4 origin) { return origin.w; }
 
 /* bounce: the bounce that queued the shadow ray, whose DIM_SHADOW_OPACITY stream decides the
- * cut-out pass-throughs along it (intersect_shadow.cl). */
-inline float4 shadow_direction_pack(float3 direction, uint bounce)
+ * cut-out pass-throughs along it (intersect_shadow.cl), below 2^16 (max_depth plus
+ * MEDIUM_CROSSING_LIMIT); medium: the slot of the medium the ray starts in (0: none). */
+inline float4 shadow_direction_pack(float3 direction, uint bounce, uint medium)
 {
-    return (float4)(direction, as_float(bounce));
+    return (float4)(direction, as_float(bounce | medium << 16));
 }
-inline uint shadow_direction_bounce(float4 direction) { return as_uint(direction.w); }
+inline uint shadow_direction_bounce(float4 direction) { return as_uint(direction.w) & 0xffffu; }
+inline uint shadow_direction_medium(float4 direction) { return as_uint(direction.w) >> 16; }
 
 /* waits: a shadow ray is queued and its contribution not yet resolved. */
 inline float4 shadow_contribution_pack(float3 contribution, bool waits)

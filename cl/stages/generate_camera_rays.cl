@@ -4,7 +4,7 @@
  * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (pdf_w = 0: the camera
- * ray counts as specular for MIS), throughput = 1 (medium 0: outside), radiance[k] = 0,
+ * ray counts as specular for MIS), throughput = 1 (in the camera's medium), radiance[k] = 0,
  * path_depth = 1 (the camera ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction,
  * camera_time), active[n_live + j].
  * Next: intersect_closest. */
@@ -17,7 +17,7 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     camera_sample(p, pixel, sample, &origin, &dir);
     ray_origin[slot] = ray_origin_pack(origin, 0.0f);
     ray_direction[slot] = ray_direction_pack(dir, 0.0f);
-    throughput[slot] = throughput_pack((float3)(1.0f), 0u);
+    throughput[slot] = throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     sample_id[slot] = k;
     path_depth[slot] = 1u;

@@ -23,6 +23,48 @@ inline void resolve_shadow_ray(PATH_STATE_PARAMS uint slot, float4 contribution,
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
 }
 
+/* With media: whether the shadow ray o + t d, t in [0, tmax), starting in medium slot `medium`,
+ * reaches its end, passing through `interface` surfaces (into the medium beyond each) and no
+ * other; *tr is multiplied by the transmittance of the media along it (medium_transmittance).
+ * The queuing bounce's DIM_MEDIUM number seeds the ratio tracking (a stream of its own: the
+ * bounce's closest-hit segment hashes it with another salt) and its DIM_SHADOW_OPACITY stream the
+ * cut-out pass-throughs, one per piece. */
+#define SHADOW_CROSSING_LIMIT 64u
+PT_INLINE bool shadow_through_media(constant RenderParams *p, const SceneView *scene,
+                                    uint brute_count, float3 o, float3 d, float tmax, float time,
+                                    bool brute_force, uint medium, RngKey key, uint bounce,
+                                    float3 *tr)
+{
+    MediumRng rng = medium_rng(rng_bounce_bits(key, bounce, DIM_MEDIUM), 0x1b873593u);
+    uint opacity = rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY);
+    for (uint piece = 0u; piece <= SHADOW_CROSSING_LIMIT; piece++) {
+        Hit h;
+        if (PT_FEATURE(CUTOUT))
+            h = trace_closest_through(scene, brute_count, o, d, 0.0f, tmax, time, brute_force,
+                                      hash_pcg(opacity + piece));
+        else
+            h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, tmax, false, time)
+                            : scene_closest(scene, brute_count, o, d, 0.0f, tmax, time);
+        bool reaches = h.prim == HIT_NONE;
+        if (medium != 0u) {
+            *tr *= medium_transmittance(scene, medium_at_slot(scene, medium), o, d,
+                                        reaches ? tmax : h.t, &rng);
+            if (!(max3(*tr) > 0.0f))
+                return false;
+        }
+        if (reaches)
+            return true;
+        Material m = scene->materials[scene->material_ids[h.prim]];
+        if (m.type != MATERIAL_INTERFACE)
+            return false;
+        SurfaceHit s = surface_at(scene, h, time);
+        medium = medium_toward(p, m, s.geometric_normal, d, medium);
+        o = offset_ray_origin(s.position, s.geometric_normal, d);
+        tmax -= h.t;
+    }
+    return false;
+}
+
 /* Traces the shadow ray that slot's path waits for (shadow_contribution_waits) and adds its
  * contribution to radiance[sample_id] when unoccluded; false, touching nothing, when none waits.
  * brute_force is a constant at every call. Shared by the kernels below and megakernel.cl. */
@@ -39,7 +81,14 @@ PT_INLINE bool connect_path(constant RenderParams *p, const SceneView *scene,
     float tmax = shadow_origin_tmax(origin);
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     bool occluded;
-    if (PT_FEATURE(CUTOUT)) {
+    if (PT_FEATURE(MEDIA)) {
+        RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
+        float3 tr = (float3)(1.0f);
+        occluded = !shadow_through_media(p, scene, brute_count, xyz(origin), d, tmax, time,
+                                         brute_force, shadow_direction_medium(direction), key,
+                                         shadow_direction_bounce(direction), &tr);
+        contribution = (float4)(xyz(contribution) * tr, contribution.w);
+    } else if (PT_FEATURE(CUTOUT)) {
         /* The queuing bounce's DIM_SHADOW_OPACITY stream decides the cut-out pass-throughs. */
         RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
         uint bounce = shadow_direction_bounce(direction);

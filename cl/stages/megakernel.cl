@@ -35,7 +35,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
 }
 #endif
 
-#if BVH_WIDTH == 8 && !PT_FEATURE(INSTANCES) && !PT_FEATURE(CUTOUT)
+#if BVH_WIDTH == 8 && !PT_FEATURE(INSTANCES) && !PT_FEATURE(CUTOUT) && !PT_FEATURE(MEDIA)
 #if PACKET_RAYS != 8
 #error "trace_paths_packets traces PACKET_RAYS paths in float8 lanes: the host's count must be 8"
 #endif
@@ -47,8 +47,8 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
  * Neighbouring samples are neighbouring pixels of one sample pass, whose camera rays and first
  * shadow rays are coherent; packets whose rays part ways go on ray by ray (PACKET_MIN_RAYS). Each
  * path's stages run in trace_paths' order with trace_bvh's hits, so the film's bits are the same.
- * Built where the packet walk applies: the 8-wide layout, one BVH level and no cut-outs (whose
- * walks pass through hits); scenes with bent rays never take a megakernel. The host launches
+ * Built where the packet walk applies: the 8-wide layout, one BVH level, no cut-outs and no media
+ * (whose walks pass through hits); scenes with bent rays never take a megakernel. The host launches
  * ceil(n / PACKET_RAYS) work items. */
 
 /* The rays of slots first + k for the bits k set in lanes (!= 0) as one packet from tmin 0:

@@ -81,13 +81,25 @@ inline float3 clamp_indirect(constant RenderParams *p, float3 c, bool indirect)
  * vertex set-up it shares with render_aov (shading_point, resolve_leaf, surface_bsdf) is in
  * cl/material/shading_point.cl ---- */
 
-/* Beer-Lambert: what of c survives `distance` inside the absorbing dielectric `medium` (the
- * throughput lane's medium, 1 + its material index); outside any (0), c itself. */
+/* Beer-Lambert: what of c survives `distance` inside the medium in slot `medium` when it only
+ * absorbs (a dielectric's absorption, a medium without scattering); outside any (0), c itself. */
 PT_INLINE float3 through_medium(const SceneView *scene, uint medium, float3 c, float distance)
 {
     if (PT_FEATURE(ABSORPTION) && medium != 0u)
-        c *= dielectric_transmittance(xyz(scene->materials[medium - 1u].absorption), distance);
+        c *= dielectric_transmittance(xyz(medium_at_slot(scene, medium)->sigma_a), distance);
     return c;
+}
+
+/* The medium slot a ray leaving the surface toward w runs in: the surface's exterior (w on the
+ * side geometric_normal points to) or interior when its material tm bounds media, else the
+ * path's own (shared/medium.h). */
+PT_INLINE uint medium_toward(constant RenderParams *p, Material tm, float3 geometric_normal,
+                             float3 w, uint medium)
+{
+    if (!(tm.flags & MATERIAL_FLAG_MEDIUM_INTERFACE))
+        return medium;
+    uint next = dot(w, geometric_normal) > 0.0f ? tm.exterior : tm.interior;
+    return next == MEDIUM_SLOT_WORLD ? p->scene.world_medium : next;
 }
 
 /* Escaped ray (Cycles' shade_background): the sky seen along direction (ray_direction's lane),
@@ -119,6 +131,7 @@ PT_INLINE float3 surface_emission(constant RenderParams *p, const SceneView *sce
 typedef struct {
     float3 origin, direction, contribution;
     float tmax;
+    uint medium; /* the slot of the medium it starts in (intersect_shadow tracks it with media) */
     bool queued; /* false: no ray, the other fields undefined */
 } ShadowRay;
 
@@ -148,8 +161,8 @@ PT_INLINE ShadowRay shadow_ray_to(LightSample ls, float3 origin, float3 wi)
  * BSDF, one light sample weighed against BSDF sampling; a ray not queued when there is none. */
 PT_INLINE ShadowRay connect_light(constant RenderParams *p, const SceneView *scene,
                                   const EnvMap *env, const ShadingPoint *sp, const SurfaceBsdf *sb,
-                                  float3 beta, uint medium, float time, RngKey key, uint bounce,
-                                  uint depth)
+                                  Material tm, float3 beta, uint medium, float time, RngKey key,
+                                  uint bounce, uint depth)
 {
     ShadowRay none;
     none.queued = false;
@@ -169,12 +182,15 @@ PT_INLINE ShadowRay connect_light(constant RenderParams *p, const SceneView *sce
     /* A delta light cannot be hit by the BSDF's rays: no MIS. */
     float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, bsdf_pdf);
     float3 contribution = beta * f_cos * ls.radiance * (weight / ls.pdf_w);
-    /* A light seen from inside an absorbing medium (rare: a lamp inside glass). */
-    if (wi_local.z > 0.0f)
+    /* With media, intersect_shadow tracks the ray from the medium on wi's side; without, a light
+     * seen from inside an absorbing dielectric (rare: a lamp inside glass) is dimmed here. */
+    uint shadow_medium = medium_toward(p, tm, sp->surf.geometric_normal, wi, medium);
+    if (!PT_FEATURE(MEDIA) && wi_local.z > 0.0f)
         contribution = through_medium(scene, medium, contribution,
                                       ls.at_infinity ? INFINITY : length(ls.position - position));
     float3 origin = offset_ray_origin(position, sp->surf.geometric_normal, wi);
     ShadowRay ray = shadow_ray_to(ls, origin, wi);
+    ray.medium = shadow_medium;
     ray.contribution = clamp_indirect(p, contribution, depth >= 2u);
     ray.queued = true;
     return ray;
@@ -187,7 +203,7 @@ PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint
     if (!ray.queued)
         return false;
     shadow_origin[slot] = shadow_origin_pack(ray.origin, ray.tmax);
-    shadow_direction[slot] = shadow_direction_pack(ray.direction, bounce);
+    shadow_direction[slot] = shadow_direction_pack(ray.direction, bounce, ray.medium);
     shadow_contribution[slot] = shadow_contribution_pack(ray.contribution, true);
     return true;
 }
@@ -209,21 +225,13 @@ PT_INLINE bool survives_roulette(float3 *beta, float u)
     return true;
 }
 
-/* The medium of the next segment: refraction into a dielectric that absorbs starts a segment
- * inside it; refraction out of one (wo inside, !front) ends it. Reflections keep the medium. */
-PT_INLINE uint medium_after(uint medium, BsdfSample bs, bool front, float3 leaf_absorption,
-                            uint leaf_index)
-{
-    if (PT_FEATURE(ABSORPTION) && (bs.flags & BSDF_TRANSMISSION))
-        medium = front && max3(leaf_absorption) > 0.0f ? leaf_index + 1u : 0u;
-    return medium;
-}
-
 /* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette from the third vertex on;
- * when the path goes on, writes the next segment's ray and throughput and returns true. */
-PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp,
-                             const SurfaceBsdf *sb, float3 leaf_absorption, uint leaf_index,
-                             float3 beta, uint medium, RngKey key, uint bounce, uint depth)
+ * when the path goes on, writes the next segment's ray and throughput (in the medium on the new
+ * direction's side of tm, medium_toward) and returns true. */
+PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
+                             const ShadingPoint *sp, const SurfaceBsdf *sb, Material tm,
+                             float3 beta, uint medium, uint crossings, RngKey key, uint bounce,
+                             uint depth)
 {
     /* DIM_BSDF_U, _V, _LOBE, DIM_ROULETTE: one Sobol tuple (the lobe stratified with the direction) */
     uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
@@ -243,9 +251,76 @@ PT_INLINE bool continue_path(PATH_STATE_PARAMS uint slot, const ShadingPoint *sp
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, wi);
     ray_origin[slot] = ray_origin_pack(origin, 0.0f);
     ray_direction[slot] = ray_direction_pack(wi, bs.pdf_w);
-    throughput[slot] = throughput_pack(
-        beta, medium_after(medium, bs, sp->front, leaf_absorption, leaf_index));
+    uint next = medium_toward(p, tm, sp->surf.geometric_normal, wi, medium);
+    throughput[slot] = throughput_pack(beta, medium_state(next, crossings));
     return true;
+}
+
+/* ---- Media (cl/medium/): the vertex where a path scatters inside a medium, and the pass
+ * through an `interface` surface ---- */
+
+/* A scattering at position inside medium slot `medium` (the path arrived along d with weight
+ * beta): next-event estimation with the phase function weighed against phase sampling, then the
+ * phase sample and roulette, as a surface vertex does with its BSDF. True when it queued a shadow
+ * ray. The vertex counts toward max_depth. */
+PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *scene,
+                                   const EnvMap *env, PATH_STATE_PARAMS uint slot, float3 position,
+                                   float3 d, float3 beta, uint state, float time, RngKey key,
+                                   uint bounce, uint depth)
+{
+    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
+    if (depth >= p->max_depth) {
+        path_depth[slot] = 0u;
+        return false;
+    }
+    uint medium = medium_state_slot(state);
+    float g = medium_at_slot(scene, medium)->sigma_a.w;
+    bool queued = false;
+    if (p->scene.num_emissive > 0u && !(p->flags & RENDER_NO_NEE)) {
+        LightSample ls = light_sample(scene, env, p->scene.num_emissive, position, time, key, bounce);
+        float phase = phase_hg(g, dot(d, ls.direction));
+        if (ls.pdf_w > 0.0f && phase > 0.0f) {
+            float weight = ls.delta ? 1.0f : mis_power(ls.pdf_w, phase);
+            ShadowRay ray = shadow_ray_to(ls, position, ls.direction);
+            ray.contribution =
+                clamp_indirect(p, beta * phase * ls.radiance * (weight / ls.pdf_w), depth >= 2u);
+            ray.medium = medium;
+            ray.queued = true;
+            queued = queue_shadow_ray(PATH_STATE_ARGS slot, ray, bounce);
+        }
+    }
+    uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
+    float pdf_w;
+    float3 wi = phase_hg_sample(g, d, uint_to_unit(u.x), uint_to_unit(u.y), &pdf_w);
+    bool survives = !(depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, uint_to_unit(u.w)));
+    if (!(survives && max3(beta) > 0.0f)) {
+        path_depth[slot] = 0u;
+        return queued;
+    }
+    ray_origin[slot] = ray_origin_pack(position, 0.0f);
+    ray_direction[slot] = ray_direction_pack(wi, pdf_w);
+    throughput[slot] = throughput_pack(beta, state);
+    path_depth[slot] = depth + 1u;
+    return queued;
+}
+
+/* An `interface` surface: the path goes on along d from just past it, in the medium on the far
+ * side, with the same MIS density (the last scattering's) and depth; only the crossing count
+ * grows (medium_state). */
+PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
+                               const ShadingPoint *sp, Material m, float4 direction, float3 beta,
+                               uint medium, uint crossings)
+{
+    float3 d = xyz(direction);
+    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
+    if (crossings >= MEDIUM_CROSSING_LIMIT) {
+        path_depth[slot] = 0u;
+        return;
+    }
+    uint next = medium_toward(p, m, sp->surf.geometric_normal, d, medium);
+    float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, d);
+    ray_origin[slot] = ray_origin_pack(origin, 0.0f);
+    throughput[slot] = throughput_pack(beta, medium_state(next, crossings + 1u));
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
@@ -257,19 +332,49 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         return false;
     uint k = sample_id[slot];
     float4 hit4 = hit[slot], direction = ray_direction[slot], throughput4 = throughput[slot];
-    uint medium = throughput_medium(throughput4);
-    /* Absorption along the segment just traced. */
-    float3 beta = through_medium(scene, medium, xyz(throughput4), hit_t(hit4));
+    uint state = throughput_medium(throughput4);
+    uint medium = medium_state_slot(state), crossings = medium_state_crossings(state);
+    /* The vertex's numbers (crossings: medium_state). */
+    uint bounce = depth - 1u + crossings;
+    float3 beta = xyz(throughput4);
     EnvMap env = env_map(p, scene);
+    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+    if (PT_FEATURE(MEDIA) && medium_tracks(scene, medium)) {
+        /* The segment just traced runs through a medium that scatters or emits: it may end in
+         * the medium before the surface (or the sky). */
+        RngKey key = path_rng_key(p, active_pixels, k);
+        float3 origin = xyz(ray_origin[slot]), emitted = (float3)(0.0f);
+        float t_event;
+        MediumRng rng = medium_rng(rng_bounce_bits(key, bounce, DIM_MEDIUM), 0x6d2b79f5u);
+        float tmax = hit_prim(hit4) == HIT_NONE ? INFINITY : hit_t(hit4);
+        uint event = medium_track(scene, medium_at_slot(scene, medium), origin, xyz(direction),
+                                  tmax, &rng, &beta, &emitted, &t_event);
+        add_radiance(radiance, k, clamp_indirect(p, emitted, depth >= 3u));
+        if (event == MEDIUM_EVENT_SCATTER)
+            return shade_medium_vertex(p, scene, &env, PATH_STATE_ARGS slot,
+                                       origin + t_event * xyz(direction), xyz(direction), beta,
+                                       state, time, key, bounce, depth);
+        if (event == MEDIUM_EVENT_ABSORB) {
+            shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
+            path_depth[slot] = 0u;
+            return false;
+        }
+    } else {
+        /* Absorption along the segment just traced. */
+        beta = through_medium(scene, medium, beta, hit_t(hit4));
+    }
     if (hit_prim(hit4) == HIT_NONE) {
         add_radiance(radiance, k, escaped_radiance(p, scene, &env, direction, beta, depth));
         path_depth[slot] = 0u;
         return false;
     }
     Hit h = path_hit(hit4, PT_FEATURE(INSTANCES) ? hit_instance[slot] : 0u);
-    float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     ShadingPoint sp = shading_point(scene, h, time, xyz(direction));
     Material m = scene->materials[sp.surf.material];
+    if (PT_FEATURE(MEDIA) && m.type == MATERIAL_INTERFACE) {
+        cross_interface(p, PATH_STATE_ARGS slot, &sp, m, direction, beta, medium, crossings);
+        return false;
+    }
     float prev_pdf_w = ray_direction_pdf_w(direction);
     float3 gathered = surface_emission(p, scene, m, h, &sp, prev_pdf_w, beta, depth);
 
@@ -278,15 +383,16 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (path_continues) {
         RngKey key = path_rng_key(p, active_pixels, k);
-        uint bounce = depth - 1u;
         uint leaf_index = resolve_leaf(scene, m, &sp.surf, key, bounce);
         Material leaf = material_is_mix(m.type) ? scene->materials[leaf_index] : m;
+        /* The media a mix's leaf bounds (a dielectric's absorption) are the leaf's. */
+        Material tm = (leaf.flags & MATERIAL_FLAG_MEDIUM_INTERFACE) ? leaf : m;
         SurfaceBsdf sb = surface_bsdf(scene, &sp, h.prim, m, leaf);
         ShadowRay shadow =
-            connect_light(p, scene, &env, &sp, &sb, beta, medium, time, key, bounce, depth);
+            connect_light(p, scene, &env, &sp, &sb, tm, beta, medium, time, key, bounce, depth);
         queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce);
-        path_continues = continue_path(PATH_STATE_ARGS slot, &sp, &sb, xyz(leaf.absorption),
-                                       leaf_index, beta, medium, key, bounce, depth);
+        path_continues = continue_path(p, PATH_STATE_ARGS slot, &sp, &sb, tm, beta, medium,
+                                       crossings, key, bounce, depth);
     }
     add_radiance(radiance, k, gathered);
     path_depth[slot] = path_continues ? depth + 1u : 0u;

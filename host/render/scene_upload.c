@@ -125,6 +125,25 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     out->params.env_height = env->height;
     out->params.env_rotation = env->rotation;
     out->params.env_pick_pdf = lights.env_pick_pdf;
+    /* Kernels index these only through a medium; an empty one still needs a buffer. */
+    static const Medium no_medium;
+    static const uint32_t no_brick = MEDIUM_NO_BRICK;
+    static const float no_value;
+    src.media = data->num_media ? source(data->num_media, sizeof(Medium), data->media)
+                                : source(1, sizeof(Medium), &no_medium);
+    src.grid_bricks = data->num_grid_bricks
+                          ? source(data->num_grid_bricks, sizeof(uint32_t), data->grid_bricks)
+                          : source(1, sizeof(uint32_t), &no_brick);
+    src.grid_values = data->num_grid_values
+                          ? source(data->num_grid_values, sizeof(float), data->grid_values)
+                          : source(1, sizeof(float), &no_value);
+    src.grid_majorants =
+        data->num_grid_majorants
+            ? source(data->num_grid_majorants, sizeof(float), data->grid_majorants)
+            : source(1, sizeof(float), &no_value);
+    out->params.num_media = data->num_media;
+    out->params.world_medium = data->world_medium;
+    out->params.camera_medium = data->camera_medium;
     out->params.num_bvh_prims = bvh->num_prims;
     out->params.num_emissive = lights.count;
     out->params.emissive_power = lights.total_power;

@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "scene/camera_json.h"
 #include "scene/sampler.h"
+#include "scene/scene_media.h"
 
 static bool apply_overrides(const RenderDesc *o, Scene *scene, Error *err)
 {
@@ -55,6 +56,11 @@ static ProgramFeatures scene_program_features(const SceneData *data, bool black_
     f |= data->two_level ? FEATURE_INSTANCES : 0u;
     f |= data->num_moving > 0 ? FEATURE_MOTION : 0u;
     f |= black_holes ? FEATURE_BLACK_HOLES : 0u;
+    /* Pure absorbers (and dielectrics' absorption) need only Beer-Lambert; tracking is for media
+     * that scatter or emit. */
+    f |= data->num_media > 0 ? FEATURE_ABSORPTION : 0u;
+    f |= scene_data_media_scatter(data) ? FEATURE_MEDIA : 0u;
+    f |= scene_data_has_grid_media(data) ? FEATURE_GRID_MEDIA | FEATURE_MEDIA : 0u;
     return f;
 }
 

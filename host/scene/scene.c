@@ -23,6 +23,7 @@
 #include "scene/json.h"
 #include "scene/load_objects.h"
 #include "scene/scene_json.h"
+#include "scene/scene_media.h"
 
 #define SCENE_FILE_LIMIT ((size_t)64 << 20) /* a scene description is small; refuse anything huge */
 
@@ -301,7 +302,8 @@ bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Er
         return false;
     }
     free(names);
-    if (!scene_data_finish(&out->data, out->desc.path, err)) {
+    if (!scene_data_finish(&out->data, out->desc.path, err) ||
+        !scene_data_media_from_absorption(&out->data, err)) {
         scene_free(out);
         return false;
     }

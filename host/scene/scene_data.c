@@ -33,6 +33,10 @@ void scene_data_free(SceneData *data)
     free(data->analytic_lights);
     free(data->meshes);
     free(data->instances);
+    free(data->media);
+    free(data->grid_bricks);
+    free(data->grid_values);
+    free(data->grid_majorants);
     memset(data, 0, sizeof *data);
 }
 

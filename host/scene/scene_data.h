@@ -60,6 +60,17 @@ typedef struct {
     AnalyticLight *analytic_lights; /* the scene's "lights" (scene_load copies them in) */
     uint32_t num_analytic;
     Environment environment; /* width 0: none (scene_load loads it after scene_data_finish) */
+    /* Media (shared/medium.h; scene/scene_media.h): slot k is media[k - 1]; the grid media's
+     * bricks, values and majorants in one array each (Medium's offsets index them). */
+    Medium *media;
+    uint32_t num_media;
+    uint32_t world_medium, camera_medium; /* slots; 0: none */
+    uint32_t *grid_bricks;
+    size_t num_grid_bricks;
+    float *grid_values;
+    size_t num_grid_values;
+    float *grid_majorants;
+    size_t num_grid_majorants;
     /* The first mesh file that added no triangles and why, for the message when the whole scene has
      * none ("x.obj: no faces (the file is empty)"). */
     char faceless_mesh[512];

@@ -1,0 +1,47 @@
+/* SPDX-License-Identifier: MIT */
+/* volume_grid.h: scalar voxel grids for grid media (shared/DESIGN.md "Media"), read from NanoVDB
+ * (.nvdb) and Mitsuba (.vol) files into the bricked layout the kernels sample (shared/medium.h):
+ * bricks of MEDIUM_BRICK^3 voxels, x fastest, found through a brick table (x fastest) whose entry
+ * is a brick number or MEDIUM_NO_BRICK (all zeros), and one majorant per table entry. */
+#ifndef PT_VOLUME_GRID_H
+#define PT_VOLUME_GRID_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+
+typedef struct {
+    uint32_t res[3];         /* voxels per axis */
+    uint32_t bricks[3];      /* brick table size: ceil(res / MEDIUM_BRICK) */
+    uint32_t *brick_table;   /* bricks[0] * bricks[1] * bricks[2] entries */
+    float *values;           /* num_bricks * MEDIUM_BRICK_VOXELS values */
+    uint32_t num_bricks;
+    /* One per table entry: the largest value a trilinear lookup anywhere in that brick's index box
+     * can return (the brick's voxels and their one-voxel neighbours), so that it bounds the density
+     * for the majorant walk. */
+    float *majorants;
+    float max_value;         /* the largest voxel value */
+    /* Index space to the file's object space: object = M (index point), rows of a 3x4 affine,
+     * where voxel (i, j, k)'s value sits at index point (i + 0.5, j + 0.5, k + 0.5) and the grid
+     * spans [0, res]. A .vol grid spans the unit cube [0, 1]^3 (Mitsuba 3's gridvolume, whose
+     * to_world then places it; the file's bounding box is ignored as Mitsuba 3 does); a NanoVDB
+     * grid spans its own world box (its index-to-world map, voxel size and origin). */
+    double index_to_object[12];
+} VolumeGrid;
+
+/* Reads grid `grid_name` (NanoVDB: the grid's name, "" = the first float grid; .vol: must be "" or
+ * "density") of the file at path, chosen by its extension (.nvdb, .vol). Values must be finite and
+ * >= 0 (a density). Errors: one line naming the file and what is wrong (ERR_FILE_MISSING,
+ * ERR_FILE_READ for a corrupt or truncated file, ERR_JSON_VALUE for a grid name not in the file
+ * (naming the grids that are) or of another value type, ERR_TOO_LARGE past the size limits). */
+bool volume_grid_read(const char *path, const char *grid_name, VolumeGrid *out, Error *err);
+
+/* The grid of dense values (res[0] * res[1] * res[2], x fastest), spanning the unit cube as a
+ * .vol grid does: the .vol reader's back end, and the tests'. */
+bool volume_grid_from_dense(const float *values, const uint32_t res[3], VolumeGrid *out,
+                            Error *err);
+
+void volume_grid_free(VolumeGrid *grid);
+
+#endif

@@ -1,0 +1,35 @@
+/* SPDX-License-Identifier: MIT */
+/* scene_media.h: the media of SceneData (shared/medium.h, shared/DESIGN.md "Media"): adding one
+ * (with its grid's bricks for a grid medium) and turning dielectrics' Beer-Lambert `absorption`
+ * into the interior media they are. */
+#ifndef PT_SCENE_MEDIA_H
+#define PT_SCENE_MEDIA_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "base/transform.h"
+#include "io/volume_grid.h"
+#include "scene/scene_data.h"
+
+/* Appends medium m (its coefficients, g, emission, type; flags are set here from them) and
+ * returns its slot (1 + its index), or 0 with err set (ERR_TOO_LARGE past MEDIUM_COUNT_LIMIT or
+ * 2^32 grid entries, ERR_OUT_OF_MEMORY). A grid medium (m->type MEDIUM_GRID) gives its grid and
+ * object_to_world, the medium's transform: the bricks are copied, and
+ * m->to_index is set to the inverse of object_to_world times the grid's index_to_object; a
+ * homogeneous one gives NULL for both. */
+uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGrid *grid,
+                               const Affine *object_to_world, Error *err);
+
+/* Gives every dielectric with an `absorption` and no medium interface of its own a homogeneous
+ * interior medium of that absorption and no scattering (exterior: the world medium): the image is
+ * the Beer-Lambert one it always was. Call after every material and medium is in. */
+bool scene_data_media_from_absorption(SceneData *data, Error *err);
+
+/* Whether any medium scatters or emits (FEATURE_MEDIA), and whether any is a grid
+ * (FEATURE_GRID_MEDIA). */
+bool scene_data_media_scatter(const SceneData *data);
+bool scene_data_has_grid_media(const SceneData *data);
+
+#endif
