@@ -53,8 +53,8 @@ typedef cl_uint uint;
         FIELD(Material, opacity) FIELD(Material, ior) FIELD(Material, specular)                     \
         FIELD(Material, weight) FIELD(Material, bump_scale) FIELD(Material, type)                   \
         FIELD(Material, flags) FIELD(Material, mix_a) FIELD(Material, mix_b) FIELD(Material, tex)   \
-        FIELD(Material, interior) FIELD(Material, exterior) FIELD(Material, pad0)                   \
-        FIELD(Material, pad1)                                                                       \
+        FIELD(Material, interior) FIELD(Material, exterior) FIELD(Material, subsurface)             \
+        FIELD(Material, pad0)                                                                       \
     STRUCT(TextureInfo, 48) FIELD(TextureInfo, offset) FIELD(TextureInfo, width)                    \
         FIELD(TextureInfo, height) FIELD(TextureInfo, format) FIELD(TextureInfo, flags)             \
         FIELD(TextureInfo, scale) FIELD(TextureInfo, transform)                                     \

@@ -72,7 +72,9 @@ typedef struct {
     uint tex[MATERIAL_TEX_COUNT]; /* MATERIAL_TEX_* slots: texture index or NO_TEXTURE */
     uint interior;         /* MATERIAL_FLAG_MEDIUM_INTERFACE: medium slot behind the surface (0 none) */
     uint exterior;         /* ... and in front of it (MEDIUM_SLOT_WORLD: the world medium) */
-    uint pad0, pad1;
+    float subsurface;      /* principled: the share of the diffuse lobe that enters (interior: its
+                              random-walk medium, host/scene/scene_media.c) */
+    uint pad0;
 } Material;
 
 #define TEXTURE_RGBA8_SRGB 0u /* one uint per texel, r in the low byte, sRGB-encoded rgb */
