@@ -27,9 +27,10 @@ uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGri
  * the Beer-Lambert one it always was. Call after every material and medium is in. */
 bool scene_data_media_from_absorption(SceneData *data, Error *err);
 
-/* Whether any medium scatters or emits (FEATURE_MEDIA), and whether any is a grid
+/* Whether the kernels must track media (FEATURE_MEDIA): a medium scatters or emits, or an
+ * `interface` surface is there to pass through; and whether any medium is a grid
  * (FEATURE_GRID_MEDIA). */
-bool scene_data_media_scatter(const SceneData *data);
+bool scene_data_media_track(const SceneData *data);
 bool scene_data_has_grid_media(const SceneData *data);
 
 #endif
