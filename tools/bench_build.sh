@@ -18,8 +18,9 @@ tests/scenes/conductors tests/scenes/normalmap tests/scenes/textured tests/scene
 tests/scenes/glass tests/scenes/mix scenes/black-hole scenes/bench/dragon.json"}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 seconds() { # BIN SCENE CACHE -> "seconds wall features" of the kernels line and the whole run
+    # (CUDA_CACHE_DISABLE: NVIDIA's driver keeps its own cache of compiled programs; cold means neither)
     t0=$(date +%s.%N)
-    line=$(XDG_CACHE_HOME=$3 "$1" render "$2" ${dev:+--device $dev} --width 32 --height 24 --spp 1 \
+    line=$(XDG_CACHE_HOME=$3 CUDA_CACHE_DISABLE=1 "$1" render "$2" ${dev:+--device $dev} --width 32 --height 24 --spp 1 \
         --max-depth 2 -o "$tmp/o.exr" 2>&1 |
         sed -n 's/.*kernels \([0-9.]*\) s ([^;]*; features: \([^)]*\)).*/\1 \2/p')
     t1=$(date +%s.%N)
