@@ -368,6 +368,10 @@ static bool map_bsdf(Mitsuba *m, const XmlElement *e, cJSON **material)
         return plastic(m, e, type[0] == 'r', *material);
     if (strcmp(type, "principled") == 0)
         return principled(m, e, *material);
+    if (strcmp(type, "null") == 0) { /* invisible: only where media meet (a shape's interior) */
+        cJSON_AddStringToObject(*material, "type", "interface");
+        return true;
+    }
     static const char *const wrappers[] = {"twosided", "blendbsdf", "mask", "normalmap", "bumpmap"};
     for (size_t i = 0; i < sizeof wrappers / sizeof wrappers[0]; i++)
         if (strcmp(type, wrappers[i]) == 0)

@@ -105,4 +105,14 @@ bool mi_integrator(Mitsuba *m, const XmlElement *e, cJSON *render);
 bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent);
 bool mi_emitter(Mitsuba *m, const XmlElement *e);
 
+/* ---- mitsuba_media.c ---- */
+/* Whether child c is a <medium>, a <ref> to one, or a <ref name="interior|exterior">. */
+bool mi_is_medium(const Mitsuba *m, const XmlElement *c);
+/* A <medium> (or a <ref> to one) as a pt medium in the tree's "media"; its name in out. */
+bool mi_medium(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT]);
+/* The shape's interior / exterior media as the pt object's keys. */
+bool mi_shape_media(Mitsuba *m, const XmlElement *shape, cJSON *object);
+/* The sensor's medium as camera.medium. */
+bool mi_sensor_medium(Mitsuba *m, const XmlElement *sensor, cJSON *camera);
+
 #endif

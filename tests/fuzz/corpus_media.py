@@ -4,12 +4,14 @@ through an "interface", a .vol smoke grid, a subsurface cube, a world and a came
 then every number under "media" and the subsurface keys is replaced in turn by infinity,
 -infinity, a negative and a huge value (each ending in exit 0 or one "pt: ..." line); then hostile
 cases, each one line naming the key: unknown names, open meshes, interfaces with keys or in a mix,
-black holes with media, too many media, and corrupt or lying .vol files.
+black holes with media, too many media, and corrupt or lying .vol files; and Mitsuba 3 XML
+media (host/scene/mitsuba_media.c): valid ones render, hostile ones are one line.
 """
 import json
 import struct
 
 from corpus_cases import TINY, case
+from corpus_mitsuba import mitsuba_case, scene as mitsuba_scene
 from corpus_scene_v2 import BAD, leaves, with_text_at
 
 CUBE = ("v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
@@ -137,3 +139,47 @@ def media_cases():
                        ("inf-density", vol(values=[float("inf")] * 64))]:
         media_case("vol-" + name, scene, "error", needle="media.smoke.file",
                    files={"smoke.vol": data})
+
+
+MI_FOG = ('<medium type="homogeneous" id="fog"><rgb name="sigma_t" value="1, 2, 3"/>'
+          '<float name="albedo" value="0.8"/><phase type="hg"><float name="g" value="0.5"/></phase></medium>')
+MI_SMOKE = ('<medium type="heterogeneous" id="smoke"><volume type="gridvolume" name="sigma_t">'
+            '<string name="filename" value="smoke.vol"/>%s</volume><float name="scale" value="4"/></medium>')
+
+
+def mi_cube(inside, bsdf='<bsdf type="null"/>', extra=""):
+    return '<shape type="cube">%s<ref name="interior" id="%s"/>%s</shape>' % (bsdf, inside, extra)
+
+
+def mitsuba_media_cases():
+    vol_file = {"smoke.vol": vol()}
+    valid = {
+        "fog-cube": MI_FOG + mi_cube("fog"),
+        "fog-glass-sphere": MI_FOG + '<shape type="sphere"><bsdf type="dielectric"/>'
+                                     '<ref name="interior" id="fog"/></shape>',
+        "smoke-unit-cube": (MI_SMOKE % "") + mi_cube("smoke"),
+        "smoke-grid-bbox": (MI_SMOKE % '<boolean name="use_grid_bbox" value="true"/>') + mi_cube("smoke"),
+        "nested-medium": '<shape type="cube"><bsdf type="null"/><medium type="homogeneous" '
+                         'name="interior"/></shape>',
+    }
+    for name, body in valid.items():
+        mitsuba_case("media-" + name, mitsuba_scene(body), "ok", extra=vol_file)
+    hostile = [
+        ("g-one", MI_FOG.replace('value="0.5"', 'value="1"') + mi_cube("fog"), "(-1, 1)"),
+        ("albedo-two", MI_FOG.replace('value="0.8"', 'value="2"') + mi_cube("fog"), "albedo"),
+        ("type", '<medium type="vdb" id="v"/>' + mi_cube("v"), "medium type"),
+        ("ref-bsdf", '<bsdf type="diffuse" id="d"/>' + mi_cube("d"), "not a <medium>"),
+        ("ref-missing", mi_cube("nowhere"), "nowhere"),
+        ("vol-missing", MI_SMOKE.replace("smoke.vol", "none.vol") % "" + mi_cube("smoke"), "none.vol"),
+        ("vol-outside", MI_SMOKE.replace("smoke.vol", "../../etc/passwd") % "" + mi_cube("smoke"),
+         "leaves the scene's folder"),
+        ("volume-type", MI_SMOKE.replace("gridvolume", "bitmap") % "" + mi_cube("smoke"), "volume type"),
+        ("open-rectangle", MI_FOG + '<shape type="rectangle"><bsdf type="null"/>'
+                                    '<ref name="interior" id="fog"/></shape>', "not closed"),
+    ]
+    for name, body, needle in hostile:
+        mitsuba_case("media-" + name, mitsuba_scene(body), "error", needle=needle, extra=vol_file)
+    for name, data in [("empty", b""), ("flat-box", vol()[:24] + struct.pack("<6f", 0, 0, 0, 1, 0, 1) + vol()[48:]),
+                       ("nan-box", vol()[:24] + struct.pack("<6f", 0, 0, 0, float("nan"), 1, 1) + vol()[48:])]:
+        mitsuba_case("media-vol-" + name, mitsuba_scene((MI_SMOKE % "") + mi_cube("smoke")), "error",
+                     needle="smoke.vol", extra={"smoke.vol": data})

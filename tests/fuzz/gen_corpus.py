@@ -43,7 +43,7 @@ from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_gltf_v2 import gltf_v2_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
-from corpus_media import media_cases  # noqa: E402
+from corpus_media import media_cases, mitsuba_media_cases  # noqa: E402
 from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_pbrt import pbrt_cases  # noqa: E402
@@ -117,6 +117,7 @@ def main():
     ply_v2_cases()
     scene_v2_cases()
     media_cases()  # issue 40: media, last so that the cases above keep their numbers
+    mitsuba_media_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
