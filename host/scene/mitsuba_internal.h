@@ -83,6 +83,12 @@ cJSON *mi_matrix_transform(const Affine *a); /* [{"matrix": [...]}] */
 /* What element e (a bsdf or texture) was mapped to, or NULL; mi_remember records it. */
 const MitsubaNamed *mi_find_mapped(const Mitsuba *m, const XmlElement *e);
 bool mi_remember(Mitsuba *m, const XmlElement *e, const char *name);
+/* The start of every element mapper (mi_bsdf, mi_medium): a <ref> is followed to its element,
+ * which must be a <tag>, and mapped there by map (*done, false on error); an element already
+ * mapped gives its name (*done). Otherwise *done is false and the caller maps e. */
+bool mi_follow(Mitsuba *m, const XmlElement *e, const char *tag,
+               bool (*map)(Mitsuba *, const XmlElement *, char[SCENE_NAME_LIMIT]),
+               char out[SCENE_NAME_LIMIT], bool *done);
 /* A colour parameter: rgb/spectrum/float (a JSON array) or a texture (its JSON name); the
  * fallback grey when absent. *out NULL after a failure. */
 bool mi_colour(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON **out);

@@ -187,23 +187,9 @@ static bool build_medium(Mitsuba *m, const XmlElement *e, cJSON *medium)
 
 bool mi_medium(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT])
 {
-    if (strcmp(e->name, "ref") == 0) {
-        const MitsubaNamed *named = mi_find_id(m, e);
-        if (!named)
-            return false;
-        if (strcmp(named->element->name, "medium"))
-            return mi_fail(m, e, "names a <%s>, not a <medium>", named->element->name);
-        const char *saved = m->file;
-        m->file = named->file;
-        bool ok = mi_medium(m, named->element, out);
-        m->file = saved;
-        return ok;
-    }
-    const MitsubaNamed *done = mi_find_mapped(m, e);
-    if (done) {
-        snprintf(out, SCENE_NAME_LIMIT, "%s", done->name);
-        return true;
-    }
+    bool done;
+    if (!mi_follow(m, e, "medium", mi_medium, out, &done) || done)
+        return done;
     cJSON *root = m->out->root, *media = cJSON_GetObjectItemCaseSensitive(root, "media");
     if (!media && !(media = cJSON_AddObjectToObject(root, "media")))
         return mi_fail(m, e, "out of memory");
