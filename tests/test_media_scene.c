@@ -622,3 +622,26 @@ Test(media_scene, a_fog_box_renders_darker_than_the_sky, .timeout = 1200)
     free(rgb);
     render_fixture_close(&f);
 }
+
+/* A glass with absorption in fog (an exterior alone): its absorption is still its inside, one
+ * medium for every object asking the same. */
+Test(media_scene, absorption_stays_the_interior_when_only_the_exterior_is_given)
+{
+    Scene s;
+    load_ok("\"media\": {\"fog\": {\"type\": \"homogeneous\", \"sigma_s\": 0.1}}, \"medium\": "
+            "\"fog\", \"materials\": {\"glass\": {\"type\": \"dielectric\", \"absorption\": [1, 2, "
+            "3]}}, \"objects\": [{\"obj\": \"cube.obj\", \"material\": \"glass\", \"exterior\": "
+            "\"fog\"}, {\"obj\": \"seams.obj\", \"material\": \"glass\", \"exterior\": \"fog\"}]",
+            &s);
+    const Material *m = &s.data.materials[s.data.material_ids[0]];
+    cr_expect_eq(m->exterior, 1u);
+    cr_assert(m->interior >= 2 && m->interior <= s.data.num_media, "interior %u", m->interior);
+    expect_rgb(s.data.media[m->interior - 1].sigma_a, 1, 2, 3, "the absorption medium");
+    cr_expect_eq(s.data.material_ids[12], s.data.material_ids[0], "one copy for both objects");
+    uint32_t absorbing = 0;
+    for (uint32_t i = 0; i < s.data.num_media; i++)
+        absorbing += s.data.media[i].sigma_a.s[0] == 1.0f;
+    cr_expect_eq(absorbing, 2u, "the copy's and materials.glass's own (unused here), not one "
+                                "per object");
+    scene_free(&s);
+}
