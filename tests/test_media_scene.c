@@ -48,6 +48,10 @@ static void write_meshes(void)
     write_file("seams.obj", text);
     snprintf(text, sizeof text, "%sv 0 -3 -3\n%sf 1 2 9\n", cube, faces);
     write_file("finned.obj", text);
+    snprintf(text, sizeof text, "%s%s", cube,
+             "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\nf 1 6 2\nf 1 5 6\n"
+             "f 4 7 8\nf 4 3 7\nf 1 8 5\nf 1 4 8\nf 2 7 3\nf 2 6 7\n");
+    write_file("inside_out.obj", text);
 }
 
 static const char camera[] = "\"camera\": {\"eye\": [0, 0, 5], \"target\": [0, 0, 0]}";
@@ -643,5 +647,18 @@ Test(media_scene, absorption_stays_the_interior_when_only_the_exterior_is_given)
         absorbing += s.data.media[i].sigma_a.s[0] == 1.0f;
     cr_expect_eq(absorbing, 2u, "the copy's and materials.glass's own (unused here), not one "
                                 "per object");
+    scene_free(&s);
+}
+
+/* An inside-out mesh (every front facing in) is legal but holds its medium outside: said once. */
+Test(media_scene, an_inside_out_interior_is_warned_about)
+{
+    Scene s;
+    int before = warning_count();
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"cube.obj\", \"interior\": \"fog\"}]", &s);
+    cr_expect_eq(warning_count(), before, "an outward cube: no warning");
+    scene_free(&s);
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"inside_out.obj\", \"interior\": \"fog\"}]", &s);
+    cr_expect_eq(warning_count(), before + 1, "the inside-out cube is warned about");
     scene_free(&s);
 }
