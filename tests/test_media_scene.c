@@ -662,3 +662,23 @@ Test(media_scene, an_inside_out_interior_is_warned_about)
     cr_expect_eq(warning_count(), before + 1, "the inside-out cube is warned about");
     scene_free(&s);
 }
+
+/* The same medium on both sides of an open mesh (a floor inside a fog-filled world) is no
+ * boundary at all: allowed, and the copy carries it on both sides. */
+Test(media_scene, an_open_mesh_in_one_medium_on_both_sides_is_allowed)
+{
+    Scene s;
+    load_ok(FOG("") ", \"medium\": \"fog\", \"objects\": [{\"obj\": \"open.obj\", "
+                    "\"interior\": \"fog\"}]",
+            &s);
+    const Material *m = &s.data.materials[s.data.material_ids[0]];
+    cr_expect_eq(m->interior, 1u);
+    cr_expect_eq(m->exterior, MEDIUM_SLOT_WORLD);
+    scene_free(&s);
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"open.obj\", \"interior\": \"fog\", "
+                    "\"exterior\": \"fog\"}]",
+            &s);
+    scene_free(&s);
+    refused(FOG("") ", \"objects\": [{\"obj\": \"open.obj\", \"interior\": \"fog\"}]",
+            "objects[0].interior: the mesh is not closed");
+}

@@ -209,7 +209,11 @@ bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOp
     bool subsurface = false;
     for (uint32_t t = first_triangle; t < data->num_triangles && !subsurface; t++)
         subsurface = holds_subsurface(data, data->material_ids[t], 0);
-    if (o->interior && !check_closed(data, first_triangle, o, ".interior", scene_path, err))
+    /* The same medium on both sides (a floor in a fog-filled world, as Mitsuba scenes say it:
+     * Mitsuba has no world medium) changes nothing where it is crossed: any surface will do. */
+    uint32_t outside = o->exterior ? o->exterior : data->world_medium;
+    if (o->interior && o->interior != outside &&
+        !check_closed(data, first_triangle, o, ".interior", scene_path, err))
         return false;
     if (subsurface && !check_closed(data, first_triangle, o, " (a material with subsurface)",
                                     scene_path, err))
