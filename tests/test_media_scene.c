@@ -682,3 +682,19 @@ Test(media_scene, an_open_mesh_in_one_medium_on_both_sides_is_allowed)
     refused(FOG("") ", \"objects\": [{\"obj\": \"open.obj\", \"interior\": \"fog\"}]",
             "objects[0].interior: the mesh is not closed");
 }
+
+/* A subsurface object in fog: its copy keeps the walk medium inside and has the fog outside. */
+Test(media_scene, subsurface_with_an_exterior_keeps_its_walk_medium)
+{
+    Scene s;
+    load_ok(FOG("") ", \"materials\": {\"skin\": {\"type\": \"principled\", \"subsurface\": 1}}, "
+                    "\"objects\": [{\"obj\": \"cube.obj\", \"material\": \"skin\", \"exterior\": "
+                    "\"fog\"}]",
+            &s);
+    cr_assert_eq(s.data.num_media, 2, "fog, then the walk medium");
+    const Material *m = &s.data.materials[s.data.material_ids[0]];
+    cr_expect_eq(m->interior, 2u, "the walk medium");
+    cr_expect_eq(m->exterior, 1u, "the fog");
+    cr_expect_eq(s.data.materials[0].exterior, MEDIUM_SLOT_WORLD, "the material itself unchanged");
+    scene_free(&s);
+}
