@@ -235,5 +235,5 @@ $(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
 # NanoVDB (io/volume_nvdb.cc, header-only) needs C++17.
 $(BUILD)/host/io/volume_nvdb.o: CXXFLAGS += -std=c++17
 # The grid reader tests write their NanoVDB files with NanoVDB's own builder (tests/nvdb_fixture.cc).
-$(BUILD)/tests/test_volume_grid: $(BUILD)/tests/nvdb_fixture.o
+$(BUILD)/tests/test_volume_nvdb: $(BUILD)/tests/nvdb_fixture.o
 $(BUILD)/tests/nvdb_fixture.o: CXXFLAGS += -std=c++17
