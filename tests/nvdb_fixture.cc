@@ -74,6 +74,18 @@ extern "C" bool nvdb_fixture_write_voxels(const char *path, const char *name, in
     return write(path, handles);
 }
 
+extern "C" bool nvdb_fixture_write_box(const char *path, const char *name, const int lo[3],
+                                       const int hi[3], float value, const int spot[3])
+{
+    nanovdb::GridBuilder<float> builder(0.0f, nanovdb::GridClass::FogVolume);
+    builder([value](const nanovdb::Coord &) { return value; },
+            nanovdb::CoordBBox(nanovdb::Coord(lo[0], lo[1], lo[2]), nanovdb::Coord(hi[0], hi[1], hi[2])));
+    builder.getAccessor().setValue(nanovdb::Coord(spot[0], spot[1], spot[2]), 3.0f);
+    std::vector<Handle> handles;
+    handles.push_back(builder.getHandle(1.0, nanovdb::Vec3d(0.0), name));
+    return write(path, handles);
+}
+
 extern "C" bool nvdb_fixture_write_mixed(const char *path)
 {
     nanovdb::GridBuilder<double> temperature(0.0, nanovdb::GridClass::Unknown);
@@ -110,7 +122,8 @@ extern "C" bool nvdb_fixture_reference(const char *path, const char *name, NvdbR
                     out->values[x + nx * (y + ny * z)] = acc.getValue(
                         nanovdb::Coord(out->lo[0] + int(x), out->lo[1] + int(y), out->lo[2] + int(z)));
         const auto &tree = grid->tree();
-        out->active_tiles = tree.activeTileCount(1) + tree.activeTileCount(2) + tree.activeTileCount(3);
+        for (uint32_t level = 1; level <= 3; level++)
+            out->active_tiles[level - 1] = tree.activeTileCount(level);
         return true;
     } catch (const std::exception &) {
         return false;

@@ -22,6 +22,11 @@ bool nvdb_fixture_write_sphere(const char *path, const char *name, float radius,
  * is the 3x3 `matrix` (row-major: world = matrix * ijk + translation; NULL = identity). */
 bool nvdb_fixture_write_voxels(const char *path, const char *name, int count, const int *ijk,
                                const float *values, const double *matrix, const double translation[3]);
+/* A constant box [lo, hi] of `value` (filled with the builder's functor, which prunes constant
+ * leaves and lower nodes into tiles: a 128^3 box aligned to 128 becomes one upper-node tile) and
+ * one voxel `spot` = 3. */
+bool nvdb_fixture_write_box(const char *path, const char *name, const int lo[3], const int hi[3],
+                            float value, const int spot[3]);
 /* Three grids: a double grid "temperature", a float sphere "density", a float grid "flame". */
 bool nvdb_fixture_write_mixed(const char *path);
 
@@ -30,7 +35,7 @@ bool nvdb_fixture_write_mixed(const char *path);
 typedef struct {
     int lo[3], hi[3];
     float *values;
-    uint32_t active_tiles;
+    uint32_t active_tiles[3]; /* in lower nodes, upper nodes, the root */
 } NvdbReference;
 bool nvdb_fixture_reference(const char *path, const char *name, NvdbReference *out);
 /* The world point of NanoVDB index point ijk (its Grid::indexToWorld). */

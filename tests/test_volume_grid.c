@@ -146,6 +146,8 @@ Test(volume_vol, round_trip_spans_the_header_box)
     snprintf(path, sizeof path, "%s/smoke.vol", dir);
     uint32_t res[3] = {11, 7, 21};
     float *dense = make_smoke(res, 5);
+    for (uint32_t i = 0; i < 11 * 7 * 21; i++) /* dense where x < 6, sparse smoke elsewhere */
+        dense[i] += i % 11 < 6 ? 0.125f * (float)(i % 13) : 0.0f;
     write_vol(path, "VOL", 3, 1, (const int32_t[3]){11, 7, 21}, 1, BOX, dense, 11 * 7 * 21);
     for (int named = 0; named < 2; named++) {
         VolumeGrid grid;

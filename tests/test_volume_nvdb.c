@@ -71,7 +71,7 @@ Test(volume_nvdb, fog_sphere_round_trip)
     cr_assert(nvdb_fixture_write_sphere(path, "density", 4.0f, center, voxel, origin));
     NvdbReference ref;
     cr_assert(nvdb_fixture_reference(path, "density", &ref));
-    cr_assert_gt(ref.active_tiles, 0, "the sphere has no constant tiles: the tile path goes untested");
+    cr_assert_gt(ref.active_tiles[0], 0, "the sphere has no constant tiles: the tile path goes untested");
     free(ref.values);
     int lo[3];
     check_against_reference(path, "density", "density", lo);
@@ -110,11 +110,32 @@ Test(volume_nvdb, general_affine_map_and_negative_coordinates)
     rmdir(dir);
 }
 
+static char last_message[1024];
+
+Test(volume_nvdb, upper_node_tiles)
+{
+    const char *dir = test_temp_dir();
+    char path[600];
+    snprintf(path, sizeof path, "%s/box.nvdb", dir);
+    cr_assert(nvdb_fixture_write_box(path, "density", (const int[3]){128, 0, -128},
+                                     (const int[3]){255, 127, -1}, 0.75f, (const int[3]){259, 3, -2}));
+    NvdbReference ref;
+    cr_assert(nvdb_fixture_reference(path, "density", &ref));
+    cr_assert_eq(ref.active_tiles[1], 1, "the box is not one upper-node tile (%u lower, %u upper)",
+                 ref.active_tiles[0], ref.active_tiles[1]);
+    free(ref.values);
+    int lo[3];
+    check_against_reference(path, "density", "", lo);
+    unlink(path);
+    rmdir(dir);
+}
+
 static void expect_nvdb_error(const char *path, const char *grid_name, ErrorCode code, const char *needle)
 {
     VolumeGrid grid;
     Error err = {0};
     bool ok = volume_grid_read(path, grid_name, &grid, &err);
+    snprintf(last_message, sizeof last_message, "%s", err.message);
     if (ok)
         volume_grid_free(&grid);
     cr_expect_not(ok, "%s (grid '%s') was read; wanted \"%s\"", path, grid_name, needle);
@@ -177,13 +198,13 @@ Test(volume_nvdb, hostile_files_fail_with_one_line)
     const double zero[3] = {0, 0, 0};
     cr_assert(nvdb_fixture_write_sphere(good, "density", 3.0f, zero, 0.5, zero));
     const uint64_t swapped = 0x4e616e6f56444230ull; /* "NanoVDB0" read the other way round */
-    const uint32_t old_version = 31u << 21, huge = 0xffffffffu, one = 1, two = 2;
+    const uint32_t old_version = 31u << 21, huge = 0xffffffffu, huge_aligned = 0xffffffe0u, one = 1, two = 2;
     const uint16_t zip = 1, blosc = 2;
     const int32_t wide_box[6] = {-(1 << 30), -(1 << 30), -(1 << 30), 1 << 30, 1 << 30, 1 << 30};
     const int32_t empty_box[6] = {5, 5, 5, 4, 4, 4};
     const double zeros[9] = {0};
     uint32_t root_at = TREE_AT + read_u32(good, TREE_AT + 24);
-    uint32_t leaf_offset = read_u32(good, TREE_AT) + 8;
+    uint32_t leaf_offset = read_u32(good, TREE_AT) - 24; /* inside the grid, misaligned */
 
     expect_nvdb_error(bad, "", ERR_FILE_MISSING, "no such file");
     patch(good, bad, 0, NULL, 0);
@@ -216,11 +237,12 @@ Test(volume_nvdb, hostile_files_fail_with_one_line)
     expect_nvdb_error(bad, "", ERR_FILE_READ, "index-to-world map is singular");
     patch(good, bad, TREE_AT + 32, &huge, 4); /* leaf count */
     expect_nvdb_error(bad, "", ERR_FILE_READ, "4294967295 leaf nodes at tree offset");
-    patch(good, bad, TREE_AT, &leaf_offset, 4); /* misaligned leaves */
+    patch(good, bad, TREE_AT, &leaf_offset, 4);
     expect_nvdb_error(bad, "", ERR_FILE_READ, "leaf nodes at tree offset");
+    cr_expect(strstr(last_message, "not 32-byte aligned"), "%s", last_message);
     patch(good, bad, TREE_AT + 36, &huge, 4); /* lower node count */
     expect_nvdb_error(bad, "", ERR_FILE_READ, "lower internal nodes");
-    patch(good, bad, TREE_AT + 24, &huge, 4); /* root offset */
+    patch(good, bad, TREE_AT + 24, &huge_aligned, 4); /* root offset */
     expect_nvdb_error(bad, "", ERR_FILE_READ, "root nodes at tree offset");
     patch(good, bad, root_at + 24, &huge, 4); /* root tile count */
     expect_nvdb_error(bad, "", ERR_FILE_READ, "the root's 4294967295 tiles do not fit");

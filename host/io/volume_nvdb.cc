@@ -223,7 +223,10 @@ bool check_nodes(const Reader &r, const GridEntry &g, const TreeData *tree, int 
     if (count == 0)
         return true;
     uint64_t tree_bytes = g.size - sizeof(GridData), offset = tree->mNodeOffset[level];
-    if (offset % 32 != 0 || offset > tree_bytes || (tree_bytes - offset) / node_size < count)
+    if (offset % 32 != 0)
+        return fail(r, ERR_FILE_READ, "grid '%s': its %s nodes at tree offset %llu are not 32-byte "
+                    "aligned", g.name.c_str(), names[level], (unsigned long long)offset);
+    if (offset > tree_bytes || (tree_bytes - offset) / node_size < count)
         return fail(r, ERR_FILE_READ, "grid '%s': %llu %s nodes at tree offset %llu do not fit "
                     "its %llu bytes", g.name.c_str(), (unsigned long long)count, names[level],
                     (unsigned long long)offset, (unsigned long long)g.size);
