@@ -110,6 +110,19 @@ Test(volume_grid, limits_and_bad_values)
     expect_dense_error(&one, 0, 4, 4, ERR_FILE_READ, "empty (0 x 4 x 4");
     expect_dense_error(&one, 1u << 16, 1u << 16, 1, ERR_TOO_LARGE, "65536 x 65536 x 1 voxels");
     expect_dense_error(&one, 1, 1, 1u << 30, ERR_TOO_LARGE, "over the limit"); /* a 2^27-brick table */
+    /* 9^3 bricks of ones (2.8 MiB) over a limit of 1 MiB. */
+    float *ones = malloc(72 * 72 * 72 * sizeof(float));
+    for (int i = 0; i < 72 * 72 * 72; i++)
+        ones[i] = 1.0f;
+    volume_grid_set_brick_limit(1 << 20);
+    expect_dense_error(ones, 72, 72, 72, ERR_TOO_LARGE, "bricks need more than the limit of 1 MiB");
+    volume_grid_set_brick_limit(0);
+    VolumeGrid grid;
+    Error err = {0};
+    cr_assert(volume_grid_from_dense(ones, (const uint32_t[3]){72, 72, 72}, &grid, &err), "%s", err.message);
+    cr_assert_eq(grid.num_bricks, 729);
+    volume_grid_free(&grid);
+    free(ones);
     float bad[5 * 6 * 7] = {0};
     const float cases[] = {NAN, -1.0f, INFINITY};
     const char *names[] = {"voxel (3, 4, 5) is nan", "voxel (3, 4, 5) is -1", "voxel (3, 4, 5) is inf"};

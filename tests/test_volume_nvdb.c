@@ -126,6 +126,29 @@ Test(volume_nvdb, upper_node_tiles)
     free(ref.values);
     int lo[3];
     check_against_reference(path, "density", "", lo);
+
+    /* Hostile: the lower node (the spot's) moved into the box and made all active tiles, which
+     * overlap the upper node's tile: refused before the work of filling them twice. */
+    char bad[600];
+    snprintf(bad, sizeof bad, "%s/overlap.nvdb", dir);
+    size_t length;
+    unsigned char *data = (unsigned char *)test_read_file(path, &length);
+    uint32_t lower_at;
+    memcpy(&lower_at, data + TREE_AT + 8, 4);
+    lower_at += TREE_AT;
+    const int32_t inside[3] = {128, 0, -128};
+    memcpy(data + lower_at, inside, sizeof inside);
+    memset(data + lower_at + 32, 0xff, 512); /* value mask */
+    memset(data + lower_at + 32 + 512, 0, 512); /* child mask */
+    FILE *f = fopen(bad, "wb");
+    fwrite(data, 1, length, f);
+    fclose(f);
+    free(data);
+    VolumeGrid grid;
+    Error err = {0};
+    cr_assert_not(volume_grid_read(bad, "", &grid, &err));
+    cr_assert(strstr(err.message, "its active tiles overlap"), "%s", err.message);
+    unlink(bad);
     unlink(path);
     rmdir(dir);
 }

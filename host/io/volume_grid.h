@@ -44,4 +44,9 @@ bool volume_grid_from_dense(const float *values, const uint32_t res[3], VolumeGr
 
 void volume_grid_free(VolumeGrid *grid);
 
+/* The memory one grid's non-zero bricks may take (ERR_TOO_LARGE past it): 4 GiB unless set. A
+ * small file can describe a large constant box (a NanoVDB tile); the fuzz targets set less, to
+ * stay inside libFuzzer's memory limit. 0 restores the default. */
+void volume_grid_set_brick_limit(uint64_t bytes);
+
 #endif

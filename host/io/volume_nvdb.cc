@@ -273,17 +273,22 @@ bool check_grid(const Reader &r, const GridEntry &g, const unsigned char *buf)
     return true;
 }
 
-/* What the walk writes into: the builder and the grid's index box [lo, hi] (inclusive). */
+/* What the walk writes into: the builder and the grid's index box [lo, hi] (inclusive). Tiles of a
+ * valid grid do not overlap, so together they cover at most the box: tile_budget (its voxel
+ * count) bounds the work a hostile file of many overlapping large tiles could ask for. */
 struct Densify {
     VolumeGridBuilder builder;
     int64_t lo[3], hi[3];
-    Error *err;
+    uint64_t tile_budget;
+    const Reader *reader;
+    const GridEntry *grid;
 };
 
 /* Voxels [origin, origin + size)^3 (NanoVDB index space) = value, clipped to the box. */
 bool fill_tile(Densify &d, const nanovdb::Coord &origin, int64_t size, float value)
 {
     uint32_t from[3], to[3];
+    uint64_t voxels = 1;
     for (int a = 0; a < 3; a++) {
         int64_t start = std::max<int64_t>(origin[a], d.lo[a]);
         int64_t end = std::min<int64_t>(int64_t(origin[a]) + size - 1, d.hi[a]);
@@ -291,8 +296,13 @@ bool fill_tile(Densify &d, const nanovdb::Coord &origin, int64_t size, float val
             return true;
         from[a] = uint32_t(start - d.lo[a]);
         to[a] = uint32_t(end - d.lo[a] + 1);
+        voxels *= uint64_t(to[a] - from[a]);
     }
-    return volume_grid_fill_box(&d.builder, from, to, value, d.err);
+    if (voxels > d.tile_budget)
+        return fail(*d.reader, ERR_FILE_READ, "grid '%s': its active tiles overlap (they cover more "
+                    "voxels than its box holds)", d.grid->name.c_str());
+    d.tile_budget -= voxels;
+    return volume_grid_fill_box(&d.builder, from, to, value, d.reader->err);
 }
 
 bool put_leaves(Densify &d, const TreeData *tree)
@@ -308,7 +318,7 @@ bool put_leaves(Densify &d, const TreeData *tree)
                 ijk[1] > d.hi[1] || ijk[2] > d.hi[2])
                 continue;
             if (!volume_grid_set_voxel(&d.builder, uint32_t(ijk[0] - d.lo[0]), uint32_t(ijk[1] - d.lo[1]),
-                                       uint32_t(ijk[2] - d.lo[2]), leaf->mValues[n], d.err))
+                                       uint32_t(ijk[2] - d.lo[2]), leaf->mValues[n], d.reader->err))
                 return false;
         }
     }
@@ -372,7 +382,8 @@ bool densify(const Reader &r, const GridEntry &g, const unsigned char *buf, Volu
     const RootData *root =
         reinterpret_cast<const RootData *>(reinterpret_cast<const char *>(tree) + tree->mNodeOffset[3]);
     Densify d;
-    d.err = r.err;
+    d.reader = &r;
+    d.grid = &g;
     uint32_t res[3];
     for (int a = 0; a < 3; a++) {
         d.lo[a] = root->mBBox[0][a], d.hi[a] = root->mBBox[1][a];
@@ -383,6 +394,7 @@ bool densify(const Reader &r, const GridEntry &g, const unsigned char *buf, Volu
     }
     if (!volume_grid_begin(&d.builder, out, res, r.path, r.err))
         return false;
+    d.tile_budget = uint64_t(res[0]) * res[1] * res[2]; /* within 2^31: begin checked */
     bool ok = put_leaves(d, tree) &&
               put_internal_tiles<LowerData, 4, 3>(d, tree, 1) &&
               put_internal_tiles<UpperData, 5, 7>(d, tree, 2) && put_root_tiles(d, root);
