@@ -104,7 +104,7 @@ fuzz-replay: asan
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba collada assimp
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba collada assimp volume
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \

@@ -361,8 +361,9 @@ bool put_root_tiles(Densify &d, const RootData *root)
     return true;
 }
 
-/* Index space: NanoVDB's voxel ijk sits at index point ijk, ours (i = ijk - lo) at i + 0.5. */
-void set_index_to_object(VolumeGrid *out, const GridData *grid, const int64_t lo[3])
+/* Index space: NanoVDB's voxel ijk sits at index point ijk, ours (i = ijk - lo) at i + 0.5. False
+ * when the result is not finite (a huge map times a far box). */
+bool set_index_to_object(VolumeGrid *out, const GridData *grid, const int64_t lo[3])
 {
     const double *m = grid->mMap.mMatD, *t = grid->mMap.mVecD;
     for (int row = 0; row < 3; row++) {
@@ -373,6 +374,10 @@ void set_index_to_object(VolumeGrid *out, const GridData *grid, const int64_t lo
         }
         out->index_to_object[4 * row + 3] = translation;
     }
+    for (double v : out->index_to_object)
+        if (!std::isfinite(v))
+            return false;
+    return true;
 }
 
 bool densify(const Reader &r, const GridEntry &g, const unsigned char *buf, VolumeGrid *out)
@@ -404,7 +409,11 @@ bool densify(const Reader &r, const GridEntry &g, const unsigned char *buf, Volu
     }
     if (!volume_grid_finish(&d.builder, r.err))
         return false;
-    set_index_to_object(out, grid, d.lo);
+    if (!set_index_to_object(out, grid, d.lo)) {
+        volume_grid_free(out);
+        return fail(r, ERR_FILE_READ, "grid '%s': its index-to-world map overflows at its box",
+                    g.name.c_str());
+    }
     return true;
 }
 
