@@ -25,9 +25,9 @@ and scenes naming them with "gltf"), corpus_gltf_v2.py, corpus_ply_v2.py and cor
 (hostile cases for the v2 readers), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
 corpus_mitsuba.py (Mitsuba 3 XML scenes),
-corpus_collada.py (COLLADA, the Assimp formats, Draco glTF), corpus_volume.py (grid media's .vol
-and .nvdb files); corpus_cases.py holds the
+corpus_collada.py (COLLADA, the Assimp formats, Draco glTF); corpus_cases.py holds the
 list they append to.
+corpus_volume.py: grid media's .vol and .nvdb files (seeds of fuzz_volume.c, a mode byte first).
 """
 import json
 import os
