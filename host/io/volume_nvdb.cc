@@ -233,12 +233,9 @@ bool check_nodes(const Reader &r, const GridEntry &g, const TreeData *tree, int 
     return true;
 }
 
-/* The grid's headers, before any node is read. */
+/* The grid's headers, before any node is read (read_grid checked that they fit). */
 bool check_grid(const Reader &r, const GridEntry &g, const unsigned char *buf)
 {
-    if (g.size < sizeof(GridData) + sizeof(TreeData) + sizeof(RootData))
-        return fail(r, ERR_FILE_READ, "grid '%s': %llu bytes is too small for a NanoVDB grid",
-                    g.name.c_str(), (unsigned long long)g.size);
     const GridData *grid = reinterpret_cast<const GridData *>(buf);
     if (grid->mMagic != uint64_t(NANOVDB_MAGIC_NUMBER))
         return fail(r, ERR_FILE_READ, "grid '%s': bad magic in its grid header", g.name.c_str());
@@ -428,6 +425,9 @@ bool read_grid(const Reader &r, const char *grid_name, VolumeGrid *out)
     const GridEntry *g = choose_grid(r, grids, grid_name);
     if (!g)
         return false;
+    if (g->size < sizeof(GridData) + sizeof(TreeData) + sizeof(RootData))
+        return fail(r, ERR_FILE_READ, "grid '%s': %llu bytes is too small for a NanoVDB grid",
+                    g->name.c_str(), (unsigned long long)g->size);
     if (g->size > MAX_GRID_BYTES)
         return fail(r, ERR_TOO_LARGE, "grid '%s' of %llu bytes is over the limit of %llu GiB",
                     g->name.c_str(), (unsigned long long)g->size, (unsigned long long)(MAX_GRID_BYTES >> 30));

@@ -179,6 +179,9 @@ def nvdb_cases(rng):
     for label, offset, fmt, *values in header_patches:
         volume_case("nvdb-" + label, "x.nvdb", patched(good, offset, fmt, *values),
                     "any" if label in ("leaf-offset-0", "root-table-1", "leaf-origin-min") else "error")
+    # A grid of 100 bytes that the file holds exactly: too small for its own headers.
+    small = patched(patched(good, 16, "<Q", 100), 24, "<Q", 100)[:grid_at + 100]
+    volume_case("nvdb-grid-too-small", "x.nvdb", small, "error")
     # Two lower nodes at one origin, every tile active: the tiles overlap (refused, not filled twice).
     every = {n: 0.5 for n in range(4096)}
     volume_case("nvdb-overlapping-tiles", "x.nvdb",
