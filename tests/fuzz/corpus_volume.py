@@ -5,8 +5,8 @@ written here byte by byte (NanoVDB 32.x's layout: file header, grid metadata, gr
 root tiles, lower internal nodes, leaves), valid small ones and hostile mutations: truncations,
 bad magic, versions, codecs, encodings and channels, counts and offsets that do not fit or are
 misaligned, huge and empty boxes, NaN and negative densities, overlapping tiles, random bytes.
-The hostile ones must fail with one line naming the grid file (needs the scene parser of branch
-media40); the valid ones render or fail cleanly.
+The hostile ones must fail with one line naming the grid file, the valid ones render (both need
+the scene parser of branch media40); random mutations do either.
 """
 import json
 import random
@@ -45,10 +45,10 @@ def vol(res=(4, 3, 2), values=None, magic=b"VOL", version=3, encoding=1, channel
 
 def vol_cases(rng):
     good = vol()
-    volume_case("vol-valid", "x.vol", good, "any")
-    volume_case("vol-valid-named", "x.vol", good, "any", grid_name="density")
-    volume_case("vol-valid-trailing-bytes", "x.vol", good + b"\0" * 13, "any")
-    volume_case("vol-valid-negative-zero", "x.vol", vol(values=[-0.0] * 24), "any")
+    volume_case("vol-valid", "x.vol", good, "ok")
+    volume_case("vol-valid-named", "x.vol", good, "ok", grid_name="density")
+    volume_case("vol-valid-trailing-bytes", "x.vol", good + b"\0" * 13, "ok")
+    volume_case("vol-valid-negative-zero", "x.vol", vol(values=[-0.0] * 24), "ok")
     volume_case("vol-name-absent", "x.vol", good, "error", grid_name="temperature")
     for k in range(10):
         volume_case("vol-truncated-%d" % k, "x.vol", good[:len(good) * k // 10], "error")
@@ -136,15 +136,15 @@ def nvdb_cases(rng):
     tree_at = grid_at + GRID_BYTES
     root_at = tree_at + TREE_BYTES
     leaf_at = tree_at + struct.unpack_from("<Q", good, tree_at)[0]
-    volume_case("nvdb-valid-leaf", "x.nvdb", good, "any")
-    volume_case("nvdb-valid-named", "x.nvdb", good, "any", grid_name="density")
-    volume_case("nvdb-valid-empty-tree", "x.nvdb", nvdb(bbox=((0, 0, 0), (3, 3, 3))), "any")
+    volume_case("nvdb-valid-leaf", "x.nvdb", good, "ok")
+    volume_case("nvdb-valid-named", "x.nvdb", good, "ok", grid_name="density")
+    volume_case("nvdb-valid-empty-tree", "x.nvdb", nvdb(bbox=((0, 0, 0), (3, 3, 3))), "ok")
     volume_case("nvdb-valid-lower-tiles", "x.nvdb",
                 nvdb(lowers=[lower((0, 0, 0), {0: 1.0, 17: 0.5, 4095: 2.0})], bbox=((0, 0, 0), (127, 127, 127))),
-                "any")
+                "ok")
     volume_case("nvdb-valid-root-tile", "x.nvdb",
-                nvdb(root_tiles=[((0, 0, 0), 1, 0.25)], bbox=((0, 0, 0), (15, 15, 15))), "any")
-    volume_case("nvdb-valid-far-leaf", "x.nvdb", nvdb(leaves=[leaf((-2 ** 31, 2 ** 31 - 8, 0), ramp)]), "any")
+                nvdb(root_tiles=[((0, 0, 0), 1, 0.25)], bbox=((0, 0, 0), (15, 15, 15))), "ok")
+    volume_case("nvdb-valid-far-leaf", "x.nvdb", nvdb(leaves=[leaf((-2 ** 31, 2 ** 31 - 8, 0), ramp)]), "ok")
     volume_case("nvdb-name-absent", "x.nvdb", good, "error", grid_name="smoke")
     volume_case("nvdb-double-grid", "x.nvdb", nvdb(leaves=[leaf((0, 0, 0), ramp)], grid_type=2), "error")
     volume_case("nvdb-empty-file", "x.nvdb", b"", "error")
