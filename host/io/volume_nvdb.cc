@@ -304,6 +304,8 @@ bool fill_tile(Densify &d, const nanovdb::Coord &origin, int64_t size, float val
 
 bool put_leaves(Densify &d, const TreeData *tree)
 {
+    if (tree->mNodeCount[0] == 0)
+        return true; /* its offset is unchecked then (check_nodes): not even added to a pointer */
     const char *base = reinterpret_cast<const char *>(tree) + tree->mNodeOffset[0];
     for (uint32_t i = 0; i < tree->mNodeCount[0]; i++) {
         const LeafData *leaf = reinterpret_cast<const LeafData *>(base + uint64_t(i) * sizeof(LeafData));
@@ -326,6 +328,8 @@ bool put_leaves(Densify &d, const TreeData *tree)
 template <typename Node, uint32_t LOG2DIM, uint32_t CHILD_LOG2>
 bool put_internal_tiles(Densify &d, const TreeData *tree, int level)
 {
+    if (tree->mNodeCount[level] == 0)
+        return true;
     const char *base = reinterpret_cast<const char *>(tree) + tree->mNodeOffset[level];
     constexpr uint32_t DIM = 1u << LOG2DIM, SIZE = DIM * DIM * DIM;
     constexpr int32_t NODE_MASK = (1 << (LOG2DIM + CHILD_LOG2)) - 1;

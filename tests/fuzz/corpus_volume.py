@@ -139,6 +139,10 @@ def nvdb_cases(rng):
     volume_case("nvdb-valid-leaf", "x.nvdb", good, "ok")
     volume_case("nvdb-valid-named", "x.nvdb", good, "ok", grid_name="density")
     volume_case("nvdb-valid-empty-tree", "x.nvdb", nvdb(bbox=((0, 0, 0), (3, 3, 3))), "ok")
+    # No nodes at a level: its offset is never used (fuzz_volume found it added to a pointer).
+    empty = nvdb(bbox=((0, 0, 0), (3, 3, 3)))
+    volume_case("nvdb-valid-unused-offsets", "x.nvdb",
+                patched(empty, 16 + 176 + 8 + GRID_BYTES, "<3Q", 2 ** 63, 2 ** 63 + 32, 2 ** 64 - 32), "ok")
     volume_case("nvdb-valid-lower-tiles", "x.nvdb",
                 nvdb(lowers=[lower((0, 0, 0), {0: 1.0, 17: 0.5, 4095: 2.0})], bbox=((0, 0, 0), (127, 127, 127))),
                 "ok")
