@@ -104,7 +104,7 @@ fuzz-replay: asan
 # FUZZ_SECONDS s from the corpus's inputs as seeds. Findings (crash-*, timeout-*, oom-*) land in build-fuzz/findings/.
 FUZZ_SECONDS ?= 60
 FUZZ_CC ?= clang
-FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba collada assimp
+FUZZ_TARGETS := scene obj texture ply gltf checkpoint pbrt mitsuba collada assimp volume
 fuzz:
 	$(Q)command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz needs clang: apt-get install clang"; exit 1; }
 	$(Q)$(MAKE) --no-print-directory BUILD=build-fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CC)++ \
@@ -234,3 +234,7 @@ $(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 # NanoVDB (io/volume_nvdb.cc, header-only) needs C++17.
 $(BUILD)/host/io/volume_nvdb.o: CXXFLAGS += -std=c++17
+# The grid reader tests write their NanoVDB files with NanoVDB's own builder (tests/nvdb_fixture.cc).
+$(BUILD)/tests/test_volume_nvdb: $(BUILD)/tests/nvdb_fixture.o
+$(BUILD)/tests/nvdb_fixture.o: CXXFLAGS += -std=c++17
+$(BUILD)/tests/test_media_scene_nvdb: $(BUILD)/tests/nvdb_fixture.o

@@ -6,12 +6,13 @@
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 
-# Build and run: OpenCL loader + headers, the CPU OpenCL driver, the scene/texture/image libraries.
+# Build and run: OpenCL loader + headers, the CPU OpenCL driver, the scene/texture/image libraries
+# (NanoVDB: header-only, for grid media's .nvdb files).
 # MPI: OpenMPI (pt links it; mpirun runs it on several processes or nodes); patchelf (make bundle).
 # Tests: Criterion (runner), Xvfb + Mesa (viewer tests in a real window), xdotool (window resizing).
 PACKAGES="build-essential pkg-config ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
 libtinyobjloader-dev libtinygltf-dev libstb-dev libopenexr-dev libglfw3-dev libcjson-dev libcriterion-dev \
-libxml2-dev libassimp-dev libdraco-dev \
+libxml2-dev libassimp-dev libdraco-dev libnanovdb-dev \
 libopenmpi-dev openmpi-bin patchelf libexpat1-dev xvfb xauth libgl1-mesa-dri xdotool python3-pip"
 
 missing=""

@@ -18,6 +18,13 @@
  * is within the voxel limit but would need a table of 2^28 entries. */
 #define VOLUME_GRID_MAX_TABLE ((uint64_t)1 << 26)
 
+static uint64_t g_brick_limit = VOLUME_GRID_MAX_BRICK_BYTES;
+
+void volume_grid_set_brick_limit(uint64_t bytes)
+{
+    g_brick_limit = bytes ? bytes : VOLUME_GRID_MAX_BRICK_BYTES;
+}
+
 static const char *grid_name(const VolumeGridBuilder *b)
 {
     return b->path[0] ? b->path : "volume grid";
@@ -80,12 +87,12 @@ float *volume_grid_brick(VolumeGridBuilder *b, uint32_t bx, uint32_t by, uint32_
     VolumeGrid *g = b->grid;
     uint32_t *entry = &g->brick_table[table_cell(g, bx, by, bz)];
     if (*entry == MEDIUM_NO_BRICK) {
-        const uint64_t limit = VOLUME_GRID_MAX_BRICK_BYTES / (MEDIUM_BRICK_VOXELS * sizeof(float));
+        const uint64_t limit = g_brick_limit / (MEDIUM_BRICK_VOXELS * sizeof(float));
         if (g->num_bricks == b->capacity) {
             if (b->capacity >= limit) {
                 error_set(err, ERR_TOO_LARGE, b->path, 0,
-                          "%s: the grid's non-zero bricks need more than the limit of %llu GiB",
-                          grid_name(b), (unsigned long long)(VOLUME_GRID_MAX_BRICK_BYTES >> 30));
+                          "%s: the grid's non-zero bricks need more than the limit of %llu MiB",
+                          grid_name(b), (unsigned long long)(g_brick_limit >> 20));
                 return NULL;
             }
             uint64_t grown = b->capacity ? 2 * (uint64_t)b->capacity : 64;

@@ -15,7 +15,7 @@ typedef struct {
     uint32_t res[3];         /* voxels per axis */
     uint32_t bricks[3];      /* brick table size: ceil(res / MEDIUM_BRICK) */
     uint32_t *brick_table;   /* bricks[0] * bricks[1] * bricks[2] entries */
-    float *values;           /* num_bricks * MEDIUM_BRICK_VOXELS values */
+    float *values;           /* num_bricks * MEDIUM_BRICK_VOXELS values (NULL when none) */
     uint32_t num_bricks;
     /* One per table entry: the largest value a trilinear lookup anywhere in that brick's index box
      * can return (the brick's voxels and their one-voxel neighbours), so that it bounds the density
@@ -24,9 +24,10 @@ typedef struct {
     float max_value;         /* the largest voxel value */
     /* Index space to the file's object space: object = M (index point), rows of a 3x4 affine,
      * where voxel (i, j, k)'s value sits at index point (i + 0.5, j + 0.5, k + 0.5) and the grid
-     * spans [0, res]. A .vol grid spans the unit cube [0, 1]^3 (Mitsuba 3's gridvolume, whose
-     * to_world then places it; the file's bounding box is ignored as Mitsuba 3 does); a NanoVDB
-     * grid spans its own world box (its index-to-world map, voxel size and origin). */
+     * spans [0, res]. A .vol grid spans the bounding box in its header (shared/DESIGN.md
+     * "Media": Mitsuba 3's gridvolume with use_grid_bbox); a NanoVDB grid spans its active
+     * voxels' index box, placed by its index-to-world map (voxel ijk's value at map(ijk), as
+     * NanoVDB's samplers have it); volume_grid_from_dense's grid spans the unit cube. */
     double index_to_object[12];
 } VolumeGrid;
 
@@ -34,14 +35,22 @@ typedef struct {
  * "density") of the file at path, chosen by its extension (.nvdb, .vol). Values must be finite and
  * >= 0 (a density). Errors: one line naming the file and what is wrong (ERR_FILE_MISSING,
  * ERR_FILE_READ for a corrupt or truncated file, ERR_JSON_VALUE for a grid name not in the file
- * (naming the grids that are) or of another value type, ERR_TOO_LARGE past the size limits). */
+ * (naming the grids that are) or of another value type, ERR_TOO_LARGE past the size limits: 2^31
+ * voxels in the grid's box, 2^26 entries in its brick table, the brick memory limit below, and
+ * 8 GiB for a NanoVDB grid's buffer). */
 bool volume_grid_read(const char *path, const char *grid_name, VolumeGrid *out, Error *err);
 
-/* The grid of dense values (res[0] * res[1] * res[2], x fastest), spanning the unit cube as a
- * .vol grid does: the .vol reader's back end, and the tests'. */
+/* The grid of dense values (res[0] * res[1] * res[2], x fastest), spanning the unit cube: for
+ * tests and callers with values in memory (the readers stream into the same builder,
+ * io/volume_grid_build.h). Errors as volume_grid_read's, naming "volume grid". */
 bool volume_grid_from_dense(const float *values, const uint32_t res[3], VolumeGrid *out,
                             Error *err);
 
 void volume_grid_free(VolumeGrid *grid);
+
+/* The memory one grid's non-zero bricks may take (ERR_TOO_LARGE past it): 4 GiB unless set. A
+ * small file can describe a large constant box (a NanoVDB tile); the fuzz targets set less, to
+ * stay inside libFuzzer's memory limit. 0 restores the default. */
+void volume_grid_set_brick_limit(uint64_t bytes);
 
 #endif

@@ -15,7 +15,8 @@
 extern "C" {
 #endif
 
-/* The limits on one grid: voxels in its box, and memory for its bricks. */
+/* The limits on one grid: voxels in its box, and memory for its bricks (the default of
+ * volume_grid_set_brick_limit). */
 #define VOLUME_GRID_MAX_VOXELS ((uint64_t)1 << 31)
 #define VOLUME_GRID_MAX_BRICK_BYTES ((uint64_t)4 << 30)
 

@@ -113,27 +113,29 @@ static bool read_values(int fd, VolumeGridBuilder *b, Error *err)
 {
     const VolumeGrid *g = b->grid;
     const size_t slice = (size_t)g->res[0] * g->res[1];
-    unsigned char *raw = malloc(slice * MEDIUM_BRICK * sizeof(float));
-    float *layer = malloc(slice * MEDIUM_BRICK * sizeof(float));
-    bool ok = raw && layer;
-    if (!ok)
+    const uint32_t layer_slices = g->res[2] < MEDIUM_BRICK ? g->res[2] : MEDIUM_BRICK;
+    float *layer = malloc(slice * layer_slices * sizeof(float));
+    if (!layer) {
         error_set(err, ERR_OUT_OF_MEMORY, b->path, 0, "%s: out of memory for %zu voxels", b->path,
-                  slice * MEDIUM_BRICK);
+                  slice * layer_slices);
+        return false;
+    }
+    bool ok = true;
     for (uint32_t z0 = 0; ok && z0 < g->res[2]; z0 += MEDIUM_BRICK) {
         uint32_t count = g->res[2] - z0 < MEDIUM_BRICK ? g->res[2] - z0 : MEDIUM_BRICK;
         size_t n = slice * count;
-        if (!read_at(fd, raw, n * sizeof(float),
+        if (!read_at(fd, layer, n * sizeof(float),
                      VOL_HEADER_BYTES + (long long)(z0 * slice * sizeof(float)))) {
             error_set(err, ERR_FILE_READ, b->path, 0, "%s: read failed at slice %u (file changed?)",
                       b->path, z0);
             ok = false;
             break;
         }
+        /* Little-endian bytes to floats, in place (each value read before it is written). */
         for (size_t i = 0; i < n; i++)
-            layer[i] = le_float(raw + 4 * i);
+            layer[i] = le_float((const unsigned char *)(layer + i));
         ok = volume_grid_put_layer(b, layer, z0, count, err);
     }
-    free(raw);
     free(layer);
     return ok;
 }

@@ -25,8 +25,10 @@ and scenes naming them with "gltf"), corpus_gltf_v2.py, corpus_ply_v2.py and cor
 (hostile cases for the v2 readers), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
 corpus_mitsuba.py (Mitsuba 3 XML scenes),
-corpus_collada.py (COLLADA, the Assimp formats, Draco glTF); corpus_cases.py holds the
+corpus_collada.py (COLLADA, the Assimp formats, Draco glTF), corpus_media.py (media: the "media"
+block, interiors, subsurface, .vol grids); corpus_cases.py holds the
 list they append to.
+corpus_volume.py: grid media's .vol and .nvdb files (seeds of fuzz_volume.c, a mode byte first).
 """
 import json
 import os
@@ -42,6 +44,7 @@ from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_gltf_v2 import gltf_v2_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
+from corpus_media import media_cases, mitsuba_media_cases  # noqa: E402
 from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_pbrt import pbrt_cases  # noqa: E402
@@ -51,6 +54,7 @@ from corpus_scene import json_cases  # noqa: E402
 from corpus_scene_v2 import scene_v2_cases  # noqa: E402
 from corpus_texture import environment_map_cases, texture_cases  # noqa: E402
 from corpus_transform import transform_cases  # noqa: E402
+from corpus_volume import volume_cases  # noqa: E402
 
 
 def as_bytes(content):
@@ -58,7 +62,8 @@ def as_bytes(content):
 
 
 def write_seeds(folder):
-    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt", "mitsuba", "collada", "assimp"):
+    for target in ("scene", "obj", "texture", "ply", "gltf", "checkpoint", "pbrt", "mitsuba", "collada", "assimp",
+                   "volume"):
         os.makedirs(os.path.join(folder, target), exist_ok=True)
     for i, c in enumerate(cases):
         files, seed = c["files"], None
@@ -81,6 +86,9 @@ def write_seeds(folder):
         elif c["name"].startswith(("stl-", "off-", "fbx-", "3ds-", "x3d-")):  # fuzz_assimp.c: format byte
             kind = ("stl-", "off-", "fbx-", "3ds-", "x3d-").index(c["name"][:4])
             target, seed = "assimp", bytes([kind]) + as_bytes(next(iter(files.values())))
+        elif c["name"].startswith(("vol-", "nvdb-")):  # fuzz_volume.c: mode byte 0 .vol, 1 .nvdb
+            grid = "x.vol" if "x.vol" in files else "x.nvdb"
+            target, seed = "volume", bytes([grid == "x.nvdb"]) + as_bytes(files[grid])
         elif c["name"].startswith("tex-"):
             images = [n for n in files if n.startswith("t.")]
             if images:
@@ -114,6 +122,9 @@ def main():
     gltf_v2_cases()  # issue 42's hostile cases for the v2 readers
     ply_v2_cases()
     scene_v2_cases()
+    volume_cases()  # issue 40's grid files
+    media_cases()  # issue 40: media, last so that the cases above keep their numbers
+    mitsuba_media_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
