@@ -75,11 +75,12 @@ grep -rnE '\bcl[A-Z][A-Za-z0-9_]*[[:space:]]*\(' host --include='*.c' --include=
     done >>/tmp/check-layers.$$
 
 # cl/: the assembled order must follow shared.h and its parts (cl/shared/) -> core -> geometry ->
-# material -> light -> lensing -> stages; parallel/ and post/ may come anywhere after core/.
+# material -> medium -> light -> lensing -> stages; parallel/ and post/ may come anywhere after core/.
 rank() {
     case $1 in
         shared.h|shared) echo 0 ;; core) echo 1 ;; geometry) echo 2 ;; material) echo 3 ;;
-        light) echo 4 ;; lensing) echo 5 ;; stages) echo 6 ;; parallel|post) echo P ;; *) echo "?" ;;
+        medium) echo 4 ;; light) echo 5 ;; lensing) echo 6 ;; stages) echo 7 ;;
+        parallel|post) echo P ;; *) echo "?" ;;
     esac
 }
 sources=$(sed -n '/^CL_SOURCES :=/,/^$/p' Makefile | tr -d '\\' | sed 's/CL_SOURCES :=//')
