@@ -52,6 +52,11 @@ static void write_meshes(void)
              "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\nf 1 6 2\nf 1 5 6\n"
              "f 4 7 8\nf 4 3 7\nf 1 8 5\nf 1 4 8\nf 2 7 3\nf 2 6 7\n");
     write_file("inside_out.obj", text);
+    /* An open floor and a closed subsurface ball in one mesh (as the Cornell box's OBJ). */
+    write_file("room.mtl", "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl skin\nKd 0.8 0.6 0.5\n");
+    snprintf(text, sizeof text, "mtllib room.mtl\n%sv -5 -2 -5\nv 5 -2 -5\nv 5 -2 5\nv -5 -2 5\n"
+             "usemtl skin\n%susemtl floor\nf 9 12 11\nf 9 11 10\n", cube, faces);
+    write_file("room.obj", text);
 }
 
 static const char camera[] = "\"camera\": {\"eye\": [0, 0, 5], \"target\": [0, 0, 0]}";
@@ -298,11 +303,11 @@ Test(media_scene, open_edges_are_counted_by_position)
     Scene s;
     load_ok("\"objects\": [{\"obj\": \"seams.obj\"}]", &s);
     uint64_t one = 9, many = 9;
-    cr_assert(mesh_open_edges(&s.data, 0, s.data.num_triangles, &one, &many));
+    cr_assert(mesh_open_edges(&s.data, 0, s.data.num_triangles, NULL, &one, &many));
     cr_expect(s.data.num_vertices > 8, "the seams split vertices (%u)", s.data.num_vertices);
     cr_expect_eq(one, 0u, "a cube split at its normals' seams is closed");
     cr_expect_eq(many, 0u);
-    cr_assert(mesh_open_edges(&s.data, 0, 11, &one, &many));
+    cr_assert(mesh_open_edges(&s.data, 0, 11, NULL, &one, &many));
     cr_expect_eq(one, 3u, "one triangle less: its three edges have one face");
     scene_free(&s);
 }
@@ -545,8 +550,23 @@ Test(media_scene, bad_subsurface_on_an_open_mesh)
 {
     refused("\"materials\": {\"skin\": {\"type\": \"principled\", \"subsurface\": 0.5}}, "
             "\"objects\": [{\"obj\": \"open.obj\", \"material\": \"skin\"}]",
-            "objects[0] (a material with subsurface): the mesh is not closed (3 edges with one "
+            "objects[0] (the triangles of its subsurface materials): the mesh is not closed (3 edges with one "
             "face)");
+}
+
+/* Only the subsurface material's triangles must close: the open floor beside the ball is fine,
+ * and the ball gets its walk medium. */
+Test(media_scene, subsurface_closes_per_material)
+{
+    Scene s;
+    load_ok("\"materials\": {\"skin\": {\"type\": \"principled\", \"subsurface\": 0.5}}, "
+            "\"objects\": [{\"obj\": \"room.obj\"}]", &s);
+    uint32_t walkers = 0;
+    for (uint32_t i = 0; i < s.data.num_materials; i++)
+        walkers += s.data.materials[i].subsurface > 0.0f &&
+                   (s.data.materials[i].flags & MATERIAL_FLAG_MEDIUM_INTERFACE);
+    cr_expect_eq(walkers, 1u, "%u subsurface materials with a walk medium", walkers);
+    scene_free(&s);
 }
 
 Test(media_scene, bad_interior_with_subsurface)

@@ -31,8 +31,8 @@ static int compare_edges(const void *pa, const void *pb)
     return *a < *b ? -1 : *a > *b;
 }
 
-bool mesh_open_edges(const SceneData *data, uint32_t first, uint32_t end, uint64_t *one_face,
-                     uint64_t *many_faces)
+bool mesh_open_edges(const SceneData *data, uint32_t first, uint32_t end, const uint8_t *keep,
+                     uint64_t *one_face, uint64_t *many_faces)
 {
     *one_face = *many_faces = 0;
     size_t n = end > first ? end - first : 0, corners = 3 * n;
@@ -59,6 +59,8 @@ bool mesh_open_edges(const SceneData *data, uint32_t first, uint32_t end, uint64
     size_t count = 0;
     for (size_t t = 0; t < n; t++) {
         const uint32_t *v = &id[3 * t];
+        if (keep && !keep[t])
+            continue;
         if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
             continue; /* degenerate: no face, whatever its edges */
         for (int k = 0; k < 3; k++) {
@@ -156,10 +158,13 @@ static void object_name(const ObjectOptions *o, char out[32])
 
 /* Six times the signed volume a closed mesh encloses (the divergence theorem over its triangles):
  * negative when its fronts (counter-clockwise sides) face inward. */
-static double signed_volume6(const SceneData *data, uint32_t first, uint32_t end)
+static double signed_volume6(const SceneData *data, uint32_t first, uint32_t end,
+                             const uint8_t *keep)
 {
     double sum = 0.0;
     for (uint32_t t = first; t < end; t++) {
+        if (keep && !keep[t - first])
+            continue;
         const float *a = data->positions[data->triangles[t].v.s[0]].s,
                     *b = data->positions[data->triangles[t].v.s[1]].s,
                     *c = data->positions[data->triangles[t].v.s[2]].s;
@@ -170,20 +175,22 @@ static double signed_volume6(const SceneData *data, uint32_t first, uint32_t end
     return sum;
 }
 
-static bool check_closed(const SceneData *data, uint32_t first, const ObjectOptions *o,
-                         const char *what, const char *scene_path, Error *err)
+/* keep: NULL, or which of the triangles from first on to check (keep[t - first]). */
+static bool check_closed(const SceneData *data, uint32_t first, const uint8_t *keep,
+                         const ObjectOptions *o, const char *what, const char *scene_path,
+                         Error *err)
 {
     uint64_t one = 0, many = 0;
     char name[32];
     object_name(o, name);
-    if (!mesh_open_edges(data, first, data->num_triangles, &one, &many)) {
+    if (!mesh_open_edges(data, first, data->num_triangles, keep, &one, &many)) {
         error_set(err, ERR_OUT_OF_MEMORY, scene_path, 0, "%s: %s: out of memory", scene_path, name);
         return false;
     }
     if (one == 0 && many == 0) {
         /* The interior is behind the fronts (DESIGN "Media"): an inside-out mesh holds its
          * medium everywhere else. Legal, so only said. */
-        if (signed_volume6(data, first, data->num_triangles) < 0.0)
+        if (signed_volume6(data, first, data->num_triangles, keep) < 0.0)
             warn("%s: %s%s: the mesh faces inward (its triangles' counter-clockwise fronts point "
                  "inside): its interior medium fills the space around it", scene_path, name, what);
         return true;
@@ -206,17 +213,29 @@ bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOp
 {
     char name[32];
     object_name(o, name);
+    /* A subsurface material's triangles must close (its walk is inside them), not the whole
+     * object's: an OBJ holds a Cornell box's open room and its closed spheres in one mesh. */
+    uint32_t count = data->num_triangles - first_triangle;
+    uint8_t *subsurface_tris = malloc(count ? count : 1);
+    if (!subsurface_tris) {
+        error_set(err, ERR_OUT_OF_MEMORY, scene_path, 0, "%s: %s: out of memory", scene_path, name);
+        return false;
+    }
     bool subsurface = false;
-    for (uint32_t t = first_triangle; t < data->num_triangles && !subsurface; t++)
-        subsurface = holds_subsurface(data, data->material_ids[t], 0);
+    for (uint32_t t = 0; t < count; t++) {
+        subsurface_tris[t] = holds_subsurface(data, data->material_ids[first_triangle + t], 0);
+        subsurface |= subsurface_tris[t] != 0;
+    }
     /* The same medium on both sides (a floor in a fog-filled world, as Mitsuba scenes say it:
      * Mitsuba has no world medium) changes nothing where it is crossed: any surface will do. */
     uint32_t outside = o->exterior ? o->exterior : data->world_medium;
-    if (o->interior && o->interior != outside &&
-        !check_closed(data, first_triangle, o, ".interior", scene_path, err))
-        return false;
-    if (subsurface && !check_closed(data, first_triangle, o, " (a material with subsurface)",
-                                    scene_path, err))
+    bool closed = !(o->interior && o->interior != outside) ||
+                  check_closed(data, first_triangle, NULL, o, ".interior", scene_path, err);
+    closed = closed && (!subsurface || check_closed(data, first_triangle, subsurface_tris, o,
+                                                    " (the triangles of its subsurface materials)",
+                                                    scene_path, err));
+    free(subsurface_tris);
+    if (!closed)
         return false;
     if (!o->interior && !o->exterior)
         return true;

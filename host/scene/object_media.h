@@ -31,10 +31,11 @@ bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOp
                         DerivedMaterials *derived, const char *scene_path, Error *err);
 void derived_materials_free(DerivedMaterials *derived);
 
-/* How far the triangles [first, end) are from closing a surface: edges (between distinct
- * positions, welded by value) with one triangle, and edges with more than two. Degenerate
- * triangles (two corners at one position) are left out. Returns false when out of memory. */
-bool mesh_open_edges(const SceneData *data, uint32_t first, uint32_t end, uint64_t *one_face,
-                     uint64_t *many_faces);
+/* How far the triangles [first, end) (those t with keep[t - first] != 0 when keep is not NULL) are
+ * from closing a surface: edges (between distinct positions, welded by value) with one triangle,
+ * and edges with more than two. Degenerate triangles (two corners at one position) are left out.
+ * Returns false when out of memory. */
+bool mesh_open_edges(const SceneData *data, uint32_t first, uint32_t end, const uint8_t *keep,
+                     uint64_t *one_face, uint64_t *many_faces);
 
 #endif
