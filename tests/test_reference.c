@@ -151,6 +151,15 @@ Test(reference_materials, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout
 Test(reference_materials, environment_map_rough_gold, .timeout = 300) { compare_with_reference("envmap", 1024, 4096); }
 Test(reference_materials, environment_map_diffuse_only, .timeout = 300) { compare_with_reference("envmap-diffuse", 1024, 4096); }
 
+/* Media (tools/make_media_scenes.py; DESIGN.md "Media") against Mitsuba's volpath: a fog box (an
+ * "interface" boundary) under a spot light, a .vol smoke grid in an interface box under the sky,
+ * a coloured liquid in a dielectric with the whole scene in a world medium (haze), and a random
+ * walk in a dielectric sphere with a dense interior medium. */
+Test(reference_media, fog_box_under_a_spot_light, .timeout = 600) { compare_with_reference("fog-room", 1024, 16384); }
+Test(reference_media, smoke_grid_in_interface_box_under_sky, .timeout = 600) { compare_with_reference("smoke", 1024, 16384); }
+Test(reference_media, coloured_liquid_in_dielectric_in_world_haze, .timeout = 600) { compare_with_reference("liquid", 1024, 32768); }
+Test(reference_media, subsurface_random_walk_in_dielectric_sphere, .timeout = 600) { compare_with_reference("subsurface", 1024, 65536); }
+
 /* The same scenes as Mitsuba 3 XML files (tools/mitsuba_xml.py writes the scene Mitsuba rendered
  * each reference from; make writes them to tests/scenes/<name>/mitsuba/), read by pt's Mitsuba
  * importer: the importer's mapping checked against Mitsuba itself. */
