@@ -141,11 +141,13 @@ def write_liquid(out):
     os.makedirs(out, exist_ok=True)
     write_mtl(os.path.join(out, "liquid.mtl"), "newmtl floor\nillum 2\nKd 0.5 0.5 0.5\n"
               "newmtl back\nillum 2\nKd 0.3 0.35 0.45\nnewmtl glass\nillum 2\nKd 0.5 0.5 0.5\n"
-              + MTL_LIGHT.format(8))
+              + MTL_LIGHT.format(4))
     room = mat.Obj("liquid.mtl")
     mat.add_floor(room, "floor", 2.5)
     room.face("back", [[-2.5, 0, -1.5], [2.5, 0, -1.5], [2.5, 2.5, -1.5], [-2.5, 2.5, -1.5]])
-    mat.add_light(room, (-0.4, 0.5), 0.6, 3.0)
+    # Large: light reaches the liquid's inside only through paths that leave the dielectric and
+    # hit it (no next-event estimation through a refracting surface, in either renderer).
+    mat.add_light(room, (-0.4, 0.5), 1.0, 3.0)
     room.write(os.path.join(out, "room.obj"))
     glass = mat.Obj("liquid.mtl")
     add_cylinder(glass, "glass", [0.0, 0.002, 0.0], 0.45, 1.0)
@@ -164,10 +166,10 @@ def write_liquid(out):
 def write_subsurface(out):
     os.makedirs(out, exist_ok=True)
     write_mtl(os.path.join(out, "subsurface.mtl"), "newmtl floor\nillum 2\nKd 0.5 0.5 0.5\n"
-              "newmtl skin\nillum 2\nKd 0.5 0.5 0.5\n" + MTL_LIGHT.format(10))
+              "newmtl skin\nillum 2\nKd 0.5 0.5 0.5\n" + MTL_LIGHT.format(5))
     room = mat.Obj("subsurface.mtl")
     mat.add_floor(room, "floor", 2.5)
-    mat.add_light(room, (0.6, 0.4), 0.5, 2.6)
+    mat.add_light(room, (0.6, 0.4), 0.8, 2.6)  # large, and a bright sky: as in liquid/
     room.write(os.path.join(out, "room.obj"))
     sphere = mat.Obj("subsurface.mtl")
     mat.add_icosphere(sphere, "skin", [0.0, 0.62, 0.0], 0.6)
@@ -177,7 +179,7 @@ def write_subsurface(out):
         "media": {"skin": {"type": "homogeneous", "sigma_a": [0.08, 0.35, 0.8],
                            "sigma_s": [3.0, 3.6, 4.2], "g": 0.0}},
         "materials": {"skin": {"type": "dielectric", "ior": 1.4}},
-        "background": [0.1, 0.1, 0.12],
+        "background": [0.4, 0.4, 0.45],
         "objects": [{"obj": "room.obj"},
                     {"obj": "sphere.obj", "material": "skin", "interior": "skin"}]})
 
