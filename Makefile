@@ -239,3 +239,5 @@ $(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+# NanoVDB (io/volume_nvdb.cc, header-only) needs C++17.
+$(BUILD)/host/io/volume_nvdb.o: CXXFLAGS += -std=c++17

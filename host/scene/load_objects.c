@@ -12,18 +12,35 @@
 
 #include "io/obj_loader.h"
 #include "io/ply_reader.h"
+#include "scene/object_media.h"
 
 #define NO_MESH 0xffffffffu
 
 /* An object's mesh key: the file (by its canonical path where it exists; a glTF primitive's
  * "<canonical file>#meshes[m].primitives[p]", which realpath leaves as it is), the material
- * override and smoothing. Objects with equal keys share one mesh. */
+ * override, smoothing and the media it bounds (its triangles' materials carry them). Objects with
+ * equal keys share one mesh. */
 typedef struct {
     const char *path;
     uint32_t material;
     bool smooth;
+    uint32_t interior, exterior;
     int object;
 } MeshKey;
+
+/* Whether a and b differ in what their triangles hold besides the file. */
+static int compare_options(const MeshKey *a, const MeshKey *b)
+{
+    if (a->material != b->material)
+        return a->material < b->material ? -1 : 1;
+    if (a->smooth != b->smooth)
+        return a->smooth ? 1 : -1;
+    if (a->interior != b->interior)
+        return a->interior < b->interior ? -1 : 1;
+    if (a->exterior != b->exterior)
+        return a->exterior < b->exterior ? -1 : 1;
+    return 0;
+}
 
 static int compare_keys(const void *pa, const void *pb)
 {
@@ -31,11 +48,8 @@ static int compare_keys(const void *pa, const void *pb)
     int c = strcmp(a->path, b->path);
     if (c)
         return c;
-    if (a->material != b->material)
-        return a->material < b->material ? -1 : 1;
-    if (a->smooth != b->smooth)
-        return a->smooth ? 1 : -1;
-    return a->object - b->object;
+    c = compare_options(a, b);
+    return c ? c : a->object - b->object;
 }
 
 /* first_use[i]: the first object with object i's key; uses[i]: how many objects have it. Sorting
@@ -45,7 +59,7 @@ static bool group_meshes(const SceneDesc *d, MeshKey *keys, char **canonical, ch
 {
     int n = d->num_objects;
     for (int i = 0; i < n; i++)
-        keys[i] = (MeshKey){d->objects[i], 0, false, i};
+        keys[i] = (MeshKey){d->objects[i], 0, false, 0, 0, i};
     qsort(keys, (size_t)n, sizeof *keys, compare_keys);
     for (int k = 0; k < n; k++) {
         int i = keys[k].object;
@@ -60,14 +74,15 @@ static bool group_meshes(const SceneDesc *d, MeshKey *keys, char **canonical, ch
             return false;
         }
     }
-    for (int i = 0; i < n; i++)
-        keys[i] = (MeshKey){canonical[i], d->object_options[i].material,
-                            d->object_options[i].smooth, i};
+    for (int i = 0; i < n; i++) {
+        const ObjectOptions *o = &d->object_options[i];
+        keys[i] = (MeshKey){canonical[i], o->material, o->smooth, o->interior, o->exterior, i};
+    }
     qsort(keys, (size_t)n, sizeof *keys, compare_keys);
     for (int k = 0; k < n;) {
         int end = k + 1;
-        while (end < n && keys[end].material == keys[k].material &&
-               keys[end].smooth == keys[k].smooth && strcmp(keys[end].path, keys[k].path) == 0)
+        while (end < n && compare_options(&keys[end], &keys[k]) == 0 &&
+               strcmp(keys[end].path, keys[k].path) == 0)
             end++;
         for (int j = k; j < end; j++) {
             first_use[keys[j].object] = keys[k].object; /* sorted by object within the group */
@@ -87,20 +102,26 @@ static bool object_moves(const SceneDesc *d, int i)
            !affine_equal(&t->transform, &t->transform_end);
 }
 
+/* Appends object i's triangles, their materials given the media the object bounds. */
 static bool load_object(SceneData *data, const SceneDesc *d, int i, const NamedMaterials *named,
-                        Error *err)
+                        DerivedMaterials *derived, Error *err)
 {
     Mesh mesh;
     memset(&mesh, 0, sizeof mesh);
-    if (d->object_meshes && d->object_meshes[i]) /* a glTF primitive, decoded in memory */
-        return scene_data_append_object(data, d->object_meshes[i], d->objects[i],
-                                        &d->object_options[i], named, err);
-    bool ply = d->object_formats && d->object_formats[i] == MESH_PLY;
-    bool ok = (ply ? ply_load(d->objects[i], &mesh, err) : obj_load(d->objects[i], &mesh, err)) &&
-              scene_data_append_object(data, &mesh, d->objects[i], &d->object_options[i], named,
-                                       err);
-    mesh_free(&mesh);
-    return ok;
+    uint32_t first_triangle = data->num_triangles;
+    bool ok;
+    if (d->object_meshes && d->object_meshes[i]) { /* a glTF primitive, decoded in memory */
+        ok = scene_data_append_object(data, d->object_meshes[i], d->objects[i],
+                                      &d->object_options[i], named, err);
+    } else {
+        bool ply = d->object_formats && d->object_formats[i] == MESH_PLY;
+        ok = (ply ? ply_load(d->objects[i], &mesh, err) : obj_load(d->objects[i], &mesh, err)) &&
+             scene_data_append_object(data, &mesh, d->objects[i], &d->object_options[i], named,
+                                      err);
+        mesh_free(&mesh);
+    }
+    return ok && object_media_apply(data, first_triangle, &d->object_options[i], derived, d->path,
+                                    err);
 }
 
 /* Instance of object i of mesh m. */
@@ -124,7 +145,7 @@ static bool add_object_instance(SceneData *data, const SceneDesc *d, int i, uint
 
 static bool load_all(SceneData *data, const SceneDesc *d, InstancingMode mode,
                      const NamedMaterials *named, const int *first_use, const int *uses,
-                     bool *merged, uint32_t *mesh_of, Error *err)
+                     bool *merged, uint32_t *mesh_of, DerivedMaterials *derived, Error *err)
 {
     int n = d->num_objects;
     for (int i = 0; i < n; i++) {
@@ -137,7 +158,7 @@ static bool load_all(SceneData *data, const SceneDesc *d, InstancingMode mode,
         if (!merged[i])
             continue;
         uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
-        if (!load_object(data, d, i, named, err))
+        if (!load_object(data, d, i, named, derived, err))
             return false;
         if (!affine_is_identity(&d->object_transforms[i].transform))
             scene_data_bake_transform(data, first_triangle, first_vertex,
@@ -154,7 +175,7 @@ static bool load_all(SceneData *data, const SceneDesc *d, InstancingMode mode,
         if (merged[i] || first_use[i] != i)
             continue;
         uint32_t first_triangle = data->num_triangles, first_vertex = data->num_vertices;
-        if (!load_object(data, d, i, named, err))
+        if (!load_object(data, d, i, named, derived, err))
             return false;
         if (data->num_triangles > first_triangle) { /* a file without faces adds nothing */
             if (!scene_data_add_mesh(data, first_triangle, first_vertex, err))
@@ -182,8 +203,10 @@ bool scene_load_objects(SceneData *data, const SceneDesc *d, InstancingMode mode
     if (!ok)
         error_set(err, ERR_TOO_LARGE, d->path, 0, "%s: out of memory for %d objects", d->path,
                   d->num_objects);
+    DerivedMaterials derived = {0};
     ok = ok && group_meshes(d, keys, canonical, owned, first_use, uses, err) &&
-         load_all(data, d, mode, named, first_use, uses, merged, mesh_of, err);
+         load_all(data, d, mode, named, first_use, uses, merged, mesh_of, &derived, err);
+    derived_materials_free(&derived);
     /* Objects of one file name share its canonical string: owned[] has each once. */
     for (size_t i = 0; owned && i < n && owned[i]; i++)
         free(owned[i]);

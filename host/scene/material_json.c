@@ -33,22 +33,27 @@ static const char *const *type_keys(uint32_t type)
     static const char *const diffuse[] = {"albedo", NULL};
     static const char *const conductor[] = {"roughness", "eta", "k", "reflectance", "anisotropy", NULL};
     static const char *const dielectric[] = {"ior", "roughness", "tint", "absorption", NULL};
-    static const char *const principled[] = {"base_color", "metallic", "roughness", "specular",
-                                             "specular_color", "ior", NULL};
+    static const char *const principled[] = {"base_color", "metallic",   "roughness",
+                                             "specular",   "specular_color", "ior",
+                                             "subsurface", "subsurface_radius", NULL};
     static const char *const mix[] = {"a", "b", "weight", NULL};
+    static const char *const interface[] = {NULL};
     static const char *const *const all[MATERIAL_TYPE_COUNT] = {
         [MATERIAL_DIFFUSE] = diffuse, [MATERIAL_CONDUCTOR] = conductor,
-        [MATERIAL_DIELECTRIC] = dielectric, [MATERIAL_PRINCIPLED] = principled, [MATERIAL_MIX] = mix};
+        [MATERIAL_DIELECTRIC] = dielectric, [MATERIAL_PRINCIPLED] = principled, [MATERIAL_MIX] = mix,
+        [MATERIAL_INTERFACE] = interface};
     return all[type];
 }
 
+/* The common keys, except for an interface, which has no parameters: it is only where media meet
+ * (nothing to emit, bump or cut out). */
 static bool check_keys(Reader *r, uint32_t type)
 {
     static const char *const common[] = {"type", "emission", "emission_strength", "normal_map",
                                          "bump_map", "bump_scale", "opacity", "alpha_cutoff"};
     const char *keys[24];
     int n = 0;
-    for (size_t i = 0; i < sizeof common / sizeof *common; i++)
+    for (size_t i = 0; i < (type == MATERIAL_INTERFACE ? 1 : sizeof common / sizeof *common); i++)
         keys[n++] = common[i];
     for (const char *const *k = type_keys(type); *k; k++)
         keys[n++] = *k;
@@ -153,7 +158,7 @@ static bool read_type(Reader *r, uint32_t *type)
     const cJSON *item = json_member(r->e, "type");
     if (!item)
         return json_fail(r->p, ERR_JSON_VALUE, key, "missing (diffuse, conductor, dielectric, "
-                                                    "principled or mix)");
+                                                    "principled, mix or interface)");
     if (!cJSON_IsString(item))
         return json_fail(r->p, ERR_JSON_TYPE, key, "expected a string");
     for (uint32_t t = 0; t < MATERIAL_TYPE_COUNT; t++) {
@@ -163,12 +168,31 @@ static bool read_type(Reader *r, uint32_t *type)
         }
     }
     return json_fail(r->p, ERR_JSON_VALUE, key,
-                     "\"%s\" is not a material type (diffuse, conductor, dielectric, principled, mix)",
+                     "\"%s\" is not a material type (diffuse, conductor, dielectric, principled, "
+                     "mix, interface)",
                      item->valuestring);
 }
 
+/* principled subsurface (weight in [0, 1]) and subsurface_radius (mean free paths per channel,
+ * > 0: the walk's sigma_t is their inverse; default Blender's [1, 0.2, 0.1] x 0.05). */
+static bool read_subsurface(Reader *r, float radius[3])
+{
+    static const float blender[3] = {1.0f, 0.2f, 0.1f};
+    for (int i = 0; i < 3; i++)
+        radius[i] = blender[i] * 0.05f;
+    if (!read_value(r, "subsurface", 1, &r->m->subsurface, -1, 0, 1, false) ||
+        !read_value(r, "subsurface_radius", 3, radius, -1, 0, INFINITY, false))
+        return false;
+    if (radius[0] > 0.0f && radius[1] > 0.0f && radius[2] > 0.0f)
+        return true;
+    char key[300];
+    snprintf(key, sizeof key, "%s.subsurface_radius", r->prefix);
+    return json_fail(r->p, ERR_JSON_VALUE, key, "[%g, %g, %g] must be > 0 (a mean free path)",
+                     radius[0], radius[1], radius[2]);
+}
+
 /* The keys of each type; see shared/DESIGN.md "Materials" for their meaning and defaults. */
-static bool read_type_keys(Reader *r, const char *self)
+static bool read_type_keys(Reader *r, const char *self, float subsurface_radius[3])
 {
     Material *m = r->m;
     float *base = m->base.s;
@@ -203,11 +227,14 @@ static bool read_type_keys(Reader *r, const char *self)
                read_value(r, "roughness", 1, &m->roughness, MATERIAL_TEX_ROUGHNESS, 0, 1, false) &&
                read_value(r, "specular", 1, &m->specular, -1, 0, 1, false) &&
                read_value(r, "specular_color", 3, m->specular_color.s, -1, 0, INFINITY, false) &&
-               read_value(r, "ior", 1, &m->ior, -1, 0, INFINITY, false);
+               read_value(r, "ior", 1, &m->ior, -1, 0, INFINITY, false) &&
+               read_subsurface(r, subsurface_radius);
     case MATERIAL_MIX:
         return read_material_name(r, "a", self, &m->mix_a) &&
                read_material_name(r, "b", self, &m->mix_b) &&
                read_value(r, "weight", 1, &m->weight, MATERIAL_TEX_WEIGHT, 0, 1, false);
+    case MATERIAL_INTERFACE:
+        return true;
     }
     return false;
 }
@@ -264,6 +291,14 @@ static bool check_mix(JsonParser *p, const MaterialDesc *descs, int i, unsigned 
     uint32_t child[2] = {m->mix_a, m->mix_b};
     depth[i] = 1;
     for (int c = 0; c < 2; c++) {
+        /* A mix picks one of its materials per hit; an interface is no surface to pick (a ray
+         * passes it without a bounce), so "half invisible" has no meaning here. */
+        if (descs[child[c]].m.type == MATERIAL_INTERFACE) {
+            snprintf(key, sizeof key, "materials.%s.%s", descs[i].name, c ? "b" : "a");
+            return json_fail(p, ERR_JSON_VALUE, key,
+                             "\"%s\" is an interface, which cannot be mixed (it is no surface)",
+                             descs[child[c]].name);
+        }
         if (!check_mix(p, descs, (int)child[c], state, depth))
             return false;
         if (depth[child[c]] + 1 > depth[i])
@@ -314,7 +349,8 @@ bool materials_from_json(JsonParser *p, const cJSON *obj, const TextureDesc *tex
         ok = read_type(&r, &type) && check_keys(&r, type);
         if (ok) {
             d->m = material_blank(type);
-            ok = read_type_keys(&r, d->name) && check_ior(&r) && read_common_keys(&r);
+            ok = read_type_keys(&r, d->name, d->subsurface_radius) && check_ior(&r) &&
+                 read_common_keys(&r);
         }
         (*count)++;
     }

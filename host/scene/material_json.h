@@ -18,6 +18,7 @@ typedef struct {
     /* Constants as the kernels take them. tex[] holds indices into the scene's TextureDesc array
      * (or NO_TEXTURE); mix_a / mix_b index the MaterialDesc array. emission.w is set on load. */
     Material m;
+    float subsurface_radius[3]; /* principled: mean free paths (m.subsurface > 0: its medium) */
 } MaterialDesc;
 
 /* Reads the "materials" object; texture names are looked up in textures[0..num_textures). */

@@ -22,6 +22,7 @@
 #include "scene/import_pbrt.h"
 #include "scene/json.h"
 #include "scene/load_objects.h"
+#include "scene/media_load.h"
 #include "scene/scene_json.h"
 #include "scene/scene_media.h"
 
@@ -233,6 +234,9 @@ void scene_desc_free(SceneDesc *desc)
     free(desc->materials);
     desc->materials = NULL;
     desc->num_materials = 0;
+    free(desc->media);
+    desc->media = NULL;
+    desc->num_media = 0;
     free(desc->lights);
     desc->lights = NULL;
     desc->num_lights = 0;
@@ -289,7 +293,9 @@ bool scene_load_with(const char *path, InstancingMode instancing, Scene *out, Er
     if (!scene_desc_load(path, &out->desc, err))
         return false;
     const char **names = NULL;
-    if (!load_json_materials(out, &names, err)) {
+    /* Media right after the JSON materials: the "media" block takes slots 1..n, subsurface
+     * materials get their walk media before objects copy them (scene/object_media.h). */
+    if (!load_json_materials(out, &names, err) || !media_load(&out->data, &out->desc, err)) {
         free(names);
         scene_free(out);
         return false;

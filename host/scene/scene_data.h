@@ -90,6 +90,10 @@ typedef struct {
     uint32_t material; /* a scene material index for every triangle (JSON objects[i].material);
                           NO_MATERIAL: the OBJ's own (MTL) materials */
     bool smooth;       /* meshes without vn get area- and angle-weighted vertex normals */
+    /* "interior" / "exterior" (shared/DESIGN.md "Media"): medium slots, 0 = not given; either
+     * makes the object's materials bound media (scene/object_media.h). */
+    uint32_t interior, exterior;
+    int json_object;   /* the JSON objects[] index, for messages (-1: none) */
 } ObjectOptions;
 
 void scene_data_init(SceneData *data);

@@ -143,7 +143,7 @@ uint64_t scene_hash(const Scene *scene)
     const SceneDesc *desc = &scene->desc;
     Hash64 s;
     hash64_init(&s);
-    hash64_bytes(&s, "pt scene 1", 10); /* bump when what is hashed changes */
+    hash64_bytes(&s, "pt scene 2", 10); /* bump when what is hashed changes */
     hash_array(&s, d->positions, d->num_vertices, sizeof *d->positions);
     hash_array(&s, d->normals, d->num_vertices, sizeof *d->normals);
     hash_array(&s, d->uvs, d->num_vertices, sizeof *d->uvs);
@@ -152,7 +152,14 @@ uint64_t scene_hash(const Scene *scene)
     /* Up to the last field: the struct may end in padding (float4 alignment). */
     hash64_u32(&s, d->num_materials);
     for (uint32_t m = 0; m < d->num_materials; m++)
-        hash64_bytes(&s, &d->materials[m], offsetof(Material, tex) + sizeof d->materials[m].tex);
+        hash64_bytes(&s, &d->materials[m],
+                     offsetof(Material, subsurface) + sizeof d->materials[m].subsurface);
+    /* Media (shared/medium.h: no implicit padding, pad0 is zeroed by every writer) and grids. */
+    hash_array(&s, d->media, d->num_media, sizeof *d->media);
+    hash64_u32(&s, d->world_medium), hash64_u32(&s, d->camera_medium);
+    hash_array(&s, d->grid_bricks, d->num_grid_bricks, sizeof *d->grid_bricks);
+    hash_array(&s, d->grid_values, d->num_grid_values, sizeof *d->grid_values);
+    hash_array(&s, d->grid_majorants, d->num_grid_majorants, sizeof *d->grid_majorants);
     hash_array(&s, d->textures.texels, d->textures.num_texels, sizeof *d->textures.texels);
     hash_array(&s, d->textures.infos, d->textures.count, sizeof *d->textures.infos);
     hash_array(&s, d->emissive_triangles, d->num_emissive, sizeof *d->emissive_triangles);

@@ -66,12 +66,20 @@ static bool parse_render(JsonParser *p, const cJSON *obj, SceneDesc *d)
     return true;
 }
 
-/* objects[i].smooth (default false: a mesh without vn is shaded flat) and objects[i].material (a
- * JSON material's name, given to every triangle of the object). */
+/* objects[i].smooth (default false: a mesh without vn is shaded flat), objects[i].material (a
+ * JSON material's name, given to every triangle of the object) and the media it bounds
+ * (objects[i].interior / .exterior, names in "media"). */
 static bool parse_object_options(JsonParser *p, const cJSON *e, int i, SceneDesc *d, ObjectOptions *o)
 {
     o->material = NO_MATERIAL;
+    o->json_object = i;
     char key[64];
+    snprintf(key, sizeof key, "objects[%d].interior", i);
+    if (!media_read_slot(p, json_member(e, "interior"), key, d->media, d->num_media, &o->interior))
+        return false;
+    snprintf(key, sizeof key, "objects[%d].exterior", i);
+    if (!media_read_slot(p, json_member(e, "exterior"), key, d->media, d->num_media, &o->exterior))
+        return false;
     const cJSON *item = json_member(e, "smooth");
     if (item) {
         snprintf(key, sizeof key, "objects[%d].smooth", i);
@@ -129,7 +137,8 @@ static bool parse_imported_object(JsonParser *p, const cJSON *e, const cJSON *me
 static bool parse_objects(JsonParser *p, const cJSON *array, SceneDesc *d)
 {
     static const char *const keys[] = {"obj",       "ply",           "gltf", "mesh", "material",
-                                       "smooth",    "transform",     "transform_end", NULL};
+                                       "smooth",    "transform",     "transform_end",
+                                       "interior",  "exterior",      NULL};
     if (!array)
         return json_fail(p, ERR_JSON_VALUE, "objects", "empty: the scene needs at least one object");
     if (!cJSON_IsArray(array))
@@ -250,16 +259,58 @@ static bool parse_environment(JsonParser *p, const cJSON *obj, SceneDesc *d)
            json_read_float(p, item, "environment.rotation", &d->environment_rotation);
 }
 
+/* The scene's camera: camera_json.c's keys (shared with --camera, which has no media to name)
+ * and "medium", read here against the scene's media. */
+static bool parse_camera(JsonParser *p, const cJSON *obj, SceneDesc *d)
+{
+    const cJSON *medium = cJSON_IsObject(obj) ? json_member(obj, "medium") : NULL;
+    if (!medium)
+        return camera_desc_from_json(p, obj, "camera", true, &d->camera);
+    if (!media_read_slot(p, medium, "camera.medium", d->media, d->num_media, &d->camera_medium))
+        return false;
+    cJSON *rest = cJSON_Duplicate(obj, true);
+    if (!rest)
+        return json_fail(p, ERR_TOO_LARGE, "camera", "out of memory");
+    cJSON_DeleteItemFromObjectCaseSensitive(rest, "medium");
+    bool ok = camera_desc_from_json(p, rest, "camera", true, &d->camera);
+    cJSON_Delete(rest);
+    return ok;
+}
+
+/* The black holes' geodesic integrator does not track media (DESIGN "Media"): a scene with both is
+ * refused rather than rendered as if the media were not there. */
+static bool check_black_holes_without_media(JsonParser *p, const SceneDesc *d)
+{
+    if (d->num_black_holes == 0)
+        return true;
+    if (d->num_media > 0)
+        return json_fail(p, ERR_JSON_VALUE, "black_holes",
+                         "not rendered together with media (\"media\" defines %d; remove one or "
+                         "the other)", d->num_media);
+    for (int i = 0; i < d->num_materials; i++)
+        if (d->materials[i].m.subsurface > 0.0f)
+            return json_fail(p, ERR_JSON_VALUE, "black_holes",
+                             "not rendered together with media (materials.%s.subsurface is one)",
+                             d->materials[i].name);
+    return true;
+}
+
 bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
 {
     static const char *const keys[] = {"camera",      "film",   "render",   "objects",   "background",
                                        "environment", "lights", "textures", "materials",
-                                       "black_holes", NULL};
+                                       "black_holes", "media",  "medium",   NULL};
     if (!json_check_object(p, root, "", keys))
         return false;
     const cJSON *item;
+    /* Media before the camera and the objects, which name them. */
+    if ((item = json_member(root, "media")) && !media_from_json(p, item, &d->media, &d->num_media))
+        return false;
+    if (!media_read_slot(p, json_member(root, "medium"), "medium", d->media, d->num_media,
+                         &d->world_medium))
+        return false;
     d->camera_given = (item = json_member(root, "camera")) != NULL;
-    if (item && !camera_desc_from_json(p, item, "camera", true, &d->camera))
+    if (item && !parse_camera(p, item, d))
         return false;
     if ((item = json_member(root, "film")) && !parse_film(p, item, d))
         return false;
@@ -284,6 +335,8 @@ bool scene_json_read(JsonParser *p, const cJSON *root, SceneDesc *d)
         return false;
     if ((item = json_member(root, "materials")) &&
         !materials_from_json(p, item, d->textures, d->num_textures, &d->materials, &d->num_materials))
+        return false;
+    if (!check_black_holes_without_media(p, d))
         return false;
     /* A sky alone (an environment, or a background that is not black) is a scene without
      * objects: it renders the sky (scene.c gives it a placeholder that no ray hits). */

@@ -2,6 +2,7 @@
 /* scene_media.c: SceneData's media (scene_media.h). */
 #include "scene/scene_media.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -114,6 +115,40 @@ bool scene_data_media_from_absorption(SceneData *data, Error *err)
         mat->flags |= MATERIAL_FLAG_MEDIUM_INTERFACE;
     }
     return true;
+}
+
+/* Van de Hulst's inversion of the diffuse reflectance of a half-space of isotropic scatterers, as
+ * Cycles uses it (src/kernel/integrator/subsurface_random_walk.h, subsurface_random_walk_remap,
+ * blender/cycles 97dbe6f; d'Eon, "A Hitchhiker's Guide to Multiple Scattering", eq. 53.7):
+ * s = 4.09712 + 4.20863 A - sqrt(9.59217 + 41.6808 A + 17.7126 A^2), alpha = (1 - s^2) / (1 - g s^2)
+ * with g = 0, clamped to [0, 0.999999] as Cycles does (alpha 1 would walk forever without loss). */
+float subsurface_albedo(float colour)
+{
+    double a = colour < 0.0f ? 0.0 : colour > 1.0f ? 1.0 : colour;
+    double s = 4.09712 + 4.20863 * a - sqrt(9.59217 + 41.6808 * a + 17.7126 * a * a);
+    double alpha = 1.0 - s * s;
+    return (float)(alpha < 0.0 ? 0.0 : alpha > 0.999999 ? 0.999999 : alpha);
+}
+
+uint32_t scene_data_add_subsurface_medium(SceneData *data, uint32_t index, const float radius[3],
+                                          Error *err)
+{
+    Medium m = {0};
+    m.type = MEDIUM_HOMOGENEOUS;
+    for (int c = 0; c < 3; c++) {
+        float sigma_t = 1.0f / fmaxf(radius[c], 1e-16f); /* Cycles' floor; the reader wants > 0 */
+        float alpha = subsurface_albedo(data->materials[index].base.s[c]);
+        m.sigma_s.s[c] = alpha * sigma_t;
+        m.sigma_a.s[c] = (1.0f - alpha) * sigma_t;
+    }
+    uint32_t slot = scene_data_add_medium(data, &m, NULL, NULL, err);
+    if (slot == 0)
+        return 0;
+    Material *mat = &data->materials[index];
+    mat->interior = slot;
+    mat->exterior = MEDIUM_SLOT_WORLD;
+    mat->flags |= MATERIAL_FLAG_MEDIUM_INTERFACE;
+    return slot;
 }
 
 bool scene_data_media_scatter(const SceneData *data)

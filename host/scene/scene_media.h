@@ -27,6 +27,18 @@ uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGri
  * the Beer-Lambert one it always was. Call after every material and medium is in. */
 bool scene_data_media_from_absorption(SceneData *data, Error *err);
 
+/* Principled subsurface (shared/DESIGN.md "Media"): gives material `index` (a principled one with
+ * subsurface > 0) a homogeneous interior medium of sigma_t = 1 / radius per channel and the
+ * single-scattering albedo that makes the walk's diffuse reflectance its base colour (Van de
+ * Hulst's inversion, as Cycles), no scattering anisotropy; exterior: the world medium. A textured
+ * base colour uses its constant factor (the medium is one for the whole object). Returns the
+ * medium's slot, or 0 with err set. */
+uint32_t scene_data_add_subsurface_medium(SceneData *data, uint32_t index, const float radius[3],
+                                          Error *err);
+/* The single-scattering albedo whose random walk in a half-space reflects `colour` (diffuse
+ * reflectance in [0, 1]), g = 0: Cycles' subsurface_random_walk_remap. */
+float subsurface_albedo(float colour);
+
 /* Whether any medium scatters or emits (FEATURE_MEDIA), and whether any is a grid
  * (FEATURE_GRID_MEDIA). */
 bool scene_data_media_scatter(const SceneData *data);

@@ -12,6 +12,7 @@
 #include "io/gltf_loader.h"
 #include "scene/camera.h"
 #include "scene/material_json.h"
+#include "scene/media_json.h"
 #include "scene/scene_data.h"
 #include "scene/scene_import.h"
 #include "scene/texture_json.h"
@@ -83,6 +84,10 @@ typedef struct {
     int num_textures;
     MaterialDesc *materials; /* the "materials" block; scene material i is materials[i] */
     int num_materials;
+    MediumDesc *media;      /* the "media" block; medium slot k is media[k - 1] */
+    int num_media;
+    uint32_t world_medium;  /* the top-level "medium": a slot, 0 = none */
+    uint32_t camera_medium; /* camera.medium: a slot, 0 = the world medium */
 } SceneDesc;
 
 #endif
