@@ -24,7 +24,6 @@ files the references were rendered from. Plain Python.
 """
 import math
 import os
-import shutil
 import sys
 import tempfile
 
@@ -214,19 +213,8 @@ def write_generated(scenes_dir):
     write_all's); a file already equal is left alone, so make sees nothing new."""
     with tempfile.TemporaryDirectory(prefix="pt-media-") as scratch:
         write_all(scratch)
-        for name, files in GENERATED.items():
-            for f in files:
-                src, dst = os.path.join(scratch, name, f), os.path.join(scenes_dir, name, f)
-                with open(src, "rb") as fh:
-                    data = fh.read()
-                if os.path.exists(dst):
-                    with open(dst, "rb") as fh:
-                        if fh.read() == data:
-                            continue
-                os.makedirs(os.path.dirname(dst), exist_ok=True)
-                shutil.copyfile(src, dst + ".tmp")
-                os.replace(dst + ".tmp", dst)
-
+        mat.copy_changed(scratch, scenes_dir, [os.path.join(name, f) for name, files in GENERATED.items()
+                                               for f in files])
 
 if __name__ == "__main__":
     here = os.path.dirname(os.path.abspath(__file__))
