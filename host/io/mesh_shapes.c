@@ -55,7 +55,10 @@ bool mesh_sphere(Mesh *m, const float center[3], float radius, int segments)
         float theta = PI_F * (float)r / (float)rings;
         for (int s = 0; s <= around; s++) {
             float phi = 2.0f * PI_F * (float)(s % around) / (float)around;
-            float n[3] = {sinf(theta) * cosf(phi), sinf(theta) * sinf(phi), cosf(theta)};
+            /* sinf(PI_F) is -8.7e-8, not 0: the -z pole's vertices would be a tiny ring, and the
+             * sphere open there (a medium needs it closed, scene/object_media.h). */
+            float st = r == rings ? 0.0f : sinf(theta);
+            float n[3] = {st * cosf(phi), st * sinf(phi), cosf(theta)};
             size_t i = (size_t)r * columns + (size_t)s;
             vertex(m, i, center[0] + radius * n[0], center[1] + radius * n[1],
                    center[2] + radius * n[2], (float)s / (float)around, (float)r / (float)rings);

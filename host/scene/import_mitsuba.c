@@ -218,8 +218,14 @@ static bool top_level(Mitsuba *m, XmlElement *e, cJSON *render)
 {
     static const Affine identity = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
     const char *type = xml_attribute(e, "type");
-    if (strcmp(e->name, "default") == 0 || strcmp(e->name, "bsdf") == 0 || strcmp(e->name, "texture") == 0)
-        return true; /* read already, or mapped when a shape names them */
+    if (strcmp(e->name, "default") == 0 || strcmp(e->name, "bsdf") == 0 || strcmp(e->name, "texture") == 0 ||
+        (strcmp(e->name, "medium") == 0 && xml_attribute(e, "id")))
+        return true; /* read already, or mapped when a shape (or the sensor) names them */
+    if (strcmp(e->name, "medium") == 0) {
+        mi_warn_once(m, e, "medium-no-id", "a top-level medium without an id: nothing can name "
+                                           "it, skipped");
+        return true;
+    }
     if (strcmp(e->name, "include") == 0)
         return include(m, e);
     if (strcmp(e->name, "shape") == 0)

@@ -368,6 +368,10 @@ static bool map_bsdf(Mitsuba *m, const XmlElement *e, cJSON **material)
         return plastic(m, e, type[0] == 'r', *material);
     if (strcmp(type, "principled") == 0)
         return principled(m, e, *material);
+    if (strcmp(type, "null") == 0) { /* invisible: only where media meet (a shape's interior) */
+        cJSON_AddStringToObject(*material, "type", "interface");
+        return true;
+    }
     static const char *const wrappers[] = {"twosided", "blendbsdf", "mask", "normalmap", "bumpmap"};
     for (size_t i = 0; i < sizeof wrappers / sizeof wrappers[0]; i++)
         if (strcmp(type, wrappers[i]) == 0)
@@ -382,23 +386,9 @@ static bool map_bsdf(Mitsuba *m, const XmlElement *e, cJSON **material)
 
 bool mi_bsdf(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT])
 {
-    if (strcmp(e->name, "ref") == 0) {
-        const MitsubaNamed *named = mi_find_id(m, e);
-        if (!named)
-            return false;
-        if (strcmp(named->element->name, "bsdf"))
-            return mi_fail(m, e, "names a <%s>, not a <bsdf>", named->element->name);
-        const char *saved = m->file;
-        m->file = named->file;
-        bool ok = mi_bsdf(m, named->element, out);
-        m->file = saved;
-        return ok;
-    }
-    const MitsubaNamed *done = mi_find_mapped(m, e);
-    if (done) {
-        snprintf(out, SCENE_NAME_LIMIT, "%s", done->name);
-        return true;
-    }
+    bool done;
+    if (!mi_follow(m, e, "bsdf", mi_bsdf, out, &done) || done)
+        return done;
     cJSON *material;
     if (!build_material(m, e, &material))
         return false;

@@ -83,6 +83,12 @@ cJSON *mi_matrix_transform(const Affine *a); /* [{"matrix": [...]}] */
 /* What element e (a bsdf or texture) was mapped to, or NULL; mi_remember records it. */
 const MitsubaNamed *mi_find_mapped(const Mitsuba *m, const XmlElement *e);
 bool mi_remember(Mitsuba *m, const XmlElement *e, const char *name);
+/* The start of every element mapper (mi_bsdf, mi_medium): a <ref> is followed to its element,
+ * which must be a <tag>, and mapped there by map (*done, false on error); an element already
+ * mapped gives its name (*done). Otherwise *done is false and the caller maps e. */
+bool mi_follow(Mitsuba *m, const XmlElement *e, const char *tag,
+               bool (*map)(Mitsuba *, const XmlElement *, char[SCENE_NAME_LIMIT]),
+               char out[SCENE_NAME_LIMIT], bool *done);
 /* A colour parameter: rgb/spectrum/float (a JSON array) or a texture (its JSON name); the
  * fallback grey when absent. *out NULL after a failure. */
 bool mi_colour(Mitsuba *m, const XmlElement *e, const char *name, double fallback, cJSON **out);
@@ -104,5 +110,15 @@ bool mi_integrator(Mitsuba *m, const XmlElement *e, cJSON *render);
 /* ---- mitsuba_shapes.c ---- */
 bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent);
 bool mi_emitter(Mitsuba *m, const XmlElement *e);
+
+/* ---- mitsuba_media.c ---- */
+/* Whether child c is a <medium>, a <ref> to one, or a <ref name="interior|exterior">. */
+bool mi_is_medium(const Mitsuba *m, const XmlElement *c);
+/* A <medium> (or a <ref> to one) as a pt medium in the tree's "media"; its name in out. */
+bool mi_medium(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_LIMIT]);
+/* The shape's interior / exterior media as the pt object's keys. */
+bool mi_shape_media(Mitsuba *m, const XmlElement *shape, cJSON *object);
+/* The sensor's medium as camera.medium. */
+bool mi_sensor_medium(Mitsuba *m, const XmlElement *sensor, cJSON *camera);
 
 #endif

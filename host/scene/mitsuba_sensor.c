@@ -140,6 +140,8 @@ bool mi_sensor(Mitsuba *m, const XmlElement *e, cJSON *root, cJSON *render)
     vec3(camera, "target", target);
     vec3(camera, "up", up);
     cJSON_AddNumberToObject(camera, "fov_y", fov_y);
+    if (!mi_sensor_medium(m, e, camera))
+        return false;
     if (strcmp(type, "thinlens") == 0) {
         double radius, focus;
         if (!mi_float(m, e, "aperture_radius", 0.0, &radius) || !mi_float(m, e, "focus_distance", 1.0, &focus))

@@ -88,7 +88,7 @@ static bool shape_material(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_
     const XmlElement *bsdf = NULL, *emitter = NULL;
     for (int i = 0; i < e->num_children; i++) {
         const XmlElement *c = e->children[i];
-        if (!bsdf && (strcmp(c->name, "bsdf") == 0 || strcmp(c->name, "ref") == 0))
+        if (!bsdf && (strcmp(c->name, "bsdf") == 0 || strcmp(c->name, "ref") == 0) && !mi_is_medium(m, c))
             bsdf = c;
         else if (strcmp(c->name, "emitter") == 0)
             emitter = c;
@@ -127,6 +127,16 @@ static bool shape_material(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_
         return mi_fail(m, e, "out of memory");
     }
     cJSON_DeleteItemFromObjectCaseSensitive(lamp, "emission");
+    const cJSON *lamp_type = cJSON_GetObjectItemCaseSensitive(lamp, "type");
+    if (cJSON_IsString(lamp_type) && strcmp(lamp_type->valuestring, "interface") == 0) {
+        /* pt's interface has no parameters: an emitting null bsdf becomes a black emitter. */
+        mi_warn_once(m, emitter, "null-emitter", "an area emitter on a null bsdf: pt makes it a "
+                                                 "black diffuse emitter (no longer a medium interface)");
+        cJSON_Delete(lamp);
+        lamp = cJSON_CreateObject();
+        cJSON_AddStringToObject(lamp, "type", "diffuse");
+        cJSON_AddNumberToObject(lamp, "albedo", 0);
+    }
     cJSON_AddItemToObject(lamp, "emission", radiance);
     char base[SCENE_NAME_LIMIT];
     snprintf(base, sizeof base, "%.100s_emitter", out);
@@ -135,11 +145,13 @@ static bool shape_material(Mitsuba *m, const XmlElement *e, char out[SCENE_NAME_
     return mi_remember(m, emitter, out);
 }
 
-static bool add_object(Mitsuba *m, const char *key, const char *value, const char *material,
-                       const Affine *to_world, bool smooth)
+static bool add_object(Mitsuba *m, const XmlElement *e, const char *key, const char *value,
+                       const char *material, const Affine *to_world, bool smooth)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddItemToArray(m->objects, o);
+    if (!mi_shape_media(m, e, o))
+        return false;
     cJSON_AddStringToObject(o, key, value);
     cJSON_AddStringToObject(o, "material", material);
     if (smooth)
@@ -158,7 +170,7 @@ static bool file_shape(Mitsuba *m, const XmlElement *e, const char *type, const 
         !mi_bool(m, e, "flip_tex_coords", strcmp(type, "obj") == 0, &flip_tex_coords))
         return false;
     if (!flip && !flat && flip_tex_coords) /* pt reads the file itself; objects naming one file share it */
-        return add_object(m, type, file, material, to_world, true);
+        return add_object(m, e, type, file, material, to_world, true);
     /* The file read here to be changed: the tree's paths are relative to the imported file. */
     char path[2048], name[SCENE_NAME_LIMIT];
     const char *slash = file[0] == '/' ? NULL : strrchr(m->path, '/');
@@ -167,7 +179,7 @@ static bool file_shape(Mitsuba *m, const XmlElement *e, const char *type, const 
                  flip_tex_coords ? "" : "v") >= (int)sizeof name)
         return mi_fail(m, e, "file name too long");
     return shared_mesh(m, e, name, type, path, flip, flat, !flip_tex_coords) &&
-           add_object(m, "mesh", name, material, to_world, !flat);
+           add_object(m, e, "mesh", name, material, to_world, !flat);
 }
 
 bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent)
@@ -234,7 +246,7 @@ bool mi_shape(Mitsuba *m, const XmlElement *e, const Affine *parent)
         }
         char name[64];
         snprintf(name, sizeof name, "%s%s%s", type, flip ? "#flip" : "", flat ? "#flat" : "");
-        if (!shared_mesh(m, e, name, type, NULL, flip, flat, true) || !add_object(m, "mesh", name, material, &to_world, false))
+        if (!shared_mesh(m, e, name, type, NULL, flip, flat, true) || !add_object(m, e, "mesh", name, material, &to_world, false))
             return false;
     }
     mi_warn_unused(m, e);

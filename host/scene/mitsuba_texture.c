@@ -66,6 +66,30 @@ const MitsubaNamed *mi_find_mapped(const Mitsuba *m, const XmlElement *e)
     return NULL;
 }
 
+bool mi_follow(Mitsuba *m, const XmlElement *e, const char *tag,
+               bool (*map)(Mitsuba *, const XmlElement *, char[SCENE_NAME_LIMIT]),
+               char out[SCENE_NAME_LIMIT], bool *done)
+{
+    *done = true;
+    if (strcmp(e->name, "ref") == 0) {
+        const MitsubaNamed *named = mi_find_id(m, e);
+        if (!named)
+            return *done = false;
+        if (strcmp(named->element->name, tag))
+            return *done = mi_fail(m, e, "names a <%s>, not a <%s>", named->element->name, tag);
+        const char *saved = m->file;
+        m->file = named->file;
+        *done = map(m, named->element, out);
+        m->file = saved;
+        return *done;
+    }
+    const MitsubaNamed *mapped = mi_find_mapped(m, e);
+    if (mapped)
+        snprintf(out, SCENE_NAME_LIMIT, "%s", mapped->name);
+    *done = mapped != NULL;
+    return true;
+}
+
 bool mi_remember(Mitsuba *m, const XmlElement *e, const char *name)
 {
     MitsubaNamed *grown = realloc(m->mapped, (size_t)(m->num_mapped + 1) * sizeof *grown);

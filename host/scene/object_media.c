@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "scene/scene_media.h"
+
 #define DEFAULT_MATERIAL_PENDING 0xffffffffu /* scene_data.c's: the default material, not yet added */
 
 /* ---- Closed surfaces ------------------------------------------------------------------------ */
@@ -125,14 +127,21 @@ static bool derive(SceneData *data, DerivedMaterials *derived, uint32_t source, 
         derived->keys = grown;
         derived->capacity = capacity;
     }
+    uint32_t asked = interior; /* the key: what objects ask for */
     Material m = source == DEFAULT_MATERIAL_PENDING ? material_default() : data->materials[source];
+    /* A dielectric's absorption is its interior medium (scene_data_media_from_absorption, which
+     * skips materials that bound media already): given only an exterior, the copy makes it. */
+    if (interior == 0 && material_has_absorption(&m) &&
+        !(m.flags & MATERIAL_FLAG_MEDIUM_INTERFACE) &&
+        !(interior = scene_data_add_absorption_medium(data, &m.absorption, err)))
+        return false;
     m.flags |= MATERIAL_FLAG_MEDIUM_INTERFACE;
     m.interior = interior;
     m.exterior = exterior;
     if (!append_material(data, &m, out, err))
         return false;
     uint32_t *k = derived->keys[derived->count++];
-    k[0] = source, k[1] = interior, k[2] = exterior, k[3] = *out;
+    k[0] = source, k[1] = asked, k[2] = exterior, k[3] = *out;
     return true;
 }
 
@@ -191,10 +200,7 @@ bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOp
         bool bounds = m && (m->flags & MATERIAL_FLAG_MEDIUM_INTERFACE);
         /* The object's interior replaces no other: a subsurface material's walk medium, or a
          * dielectric's absorption (its interior medium), would be silently dropped. */
-        if (o->interior && m && (bounds || m->subsurface > 0.0f ||
-                                 (m->type == MATERIAL_DIELECTRIC &&
-                                  (m->absorption.s[0] > 0.0f || m->absorption.s[1] > 0.0f ||
-                                   m->absorption.s[2] > 0.0f)))) {
+        if (o->interior && m && (bounds || m->subsurface > 0.0f || material_has_absorption(m))) {
             error_set(err, ERR_JSON_VALUE, scene_path, 0,
                       "%s: %s.interior: its material already fills the inside (%s); give one or "
                       "the other", scene_path, name,

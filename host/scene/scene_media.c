@@ -95,18 +95,27 @@ uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGri
     return data->num_media;
 }
 
+bool material_has_absorption(const Material *m)
+{
+    return m->type == MATERIAL_DIELECTRIC && positive(&m->absorption);
+}
+
+uint32_t scene_data_add_absorption_medium(SceneData *data, const float4 *sigma, Error *err)
+{
+    Medium m = {0};
+    m.type = MEDIUM_HOMOGENEOUS;
+    for (int c = 0; c < 3; c++)
+        m.sigma_a.s[c] = sigma->s[c];
+    return scene_data_add_medium(data, &m, NULL, NULL, err);
+}
+
 bool scene_data_media_from_absorption(SceneData *data, Error *err)
 {
     for (uint32_t i = 0; i < data->num_materials; i++) {
         Material *mat = &data->materials[i];
-        if (mat->type != MATERIAL_DIELECTRIC || !positive(&mat->absorption) ||
-            (mat->flags & MATERIAL_FLAG_MEDIUM_INTERFACE))
+        if (!material_has_absorption(mat) || (mat->flags & MATERIAL_FLAG_MEDIUM_INTERFACE))
             continue;
-        Medium m = {0};
-        m.type = MEDIUM_HOMOGENEOUS;
-        for (int c = 0; c < 3; c++)
-            m.sigma_a.s[c] = mat->absorption.s[c];
-        uint32_t slot = scene_data_add_medium(data, &m, NULL, NULL, err);
+        uint32_t slot = scene_data_add_absorption_medium(data, &mat->absorption, err);
         if (slot == 0)
             return false;
         mat = &data->materials[i]; /* add_medium does not move materials, but stay obvious */

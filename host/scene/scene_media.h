@@ -26,6 +26,10 @@ uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGri
  * interior medium of that absorption and no scattering (exterior: the world medium): the image is
  * the Beer-Lambert one it always was. Call after every material and medium is in. */
 bool scene_data_media_from_absorption(SceneData *data, Error *err);
+/* Whether m is a dielectric with a Beer-Lambert absorption (which is an interior medium). */
+bool material_has_absorption(const Material *m);
+/* The homogeneous medium of absorption sigma (no scattering): its slot, or 0 with err set. */
+uint32_t scene_data_add_absorption_medium(SceneData *data, const float4 *sigma, Error *err);
 
 /* Principled subsurface (shared/DESIGN.md "Media"): gives material `index` (a principled one with
  * subsurface > 0) a homogeneous interior medium of sigma_t = 1 / radius per channel and the

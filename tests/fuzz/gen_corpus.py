@@ -25,7 +25,8 @@ and scenes naming them with "gltf"), corpus_gltf_v2.py, corpus_ply_v2.py and cor
 (hostile cases for the v2 readers), corpus_checkpoint.py (checkpoints read by --resume),
 corpus_cli.py (outputs, command line, environment), corpus_pbrt.py (pbrt-v4 scenes),
 corpus_mitsuba.py (Mitsuba 3 XML scenes),
-corpus_collada.py (COLLADA, the Assimp formats, Draco glTF); corpus_cases.py holds the
+corpus_collada.py (COLLADA, the Assimp formats, Draco glTF), corpus_media.py (media: the "media"
+block, interiors, subsurface, .vol grids); corpus_cases.py holds the
 list they append to.
 """
 import json
@@ -42,6 +43,7 @@ from corpus_collada import collada_cases  # noqa: E402
 from corpus_gltf import gltf_cases  # noqa: E402
 from corpus_gltf_v2 import gltf_v2_cases  # noqa: E402
 from corpus_materials import material_cases  # noqa: E402
+from corpus_media import media_cases, mitsuba_media_cases  # noqa: E402
 from corpus_mitsuba import mitsuba_cases  # noqa: E402
 from corpus_obj import mtl_cases, obj_cases  # noqa: E402
 from corpus_pbrt import pbrt_cases  # noqa: E402
@@ -114,6 +116,8 @@ def main():
     gltf_v2_cases()  # issue 42's hostile cases for the v2 readers
     ply_v2_cases()
     scene_v2_cases()
+    media_cases()  # issue 40: media, last so that the cases above keep their numbers
+    mitsuba_media_cases()
     root = os.path.join(out, "cases")
     shutil.rmtree(root, ignore_errors=True)
     os.makedirs(root)
