@@ -188,7 +188,8 @@ WRITERS = {"fog-room": write_fog_room, "smoke": write_smoke, "liquid": write_liq
 # What git does not keep (generated at make time); the rest (scene.json, MTL) is committed.
 GENERATED = {"fog-room": ("room.obj", "fog.obj"), "smoke": ("floor.obj", "box.obj", "smoke.vol", "sky.hdr"),
              "liquid": ("room.obj", "glass.obj"), "subsurface": ("room.obj", "sphere.obj")}
-CLOSED = {"fog-room": ("fog.obj", 2.9 * 1.98 * 2.9), "smoke": ("box.obj", 1.3 * 1.29 * 1.3), "liquid": ("glass.obj", None),
+CLOSED = {"fog-room": ("fog.obj", 2.9 * 1.98 * 2.9), "smoke": ("box.obj", 1.3 * 1.29 * 1.3),
+          "liquid": ("glass.obj", None),
           "subsurface": ("sphere.obj", None)}
 
 

@@ -71,7 +71,8 @@ def transmittance_scene(mi, medium, x):
         "sky": {"type": "constant", "radiance": {"type": "rgb", "value": [1, 1, 1]}},
         "cube": {"type": "cube", "bsdf": {"type": "null"}, "interior": medium},
         "camera": {"type": "perspective", "fov": 0.01,
-                   "to_world": mi.ScalarTransform4f().look_at(origin=[x, 0, 3], target=[x, 0, 0], up=[0, 1, 0]),
+                   "to_world": mi.ScalarTransform4f().look_at(origin=[x, 0, 3], target=[x, 0, 0],
+                                                              up=[0, 1, 0]),
                    "film": {"type": "hdrfilm", "width": 1, "height": 1, "rfilter": {"type": "box"}},
                    "sampler": {"type": "independent", "sample_count": 1 << 18}}})
 
@@ -137,7 +138,8 @@ def check_spot(mi, np):
         profile = 1.0 if angle <= falloff else max(0.0, (cone - angle) / (cone - falloff))
         good = abs(got - 2.0 * profile) < 1e-3
         ok &= good
-        print(f"spot at {angle:4.1f} degrees: {got:.4f}, ours {2.0 * profile:.4f} {'ok' if good else 'WRONG'}")
+        print(f"spot at {angle:4.1f} degrees: {got:.4f}, ours {2.0 * profile:.4f} "
+              f"{'ok' if good else 'WRONG'}")
     return ok
 
 
