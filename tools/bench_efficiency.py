@@ -165,13 +165,17 @@ def mitsuba_render(mi, dr, np, scene, spp, seed):
 
 
 def reference(mi, dr, np, name, scene_path, args, temp):
-    """The cached reference, or a Mitsuba render of --ref-spp in batches of at most 1024 spp."""
+    """The cached reference, or a Mitsuba render of --ref-spp in batches of at most 1024 spp (and
+    2^25 paths)."""
     os.makedirs(args.cache, exist_ok=True)
     depth = scene_depth(scene_path, args.max_depth)
     cached = os.path.join(args.cache, f"{name}-{args.width}x{args.height}-d{depth}-{args.ref_spp}.exr")
     if os.path.exists(cached):
         return read_exr(mi, np, cached)
+    # At most about 2^25 paths per launch: a GPU variant keeps every path's state at once.
     batch = min(args.ref_spp, 1024)
+    while batch > 1 and batch * args.width * args.height > 1 << 25:
+        batch //= 2
     scene = mitsuba_scene(mi, np, scene_path, args.width, args.height, depth, "independent", batch, temp)
     total, n = None, args.ref_spp // batch
     for k in range(n):
