@@ -10,6 +10,9 @@ set -eu
 
 cd "$(dirname "$0")/.."
 . tools/mitsuba-venv.sh
+# The scenes' generated files (meshes, the smoke grid, skies; not in git), as make writes them.
+python3 tools/make_material_scenes.py tests/scenes
+python3 tools/make_media_scenes.py tests/scenes
 
 # scene:spp. 16 batches each (so spp must be a multiple of 16); see tests/references/README.md.
 ALL="furnace:16384 textured:16384 cornell:16384 cornell-sphere:32768
