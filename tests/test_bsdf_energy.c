@@ -41,6 +41,11 @@ static Material weight_cases(int i)
     case 5: return bsdf_dielectric(1.5f, 0.0f, 0.0f); /* smooth: delta */
     case 6: return bsdf_principled(0.0f, 0.5f, 0.0f);
     case 7: return bsdf_principled(0.5f, 0.2f, 0.8f);
+    case 8: { /* subsurface: the entering lobe from outside, the exit from inside */
+        Material m = bsdf_principled(0.2f, 0.4f, 0.0f);
+        m.subsurface = 0.7f;
+        return m;
+    }
     default: return bsdf_principled(1.0f, 0.0f, 0.0f);
     }
 }
@@ -50,7 +55,7 @@ Test(bsdf_energy, sample_weight_is_eval_over_pdf)
 {
     BsdfHarness h;
     bsdf_harness_open(&h);
-    enum { N = 4096, CASES = 9 };
+    enum { N = 4096, CASES = 10 };
     static cl_float4 wi_pdf[N], weight_flags[N], wos[N], out[N];
     for (int c = 0; c < CASES; c++) {
         Material m = weight_cases(c);
@@ -228,6 +233,8 @@ Test(bsdf_energy, principled_white_furnace)
             for (int t = 0; t < 3; t++) {
                 Material m = bsdf_principled(metallic[k], roughness[r], 0.0f);
                 m.base = (float4){{1, 1, 1, 0}};
+                /* Half the diffuse lobe entering the object counts as leaving the surface too. */
+                m.subsurface = r % 2 ? 0.5f : 0.0f;
                 Albedo al = furnace(&h, &m, bsdf_dir(angles[t], 30, 1), 1.0);
                 cr_log_info("principled metallic %.1f r %.1f view %2.0f: albedo %.4f +- %.4f", metallic[k],
                             roughness[r], angles[t], al.mean, al.sigma);

@@ -81,3 +81,24 @@ Test(bsdf_sampling, principled, .timeout = 120)
     };
     check_cases(cases, (int)(sizeof cases / sizeof cases[0]));
 }
+
+/* Principled with subsurface scattering (DESIGN "Media"): from outside, the entering lobe below
+ * the surface beside the specular and diffuse ones; from inside (a walk reaching the surface), the
+ * Lambertian exit. */
+static Material principled_subsurface(float metallic, float roughness, float subsurface)
+{
+    Material m = bsdf_principled(metallic, roughness, 0.0f);
+    m.subsurface = subsurface;
+    return m;
+}
+
+Test(bsdf_sampling, principled_subsurface, .timeout = 120)
+{
+    SamplingCase cases[] = {
+        {"principled subsurface 0.6 r 0.3", principled_subsurface(0.0f, 0.3f, 0.6f), bsdf_dir(30, 10, 1)},
+        {"principled subsurface 1 r 0.5 grazing", principled_subsurface(0.0f, 0.5f, 1.0f), bsdf_dir(75, 10, 1)},
+        {"principled subsurface 0.5 metallic 0.4", principled_subsurface(0.4f, 0.4f, 0.5f), bsdf_dir(40, 10, 1)},
+        {"principled subsurface exit", principled_subsurface(0.0f, 0.3f, 0.5f), bsdf_dir(40, 10, 0)},
+    };
+    check_cases(cases, (int)(sizeof cases / sizeof cases[0]));
+}

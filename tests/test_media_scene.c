@@ -48,6 +48,10 @@ static void write_meshes(void)
     write_file("seams.obj", text);
     snprintf(text, sizeof text, "%sv 0 -3 -3\n%sf 1 2 9\n", cube, faces);
     write_file("finned.obj", text);
+    snprintf(text, sizeof text, "%s%s", cube,
+             "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\nf 1 6 2\nf 1 5 6\n"
+             "f 4 7 8\nf 4 3 7\nf 1 8 5\nf 1 4 8\nf 2 7 3\nf 2 6 7\n");
+    write_file("inside_out.obj", text);
 }
 
 static const char camera[] = "\"camera\": {\"eye\": [0, 0, 5], \"target\": [0, 0, 0]}";
@@ -643,5 +647,54 @@ Test(media_scene, absorption_stays_the_interior_when_only_the_exterior_is_given)
         absorbing += s.data.media[i].sigma_a.s[0] == 1.0f;
     cr_expect_eq(absorbing, 2u, "the copy's and materials.glass's own (unused here), not one "
                                 "per object");
+    scene_free(&s);
+}
+
+/* An inside-out mesh (every front facing in) is legal but holds its medium outside: said once. */
+Test(media_scene, an_inside_out_interior_is_warned_about)
+{
+    Scene s;
+    int before = warning_count();
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"cube.obj\", \"interior\": \"fog\"}]", &s);
+    cr_expect_eq(warning_count(), before, "an outward cube: no warning (%d, %d)", before, warning_count());
+    scene_free(&s);
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"inside_out.obj\", \"interior\": \"fog\"}]", &s);
+    cr_expect_eq(warning_count(), before + 1, "the inside-out cube is warned about");
+    scene_free(&s);
+}
+
+/* The same medium on both sides of an open mesh (a floor inside a fog-filled world) is no
+ * boundary at all: allowed, and the copy carries it on both sides. */
+Test(media_scene, an_open_mesh_in_one_medium_on_both_sides_is_allowed)
+{
+    Scene s;
+    load_ok(FOG("") ", \"medium\": \"fog\", \"objects\": [{\"obj\": \"open.obj\", "
+                    "\"interior\": \"fog\"}]",
+            &s);
+    const Material *m = &s.data.materials[s.data.material_ids[0]];
+    cr_expect_eq(m->interior, 1u);
+    cr_expect_eq(m->exterior, MEDIUM_SLOT_WORLD);
+    scene_free(&s);
+    load_ok(FOG("") ", \"objects\": [{\"obj\": \"open.obj\", \"interior\": \"fog\", "
+                    "\"exterior\": \"fog\"}]",
+            &s);
+    scene_free(&s);
+    refused(FOG("") ", \"objects\": [{\"obj\": \"open.obj\", \"interior\": \"fog\"}]",
+            "objects[0].interior: the mesh is not closed");
+}
+
+/* A subsurface object in fog: its copy keeps the walk medium inside and has the fog outside. */
+Test(media_scene, subsurface_with_an_exterior_keeps_its_walk_medium)
+{
+    Scene s;
+    load_ok(FOG("") ", \"materials\": {\"skin\": {\"type\": \"principled\", \"subsurface\": 1}}, "
+                    "\"objects\": [{\"obj\": \"cube.obj\", \"material\": \"skin\", \"exterior\": "
+                    "\"fog\"}]",
+            &s);
+    cr_assert_eq(s.data.num_media, 2, "fog, then the walk medium");
+    const Material *m = &s.data.materials[s.data.material_ids[0]];
+    cr_expect_eq(m->interior, 2u, "the walk medium");
+    cr_expect_eq(m->exterior, 1u, "the fog");
+    cr_expect_eq(s.data.materials[0].exterior, MEDIUM_SLOT_WORLD, "the material itself unchanged");
     scene_free(&s);
 }

@@ -23,7 +23,7 @@ seconds() { # BIN SCENE CACHE -> "seconds wall features" of the kernels line and
         --max-depth 2 -o "$tmp/o.exr" 2>&1 |
         sed -n 's/.*kernels \([0-9.]*\) s ([^;]*; features: \([^)]*\)).*/\1 \2/p')
     t1=$(date +%s.%N)
-    echo "${line%% *} $(echo "$t1 - $t0" | bc) ${line#* }"
+    echo "${line%% *} $(awk "BEGIN { printf \"%.2f\", $t1 - $t0 }") ${line#* }"
 }
 echo "build,scene,features,cold_s,warm_s,cold_wall_s,warm_wall_s" >"$out"
 i=0

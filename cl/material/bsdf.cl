@@ -54,6 +54,7 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv, float3 positi
     b.ior = m.ior;
     b.metallic = m.metallic;
     b.specular = m.specular;
+    b.subsurface = PT_FEATURE(MEDIA) ? m.subsurface : 0.0f;
     float r = m.roughness, aniso = m.anisotropy;
     if (PT_FEATURE(TEXTURED_SCALARS) && m.tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE)
         r = clamp(texture_eval(scene, m.tex[MATERIAL_TEX_ROUGHNESS], uv, position).x, 0.0f, 1.0f);
@@ -86,7 +87,7 @@ inline float3 bsdf_eval(const Bsdf *b, float3 wo, float3 wi, bool front, float *
         return dielectric_eval(b, wo, wi, front, pdf_w);
     case MATERIAL_PRINCIPLED:
         if (PT_FEATURE(PRINCIPLED))
-            return principled_eval(b, wo, wi, pdf_w);
+            return principled_eval(b, wo, wi, front, pdf_w);
         return diffuse_eval(b, wo, wi, pdf_w);
     default:
         return diffuse_eval(b, wo, wi, pdf_w);
@@ -102,7 +103,7 @@ inline BsdfSample bsdf_sample(const Bsdf *b, float3 wo, bool front, float u1, fl
         return dielectric_sample(b, wo, front, u1, u2, u3);
     case MATERIAL_PRINCIPLED:
         if (PT_FEATURE(PRINCIPLED))
-            return principled_sample(b, wo, u1, u2, u3);
+            return principled_sample(b, wo, front, u1, u2, u3);
         return diffuse_sample(b, wo, u1, u2);
     default:
         return diffuse_sample(b, wo, u1, u2);

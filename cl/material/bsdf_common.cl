@@ -42,6 +42,7 @@ typedef struct {
     float3 specular_color;
     float alpha_x, alpha_y; /* GGX roughness along t and b */
     float ior, metallic, specular;
+    float subsurface; /* principled: the share of the diffuse lobe that enters (principled.cl) */
 } Bsdf;
 
 #define BSDF_REFLECTION 1u

@@ -13,8 +13,17 @@
  * nearly all). Here W = (1 - specular max(Fd(n.v))) (1 - specular max(Fd(n.l))), the same
  * Schlick Fresnel evaluated at the macro-normal on the way in and out (as Kelemen and
  * Szirmay-Kalos 2001 and Ashikhmin-Shirley 2000 couple their layers): reciprocal, within 1 for a
- * smooth coat, and equal to glTF's at normal view and light up to F^2 terms. Reflection only:
- * wi.z > 0. */
+ * smooth coat, and equal to glTF's at normal view and light up to F^2 terms. Reflection only
+ * (wi.z > 0), except with subsurface scattering:
+ *
+ * Subsurface (b->subsurface = s > 0; shared/DESIGN.md "Media"): the share s of the diffuse lobe
+ * enters the object instead of reflecting: a cosine-weighted transmission (1 - s') (1 - metallic)
+ * |cos| / pi with s' = specular max Fd(wo.z), the same coat weight as on the way in, and no colour:
+ * the colour is the random walk's inside the object's medium (its albedo inverted from the base
+ * colour by the host). A path that meets the surface from inside (!front) leaves through it with
+ * a Lambertian lobe of weight 1 (Cycles' random walk leaves the same way): f = 1 / pi for wi on the
+ * outside, nothing reflects back in. A white base with s = 1 then keeps the furnace's energy: what
+ * the coat does not reflect enters, walks without loss and leaves whole. */
 
 /* Roughness 0 is not a delta here (bsdf_is_delta): keep GGX evaluable. */
 inline float principled_alpha(float alpha) { return fmax(alpha, BSDF_SMOOTH_ALPHA); }
@@ -50,9 +59,33 @@ inline float principled_specular_probability(const Bsdf *b, float cos_o)
     return clamp(specular / fmax(specular + diffuse, 1e-20f), 0.1f, 0.9f);
 }
 
-inline float3 principled_eval(const Bsdf *b, float3 wo, float3 wi, float *pdf_w)
+/* The exit of a subsurface walk (!front): Lambertian toward the outside, wi.z < 0 in the frame
+ * turned to wo's (the inside's) side. */
+inline float3 principled_exit_eval(float3 wi, float *pdf_w)
+{
+    *pdf_w = wi.z < 0.0f ? -wi.z * PT_INV_PI : 0.0f;
+    return (float3)(*pdf_w);
+}
+
+/* The probability that the principled sampler picks the entering lobe (with the specular and
+ * diffuse ones: principled_sample). */
+inline float principled_enter_probability(const Bsdf *b, float p_spec)
+{
+    return (1.0f - p_spec) * b->subsurface * (1.0f - b->metallic);
+}
+
+inline float3 principled_eval(const Bsdf *b, float3 wo, float3 wi, bool front, float *pdf_w)
 {
     *pdf_w = 0.0f;
+    if (b->subsurface > 0.0f && !front)
+        return principled_exit_eval(wi, pdf_w);
+    if (b->subsurface > 0.0f && wo.z > 0.0f && wi.z < 0.0f) {
+        float p_enter = principled_enter_probability(b, principled_specular_probability(b, wo.z));
+        float3 fd0 = principled_f0_dielectric(b);
+        float coat = 1.0f - b->specular * max3(fd0 + (1.0f - fd0) * schlick_weight(wo.z));
+        *pdf_w = p_enter * -wi.z * PT_INV_PI;
+        return (float3)(b->subsurface * (1.0f - b->metallic) * coat * -wi.z * PT_INV_PI);
+    }
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f))
         return (float3)(0.0f);
     float3 h = wo + wi;
@@ -71,33 +104,52 @@ inline float3 principled_eval(const Bsdf *b, float3 wo, float3 wi, float *pdf_w)
     /* The diffuse base keeps what the specular layer leaves on the way in and on the way out. */
     float3 fd_o = fd0 + (1.0f - fd0) * schlick_weight(wo.z), fd_i = fd0 + (1.0f - fd0) * schlick_weight(wi.z);
     float base_weight = (1.0f - b->specular * max3(fd_o)) * (1.0f - b->specular * max3(fd_i));
-    float3 dielectric = base_weight * b->base * (wi.z * PT_INV_PI) + b->specular * fd * spec_cos;
+    float3 dielectric = (1.0f - b->subsurface) * base_weight * b->base * (wi.z * PT_INV_PI) +
+                        b->specular * fd * spec_cos;
     float3 metal = fm * spec_cos;
     float p_spec = principled_specular_probability(b, wo.z);
     /* pdf of the VNDF reflection: D_wo(h) / (4 wo.h) = G1(wo) D / (4 wo.z). */
     float pdf_spec = ggx_g1(wo, ax, ay) * d / (4.0f * wo.z);
-    *pdf_w = p_spec * pdf_spec + (1.0f - p_spec) * wi.z * PT_INV_PI;
+    float p_diffuse = 1.0f - p_spec - principled_enter_probability(b, p_spec);
+    *pdf_w = p_spec * pdf_spec + p_diffuse * wi.z * PT_INV_PI;
     return mix(dielectric, metal, b->metallic);
 }
 
-inline BsdfSample principled_sample(const Bsdf *b, float3 wo, float u1, float u2, float u3)
+inline BsdfSample principled_sample(const Bsdf *b, float3 wo, bool front, float u1, float u2,
+                                    float u3)
 {
+    BsdfSample s;
+    if (b->subsurface > 0.0f && !front) {
+        /* Leaving the walk: cosine-weighted to the outside; the weight f |cos| / pdf is 1. */
+        s.wi = sample_cosine_hemisphere(u1, u2);
+        s.wi.z = -s.wi.z;
+        s.pdf_w = -s.wi.z * PT_INV_PI;
+        if (!(s.pdf_w > 0.0f))
+            return bsdf_sample_none();
+        s.weight = (float3)(1.0f);
+        s.flags = BSDF_TRANSMISSION;
+        return s;
+    }
     if (!(wo.z > 0.0f))
         return bsdf_sample_none();
-    BsdfSample s;
-    if (u3 < principled_specular_probability(b, wo.z)) {
+    float p_spec = principled_specular_probability(b, wo.z);
+    /* The entering lobe takes the top of the diffuse lobes' share of u3. */
+    bool enter = u3 >= 1.0f - principled_enter_probability(b, p_spec);
+    if (u3 < p_spec) {
         float ax = principled_alpha(b->alpha_x), ay = principled_alpha(b->alpha_y);
         s.wi = reflect_about(wo, ggx_sample_visible(wo, ax, ay, u1, u2));
     } else {
         s.wi = sample_cosine_hemisphere(u1, u2);
+        if (enter)
+            s.wi.z = -s.wi.z;
     }
-    if (!(s.wi.z > 0.0f))
+    if (!(enter ? s.wi.z < 0.0f : s.wi.z > 0.0f))
         return bsdf_sample_none();
-    /* The mixture pdf and the full value: one-sample MIS over the two lobes. */
-    float3 f_cos = principled_eval(b, wo, s.wi, &s.pdf_w);
+    /* The mixture pdf and the full value: one-sample MIS over the lobes. */
+    float3 f_cos = principled_eval(b, wo, s.wi, front, &s.pdf_w);
     if (!(s.pdf_w > 0.0f))
         return bsdf_sample_none();
     s.weight = f_cos / s.pdf_w;
-    s.flags = BSDF_REFLECTION;
+    s.flags = s.wi.z > 0.0f ? BSDF_REFLECTION : BSDF_TRANSMISSION;
     return s;
 }

@@ -43,12 +43,15 @@ inline const global Medium *medium_at_slot(const SceneView *scene, uint slot)
     return &scene->media[slot - 1u];
 }
 
-/* Whether paths in medium slot need tracking (it scatters or emits); otherwise it only absorbs,
- * in closed form (through_medium). */
+/* Whether paths in medium slot need tracking (it scatters or emits, or its density varies);
+ * otherwise it only absorbs, homogeneously, in closed form (through_medium). */
 inline bool medium_tracks(const SceneView *scene, uint slot)
 {
-    return slot != 0u && (medium_at_slot(scene, slot)->flags &
-                          (MEDIUM_FLAG_SCATTERS | MEDIUM_FLAG_EMITS)) != 0u;
+    if (slot == 0u)
+        return false;
+    const global Medium *m = medium_at_slot(scene, slot);
+    return (m->flags & (MEDIUM_FLAG_SCATTERS | MEDIUM_FLAG_EMITS)) != 0u ||
+           (PT_FEATURE(GRID_MEDIA) && m->type == MEDIUM_GRID);
 }
 
 /* The pieces of [0, tmax) with a constant density majorant: one piece of majorant 1 in a

@@ -44,13 +44,26 @@ inline float3 aov_albedo(const Bsdf *b, Material m, bool front)
     return emission / fmax(fmax(emission.x, emission.y), fmax(emission.z, 1e-30f));
 }
 
-/* The beauty's closest hit for the AOV walk's segment `bounce` (its cut-out stream too). */
+/* The beauty's closest hit for the AOV walk's segment `bounce` (its cut-out stream too), past
+ * `interface` surfaces (media's invisible boundaries: shared/medium.h), whose t counts along. */
 inline Hit aov_trace(const SceneView *scene, float3 origin, float3 dir, float time, RngKey key,
                      uint bounce)
 {
-    return PT_FEATURE(CUTOUT) ? trace_closest_through(scene, 0u, origin, dir, 0.0f, INFINITY, time,
-                                                      false, rng_bounce_bits(key, bounce, DIM_OPACITY))
-                              : scene_closest(scene, 0u, origin, dir, 0.0f, INFINITY, time);
+    float travelled = 0.0f;
+    for (uint crossing = 0u;; crossing++) {
+        Hit h = PT_FEATURE(CUTOUT)
+                    ? trace_closest_through(scene, 0u, origin, dir, 0.0f, INFINITY, time, false,
+                                            rng_bounce_bits(key, bounce, DIM_OPACITY))
+                    : scene_closest(scene, 0u, origin, dir, 0.0f, INFINITY, time);
+        if (!PT_FEATURE(MEDIA) || h.prim == HIT_NONE || crossing == 64u ||
+            scene->materials[scene->material_ids[h.prim]].type != MATERIAL_INTERFACE) {
+            h.t += travelled;
+            return h;
+        }
+        SurfaceHit s = surface_at(scene, h, time);
+        origin = offset_ray_origin(s.position, s.geometric_normal, dir);
+        travelled += h.t;
+    }
 }
 
 #if PT_PART(AOV)

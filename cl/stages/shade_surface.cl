@@ -96,7 +96,9 @@ PT_INLINE float3 through_medium(const SceneView *scene, uint medium, float3 c, f
 PT_INLINE uint medium_toward(constant RenderParams *p, Material tm, float3 geometric_normal,
                              float3 w, uint medium)
 {
-    if (!(tm.flags & MATERIAL_FLAG_MEDIUM_INTERFACE))
+    /* A scene without media has no medium interface: its programs carry none of this. */
+    if (!(PT_FEATURE(ABSORPTION) || PT_FEATURE(MEDIA)) ||
+        !(tm.flags & MATERIAL_FLAG_MEDIUM_INTERFACE))
         return medium;
     uint next = dot(w, geometric_normal) > 0.0f ? tm.exterior : tm.interior;
     return next == MEDIUM_SLOT_WORLD ? p->scene.world_medium : next;

@@ -59,7 +59,7 @@ static ProgramFeatures scene_program_features(const SceneData *data, bool black_
     /* Pure absorbers (and dielectrics' absorption) need only Beer-Lambert; tracking is for media
      * that scatter or emit. */
     f |= data->num_media > 0 ? FEATURE_ABSORPTION : 0u;
-    f |= scene_data_media_scatter(data) ? FEATURE_MEDIA : 0u;
+    f |= scene_data_media_track(data) ? FEATURE_MEDIA : 0u;
     f |= scene_data_has_grid_media(data) ? FEATURE_GRID_MEDIA | FEATURE_MEDIA : 0u;
     return f;
 }

@@ -114,12 +114,15 @@ static bool read_homogeneous(const Reader *r, MediumDesc *d)
 {
     static const char *const keys[] = {"type", "sigma_a", "sigma_s", "scale", "g", "emission", NULL};
     float sigma_a[3] = {0}, sigma_s[3] = {0}, scale = 1.0f, g;
-    return json_check_object(r->p, r->e, r->prefix, keys) &&
-           read_colour(r, "sigma_a", INFINITY, sigma_a) &&
-           read_colour(r, "sigma_s", INFINITY, sigma_s) && read_scale(r, "scale", &scale) &&
-           read_g(r, &g) && read_colour(r, "emission", INFINITY, d->m.emission.s) &&
-           scaled(r, "sigma_a", sigma_a, scale, &d->m.sigma_a) &&
-           scaled(r, "sigma_s", sigma_s, scale, &d->m.sigma_s) && (d->m.sigma_a.s[3] = g, true);
+    if (!json_check_object(r->p, r->e, r->prefix, keys) ||
+        !read_colour(r, "sigma_a", INFINITY, sigma_a) ||
+        !read_colour(r, "sigma_s", INFINITY, sigma_s) || !read_scale(r, "scale", &scale) ||
+        !read_g(r, &g) || !read_colour(r, "emission", INFINITY, d->m.emission.s) ||
+        !scaled(r, "sigma_a", sigma_a, scale, &d->m.sigma_a) ||
+        !scaled(r, "sigma_s", sigma_s, scale, &d->m.sigma_s))
+        return false;
+    d->m.sigma_a.s[3] = g;
+    return true;
 }
 
 /* The grid's file (required) and grid name. */

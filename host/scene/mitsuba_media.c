@@ -159,6 +159,11 @@ static bool build_medium(Mitsuba *m, const XmlElement *e, cJSON *medium)
         if (!(albedo[c] >= 0.0 && albedo[c] <= 1.0))
             return mi_fail(m, e, "albedo %g is outside [0, 1]", albedo[c]);
     mi_prop(m, e, "sample_emitted");
+    for (int i = 0; i < e->num_children; i++) /* mi_warn_unused leaves nested plugins alone */
+        if (strcmp(e->children[i]->name, "volume") == 0 && !e->children[i]->used)
+            mi_warn_once(m, e->children[i], "medium-volume", "volume \"%.40s\" ignored (pt's media "
+                         "take sigma_t and albedo)", xml_attribute(e->children[i], "name")
+                             ? xml_attribute(e->children[i], "name") : "");
     cJSON_AddNumberToObject(medium, "g", g);
     if (grid) {
         cJSON_AddStringToObject(medium, "type", "grid");

@@ -154,6 +154,22 @@ static void object_name(const ObjectOptions *o, char out[32])
         snprintf(out, 32, "the model");
 }
 
+/* Six times the signed volume a closed mesh encloses (the divergence theorem over its triangles):
+ * negative when its fronts (counter-clockwise sides) face inward. */
+static double signed_volume6(const SceneData *data, uint32_t first, uint32_t end)
+{
+    double sum = 0.0;
+    for (uint32_t t = first; t < end; t++) {
+        const float *a = data->positions[data->triangles[t].v.s[0]].s,
+                    *b = data->positions[data->triangles[t].v.s[1]].s,
+                    *c = data->positions[data->triangles[t].v.s[2]].s;
+        sum += (double)a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) -
+               (double)a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
+               (double)a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0]);
+    }
+    return sum;
+}
+
 static bool check_closed(const SceneData *data, uint32_t first, const ObjectOptions *o,
                          const char *what, const char *scene_path, Error *err)
 {
@@ -164,8 +180,14 @@ static bool check_closed(const SceneData *data, uint32_t first, const ObjectOpti
         error_set(err, ERR_OUT_OF_MEMORY, scene_path, 0, "%s: %s: out of memory", scene_path, name);
         return false;
     }
-    if (one == 0 && many == 0)
+    if (one == 0 && many == 0) {
+        /* The interior is behind the fronts (DESIGN "Media"): an inside-out mesh holds its
+         * medium everywhere else. Legal, so only said. */
+        if (signed_volume6(data, first, data->num_triangles) < 0.0)
+            warn("%s: %s%s: the mesh faces inward (its triangles' counter-clockwise fronts point "
+                 "inside): its interior medium fills the space around it", scene_path, name, what);
         return true;
+    }
     if (one > 0)
         error_set(err, ERR_JSON_VALUE, scene_path, 0,
                   "%s: %s%s: the mesh is not closed (%llu edge%s with one face); a medium needs a "
@@ -187,7 +209,11 @@ bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOp
     bool subsurface = false;
     for (uint32_t t = first_triangle; t < data->num_triangles && !subsurface; t++)
         subsurface = holds_subsurface(data, data->material_ids[t], 0);
-    if (o->interior && !check_closed(data, first_triangle, o, ".interior", scene_path, err))
+    /* The same medium on both sides (a floor in a fog-filled world, as Mitsuba scenes say it:
+     * Mitsuba has no world medium) changes nothing where it is crossed: any surface will do. */
+    uint32_t outside = o->exterior ? o->exterior : data->world_medium;
+    if (o->interior && o->interior != outside &&
+        !check_closed(data, first_triangle, o, ".interior", scene_path, err))
         return false;
     if (subsurface && !check_closed(data, first_triangle, o, " (a material with subsurface)",
                                     scene_path, err))

@@ -20,11 +20,12 @@ typedef struct {
 } DerivedMaterials;
 
 /* Gives the triangles [first_triangle, data->num_triangles) of an object with options o the media
- * o names: each triangle's material is replaced by its derived copy carrying
+ * o names (data->world_medium already set): each triangle's material is replaced by its derived copy carrying
  * MATERIAL_FLAG_MEDIUM_INTERFACE, o->interior (or the material's own interior when o gives none)
  * and o->exterior (or MEDIUM_SLOT_WORLD). A triangle still waiting for the default material gets a
  * copy of material_default(). Nothing happens when o names no medium. Checks that the triangles
- * form a closed surface when o gives an interior or a material has subsurface. Errors name
+ * form a closed surface when o gives an interior other than its exterior, or a material has
+ * subsurface. Errors name
  * scene_path and the object's key ("objects[2].interior: the mesh is not closed (...)"). */
 bool object_media_apply(SceneData *data, uint32_t first_triangle, const ObjectOptions *o,
                         DerivedMaterials *derived, const char *scene_path, Error *err);

@@ -160,10 +160,13 @@ uint32_t scene_data_add_subsurface_medium(SceneData *data, uint32_t index, const
     return slot;
 }
 
-bool scene_data_media_scatter(const SceneData *data)
+bool scene_data_media_track(const SceneData *data)
 {
     for (uint32_t i = 0; i < data->num_media; i++)
         if (data->media[i].flags & (MEDIUM_FLAG_SCATTERS | MEDIUM_FLAG_EMITS))
+            return true;
+    for (uint32_t i = 0; i < data->num_materials; i++)
+        if (data->materials[i].type == MATERIAL_INTERFACE)
             return true;
     return false;
 }

@@ -43,9 +43,10 @@ uint32_t scene_data_add_subsurface_medium(SceneData *data, uint32_t index, const
  * reflectance in [0, 1]), g = 0: Cycles' subsurface_random_walk_remap. */
 float subsurface_albedo(float colour);
 
-/* Whether any medium scatters or emits (FEATURE_MEDIA), and whether any is a grid
+/* Whether the kernels must track media (FEATURE_MEDIA): a medium scatters or emits, or an
+ * `interface` surface is there to pass through; and whether any medium is a grid
  * (FEATURE_GRID_MEDIA). */
-bool scene_data_media_scatter(const SceneData *data);
+bool scene_data_media_track(const SceneData *data);
 bool scene_data_has_grid_media(const SceneData *data);
 
 #endif
