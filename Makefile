@@ -150,7 +150,7 @@ $(BUILD)/test-media.stamp: tools/make_media_scenes.py tools/make_material_scenes
 $(TESTS): $(BUILD)/test-media.stamp
 # The reference scenes as Mitsuba 3 XML (tools/mitsuba_xml.py; not in git), for test_reference.
 MITSUBA_XML_SCENES := furnace cornell cornell-sphere textured conductors glass-clear normalmap mix
-MITSUBA_XML_SCENES += fog-room subsurface
+MITSUBA_XML_SCENES += fog-room liquid subsurface
 $(BUILD)/mitsuba-xml.stamp: tools/mitsuba_xml.py tools/mitsuba_reference.py tools/mitsuba_materials.py \
                             tools/mitsuba_obj.py $(BUILD)/test-meshes.stamp
 	@echo "  GEN   tests/scenes/*/mitsuba/scene.xml"

@@ -182,9 +182,8 @@ Test(reference_mitsuba_xml, rough_conductors_gold_and_anisotropic_copper, .timeo
 Test(reference_mitsuba_xml, rough_glass_clear, .timeout = 300) { compare_xml_with_reference("glass-clear", 1024, 8192); }
 Test(reference_mitsuba_xml, normal_map_at_grazing_light, .timeout = 300) { compare_xml_with_reference("normalmap", 1024, 16384); }
 Test(reference_mitsuba_xml, mix_diffuse_conductor_and_fresnel_one_mirror, .timeout = 300) { compare_xml_with_reference("mix", 1024, 12288); }
-/* Media as Mitsuba writes them. Not smoke (its sky is an in-memory bitmap), nor yet liquid: Mitsuba
- * has no world medium, so its open floor and light carry the haze as interior and exterior, which
- * the importer refuses as an interior on an open mesh (a shape whose interior and exterior are
- * the same medium bounds none and could be let through). */
+/* Media as Mitsuba writes them (not smoke: its sky is an in-memory bitmap). Mitsuba has no world
+ * medium, so liquid's open floor and light carry the haze as both interior and exterior. */
 Test(reference_mitsuba_xml, fog_box_under_a_spot_light, .timeout = 600) { compare_xml_with_reference("fog-room", 1024, 16384); }
+Test(reference_mitsuba_xml, coloured_liquid_in_dielectric_in_world_haze, .timeout = 600) { compare_xml_with_reference("liquid", 1024, 32768); }
 Test(reference_mitsuba_xml, subsurface_random_walk_in_dielectric_sphere, .timeout = 600) { compare_xml_with_reference("subsurface", 1024, 65536); }
