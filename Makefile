@@ -141,14 +141,23 @@ $(BUILD)/test-meshes.stamp: tools/make_material_scenes.py tools/make_test_scenes
 	$(Q)python3 tools/make_material_scenes.py tests/scenes
 	$(Q)touch $@
 $(TESTS): $(BUILD)/test-meshes.stamp
+# The media scenes' generated meshes, grid (.vol) and sky (tools/make_media_scenes.py GENERATED; not in git).
+$(BUILD)/test-media.stamp: tools/make_media_scenes.py tools/make_material_scenes.py tools/make_test_scenes.py tools/mitsuba_vol.py
+	@mkdir -p $(@D)
+	@echo "  GEN   tests/scenes/{fog-room,smoke,liquid,subsurface}"
+	$(Q)python3 tools/make_media_scenes.py tests/scenes
+	$(Q)touch $@
+$(TESTS): $(BUILD)/test-media.stamp
 # The reference scenes as Mitsuba 3 XML (tools/mitsuba_xml.py; not in git), for test_reference.
 MITSUBA_XML_SCENES := furnace cornell cornell-sphere textured conductors glass-clear normalmap mix
+MITSUBA_XML_SCENES += fog-room liquid subsurface
 $(BUILD)/mitsuba-xml.stamp: tools/mitsuba_xml.py tools/mitsuba_reference.py tools/mitsuba_materials.py \
                             tools/mitsuba_obj.py $(BUILD)/test-meshes.stamp
 	@echo "  GEN   tests/scenes/*/mitsuba/scene.xml"
 	$(Q)python3 tools/mitsuba_xml.py $(foreach s,$(MITSUBA_XML_SCENES),tests/scenes/$(s) tests/scenes/$(s)/mitsuba)
 	$(Q)touch $@
 $(BUILD)/tests/test_reference: $(BUILD)/mitsuba-xml.stamp
+$(BUILD)/mitsuba-xml.stamp: $(BUILD)/test-media.stamp tools/mitsuba_media.py tools/mitsuba_lights.py
 
 VERSION ?= $(shell git describe --always --dirty 2>/dev/null || echo dev)
 bundle: all $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/bench_*.c))

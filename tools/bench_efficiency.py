@@ -13,11 +13,15 @@ scene the mean relMSE, time and efficiency of each, and pt's best efficiency ove
 Scenes (SCENES below): a Cornell box; glass and mirror spheres (caustics); a small light (written
 here: a 4 cm lamp over a box and a floor); an environment map over rough gold; rough metals; a
 100k-triangle torus in a lit box (tools/make_bench_scenes.py's). Every scene is converted for
-Mitsuba by tools/mitsuba_reference.py, the converter of the committed references.
+Mitsuba by tools/mitsuba_reference.py, the converter of the committed references. The media scenes
+(issue 40; not in the default list: --scenes media picks them all) are tools/make_media_scenes.py's
+reference scenes, written here: fog-room, smoke, liquid, subsurface; Mitsuba renders them with
+volpath. Each row also gives Mpaths/s (width x height x spp / seconds).
 
   PYTHON tools/bench_efficiency.py [--pt build/pt] [--device cpu|gpu] [--variant llvm_ad_rgb]
       [--width 160 --height 120] [--spp 64] [--seeds 4] [--ref-spp 4096] [--max-depth 64]
-      [--scenes cornell,caustics,...] [--cache DIR] [--csv FILE]
+      [--scenes cornell,caustics,...|media] [--cache DIR] [--csv FILE]
+      [--max-depth N|scene] [--rr-depth N] [--samplers pt:sobol,mitsuba:independent]
 
 PYTHON imports mitsuba and numpy (.venv-mitsuba, or on a machine without network wheels fetched
 elsewhere with `pip download mitsuba==3.9.1 numpy -d wheels` and installed with `pip install
@@ -25,6 +29,13 @@ elsewhere with `pip download mitsuba==3.9.1 numpy -d wheels` and installed with 
 pt bundle (tools/bundle.sh: bin/pt, tools/, tests/scenes/). On the GPU machine, in the bundle:
   PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
       --width 320 --height 240 --spp 256 --seeds 4 --ref-spp 16384 --csv efficiency-gpu.csv
+The media scenes (issue 40 "Speed": pt against Mitsuba's cuda_ad_rgb volpath, Mpaths/s and relMSE x
+time in one run), each at its own max depth, both Russian roulette from the third vertex:
+  PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
+      --scenes media --width 1280 --height 960 --spp 16 --seeds 4 --ref-spp 1024 \\
+      --max-depth scene --rr-depth 3 --samplers pt:sobol,mitsuba:independent --csv efficiency-media-gpu.csv
+(1.2 Mpixels: each reference is 1.3 G paths; the reference's own noise adds about spp/ref-spp = 1/64
+of the relMSE, alike for both renderers.)
 """
 import argparse
 import os
@@ -93,6 +104,18 @@ def torus_scene(folder):
     return path
 
 
+def media_scene(name):
+    """A writer of tools/make_media_scenes.py's scene `name` into a folder (its generated mesh,
+    grid and sky files included, so the scene runs from a bundle without make)."""
+    def write(folder):
+        import make_media_scenes
+        make_media_scenes.WRITERS[name](os.path.join(folder, name))
+        return os.path.join(folder, name, "scene.json")
+    return write
+
+
+MEDIA_SCENES = ("fog-room", "smoke", "liquid", "subsurface")
+
 # name: a scene file under the repository, or a function writing one into a folder
 SCENES = {
     "cornell": "tests/scenes/cornell/scene.json",
@@ -102,6 +125,8 @@ SCENES = {
     "rough-metals": "tests/scenes/conductors/scene.json",
     "torus-100k": torus_scene,
 }
+DEFAULT_SCENES = list(SCENES)
+SCENES.update({name: media_scene(name) for name in MEDIA_SCENES})
 
 
 def rel_mse(np, a, r):
@@ -112,12 +137,21 @@ def read_exr(mi, np, path):
     return np.array(mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32), dtype=np.float64)
 
 
-def mitsuba_scene(mi, np, scene_path, width, height, depth, sampler, spp, temp):
+def scene_depth(scene_path, wanted):
+    """--max-depth: a number, or 'scene' for the scene file's render.max_depth."""
+    if wanted != "scene":
+        return int(wanted)
+    return int(ref.load_scene(scene_path)[1].get("render", {}).get("max_depth", 8))
+
+
+def mitsuba_scene(mi, np, scene_path, width, height, depth, sampler, spp, temp, rr_depth=None):
     path, scene = ref.load_scene(scene_path)
     scene["film"] = {"width": width, "height": height}
     scene.setdefault("render", {})["max_depth"] = depth
     d = ref.build_scene(path, scene, spp, temp, mi, np)
     d["sensor"]["sampler"] = {"type": sampler, "sample_count": spp}
+    if rr_depth is not None:
+        d["integrator"]["rr_depth"] = rr_depth
     return mi.load_dict(d)
 
 
@@ -131,13 +165,18 @@ def mitsuba_render(mi, dr, np, scene, spp, seed):
 
 
 def reference(mi, dr, np, name, scene_path, args, temp):
-    """The cached reference, or a Mitsuba render of --ref-spp in batches of at most 1024 spp."""
+    """The cached reference, or a Mitsuba render of --ref-spp in batches of at most 1024 spp (and
+    2^25 paths)."""
     os.makedirs(args.cache, exist_ok=True)
-    cached = os.path.join(args.cache, f"{name}-{args.width}x{args.height}-d{args.max_depth}-{args.ref_spp}.exr")
+    depth = scene_depth(scene_path, args.max_depth)
+    cached = os.path.join(args.cache, f"{name}-{args.width}x{args.height}-d{depth}-{args.ref_spp}.exr")
     if os.path.exists(cached):
         return read_exr(mi, np, cached)
+    # At most about 2^25 paths per launch: a GPU variant keeps every path's state at once.
     batch = min(args.ref_spp, 1024)
-    scene = mitsuba_scene(mi, np, scene_path, args.width, args.height, args.max_depth, "independent", batch, temp)
+    while batch > 1 and batch * args.width * args.height > 1 << 25:
+        batch //= 2
+    scene = mitsuba_scene(mi, np, scene_path, args.width, args.height, depth, "independent", batch, temp)
     total, n = None, args.ref_spp // batch
     for k in range(n):
         img, _ = mitsuba_render(mi, dr, np, scene, batch, 100000 + k)
@@ -150,7 +189,7 @@ def reference(mi, dr, np, name, scene_path, args, temp):
 
 def pt_render(args, scene_path, sampler, seed, out):
     cmd = [args.pt, "render", scene_path, "--width", str(args.width), "--height", str(args.height),
-           "--spp", str(args.spp), "--max-depth", str(args.max_depth), "--seed", str(seed),
+           "--spp", str(args.spp), "--max-depth", str(scene_depth(scene_path, args.max_depth)), "--seed", str(seed),
            "--sampler", sampler, "-o", out]
     if args.device:
         cmd += ["--device", args.device]
@@ -174,11 +213,23 @@ def main():
     ap.add_argument("--spp", type=int, default=64, help="a power of 4 suits every sampler")
     ap.add_argument("--seeds", type=int, default=4)
     ap.add_argument("--ref-spp", type=int, default=4096)
-    ap.add_argument("--max-depth", type=int, default=64)
-    ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--max-depth", default="64", help="a number, or 'scene': each scene's own")
+    ap.add_argument("--rr-depth", type=int,
+                    help="Mitsuba's rr_depth (default its own, 5; 3 = pt's Russian roulette)")
+    ap.add_argument("--samplers", help="only these, e.g. pt:sobol,mitsuba:independent (default all)")
+    ap.add_argument("--scenes", default=",".join(DEFAULT_SCENES), help="names, or 'media' for the media scenes")
     ap.add_argument("--cache", default=os.path.join(ROOT, "bench", "results", "efficiency-references"))
     ap.add_argument("--csv", default=os.path.join(ROOT, "bench", "results", "efficiency.csv"))
     args = ap.parse_args()
+    if args.scenes == "media":
+        args.scenes = ",".join(MEDIA_SCENES)
+    if args.max_depth != "scene":
+        int(args.max_depth)  # refuses anything else with a traceback naming the value
+    pt_samplers, mitsuba_samplers = PT_SAMPLERS, MITSUBA_SAMPLERS
+    if args.samplers:
+        chosen = [s.split(":", 1) for s in args.samplers.split(",")]
+        pt_samplers = [s for r, s in chosen if r == "pt"]
+        mitsuba_samplers = [s for r, s in chosen if r == "mitsuba"]
     if "DRJIT_LIBLLVM_PATH" not in os.environ:
         import bench_mitsuba
         for path in bench_mitsuba.LLVM_CANDIDATES:
@@ -193,23 +244,25 @@ def main():
     new = not os.path.exists(args.csv)
     csv = open(args.csv, "a")
     if new:
-        csv.write("scene,renderer,sampler,seed,width,height,spp,max_depth,seconds,relmse,efficiency\n")
+        csv.write("scene,renderer,sampler,seed,width,height,spp,max_depth,seconds,relmse,efficiency,mpaths_per_s\n")
     summary = []
     with tempfile.TemporaryDirectory(prefix="bench-efficiency-") as temp:
         for name in args.scenes.split(","):
             source = SCENES[name]
             scene_path = source(temp) if callable(source) else os.path.join(ROOT, source)
             r = reference(mi, dr, np, name, scene_path, args, temp)
+            depth = scene_depth(scene_path, args.max_depth)
             results = {}
 
             def record(renderer, sampler, seed, seconds, img):
                 e = rel_mse(np, img, r)
                 results.setdefault((renderer, sampler), []).append((e, seconds))
+                mpaths = args.width * args.height * args.spp / seconds * 1e-6
                 csv.write(f"{name},{renderer},{sampler},{seed},{args.width},{args.height},{args.spp},"
-                          f"{args.max_depth},{seconds:.6f},{e:.6g},{1 / (e * seconds):.6g}\n")
+                          f"{depth},{seconds:.6f},{e:.6g},{1 / (e * seconds):.6g},{mpaths:.6g}\n")
                 csv.flush()
 
-            for sampler in PT_SAMPLERS:
+            for sampler in pt_samplers:
                 # warm-up: the device compiles the kernels at their first launch (PoCL), in the
                 # render time pt reports
                 pt_render(args, scene_path, sampler, 0, os.path.join(temp, "pt.exr"))
@@ -217,25 +270,29 @@ def main():
                     out = os.path.join(temp, "pt.exr")
                     seconds = pt_render(args, scene_path, sampler, seed, out)
                     record("pt", sampler, seed, seconds, read_exr(mi, np, out))
-            for sampler in MITSUBA_SAMPLERS:
-                scene = mitsuba_scene(mi, np, scene_path, args.width, args.height, args.max_depth,
-                                      sampler, args.spp, temp)
+            for sampler in mitsuba_samplers:
+                scene = mitsuba_scene(mi, np, scene_path, args.width, args.height, depth,
+                                      sampler, args.spp, temp, args.rr_depth)
                 mitsuba_render(mi, dr, np, scene, args.spp, 0)  # warm-up (kernel compilation)
                 for seed in range(1, args.seeds + 1):
                     img, seconds = mitsuba_render(mi, dr, np, scene, args.spp, seed)
                     record(f"mitsuba-{variant}", sampler, seed, seconds, img)
             summary.append((name, results))
-            report(name, results)
-    print("\npt's best efficiency / Mitsuba's best (> 1: pt cleans the image sooner)")
+            report(name, results, args.width * args.height * args.spp)
+    print("\npt's best efficiency / Mitsuba's best (> 1: pt cleans the image sooner); "
+          "pt's best speed / Mitsuba's best (Mpaths/s)")
     for name, results in summary:
-        best = {}
+        best, fastest = {}, {}
         for (renderer, sampler), v in results.items():
             eff = efficiency(v)
             side = "pt" if renderer == "pt" else "mitsuba"
             if eff > best.get(side, (0, ""))[0]:
                 best[side] = (eff, sampler)
-        print(f"  {name:14s} {best['pt'][0] / best['mitsuba'][0]:6.2f}  (pt {best['pt'][1]}, "
-              f"Mitsuba {best['mitsuba'][1]})")
+            speed = len(v) / sum(s for _, s in v)  # renders per second
+            fastest[side] = max(fastest.get(side, 0), speed)
+        if "pt" in best and "mitsuba" in best:
+            print(f"  {name:14s} efficiency {best['pt'][0] / best['mitsuba'][0]:6.2f}  (pt {best['pt'][1]}, "
+                  f"Mitsuba {best['mitsuba'][1]}); speed {fastest['pt'] / fastest['mitsuba']:6.2f}")
     return 0
 
 
@@ -245,13 +302,14 @@ def efficiency(v):
     return 1 / (e * t)
 
 
-def report(name, results):
-    print(f"\n{name}: {'renderer':22s} {'sampler':12s} {'relMSE':>10s} {'seconds':>9s} {'efficiency':>11s}")
+def report(name, results, paths):
+    print(f"\n{name}: {'renderer':22s} {'sampler':12s} {'relMSE':>10s} {'seconds':>9s} {'efficiency':>11s} "
+          f"{'Mpaths/s':>9s}")
     for (renderer, sampler), v in results.items():
         e = sum(x for x, _ in v) / len(v)
         t = sum(s for _, s in v) / len(v)
-        print(f"{'':{len(name) + 2}s}{renderer:22s} {sampler:12s} {e:10.4g} {t:9.3f} {1 / (e * t):11.4g}",
-              flush=True)
+        print(f"{'':{len(name) + 2}s}{renderer:22s} {sampler:12s} {e:10.4g} {t:9.3f} {1 / (e * t):11.4g} "
+              f"{paths / t * 1e-6:9.2f}", flush=True)
 
 
 if __name__ == "__main__":

@@ -10,10 +10,14 @@ set -eu
 
 cd "$(dirname "$0")/.."
 . tools/mitsuba-venv.sh
+# The scenes' generated files (meshes, the smoke grid, skies; not in git), as make writes them.
+python3 tools/make_material_scenes.py tests/scenes
+python3 tools/make_media_scenes.py tests/scenes
 
 # scene:spp. 16 batches each (so spp must be a multiple of 16); see tests/references/README.md.
 ALL="furnace:16384 textured:16384 cornell:16384 cornell-sphere:32768
-     conductors:8192 glass:8192 glass-clear:8192 normalmap:16384 mix:12288 envmap:4096 envmap-diffuse:4096"
+     conductors:8192 glass:8192 glass-clear:8192 normalmap:16384 mix:12288 envmap:4096 envmap-diffuse:4096
+     fog-room:16384 smoke:16384 liquid:32768 subsurface:65536"
 SCENES="${*:-}"
 SCALE="${SPP_SCALE:-1}"
 mkdir -p tests/references

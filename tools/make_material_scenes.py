@@ -307,22 +307,27 @@ def write_meshes(scenes_dir):
     """Writes tests/scenes/<name>/<name>.obj for GENERATED_MESHES (through a scratch copy of every
     scene, so the writers and checks are the same as write_all's); a file already equal is left
     alone, so make sees nothing new."""
-    import shutil
     import tempfile
     with tempfile.TemporaryDirectory(prefix="pt-meshes-") as scratch:
         write_all(scratch)
-        for name in GENERATED_MESHES:
-            src = os.path.join(scratch, name, f"{name}.obj")
-            dst = os.path.join(scenes_dir, name, f"{name}.obj")
-            with open(src, "rb") as f:
-                data = f.read()
-            if os.path.exists(dst):
-                with open(dst, "rb") as f:
-                    if f.read() == data:
-                        continue
-            os.makedirs(os.path.dirname(dst), exist_ok=True)
-            shutil.copyfile(src, dst + ".tmp")
-            os.replace(dst + ".tmp", dst)
+        copy_changed(scratch, scenes_dir, [os.path.join(name, f"{name}.obj") for name in GENERATED_MESHES])
+
+
+def copy_changed(scratch, scenes_dir, paths):
+    """Copies each of paths (relative) from scratch to scenes_dir, leaving a file already equal
+    alone (make then sees nothing new); each copy replaces the old file in one rename."""
+    import shutil
+    for rel in paths:
+        src, dst = os.path.join(scratch, rel), os.path.join(scenes_dir, rel)
+        with open(src, "rb") as f:
+            data = f.read()
+        if os.path.exists(dst):
+            with open(dst, "rb") as f:
+                if f.read() == data:
+                    continue
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        shutil.copyfile(src, dst + ".tmp")
+        os.replace(dst + ".tmp", dst)
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@
                                           n x dp/du, n): DESIGN's for UVs that are not mirrored),
                                           use_shadowing_function false (DESIGN: no terminator term)
   emission x emission_strength            'area' emitter
+  interface (media boundary)              null (tools/mitsuba_media.py gives the shape its media)
   non-dielectrics                         wrapped in twosided (ours shade the side a ray arrives from)
   environment file, scale, rotation t     envmap, scale, to_world = rotation about +y by 180 + t
                                           degrees (Mitsuba puts u = 0 where we put u = 0.5); the rows
@@ -38,6 +39,7 @@ MATERIAL_KEYS = {
     "conductor": {"roughness", "eta", "k", "reflectance", "anisotropy"},
     "dielectric": {"ior", "roughness", "tint", "absorption"},
     "mix": {"a", "b", "weight"},
+    "interface": set(),
 }
 COMMON_KEYS = {"type", "emission", "emission_strength", "normal_map"}
 
@@ -108,6 +110,8 @@ class JsonMaterials:
         key = f"materials.{name}"
         kind = m["type"]
         medium = None
+        if kind == "interface":
+            return {"type": "null"}, None
         if kind == "diffuse":
             bsdf = {"type": "diffuse", "reflectance": self.colour(m.get("albedo"), key + ".albedo", 0.8)}
         elif kind == "conductor":
@@ -163,7 +167,7 @@ class JsonMaterials:
         """(bsdf, interior medium or None, emitted radiance or None) of material `name`."""
         m = self.materials[name]
         bsdf, medium = self.lobe(name)
-        if m["type"] != "dielectric":
+        if m["type"] not in ("dielectric", "interface"):
             bsdf = {"type": "twosided", "material": bsdf}
         emission = None
         if "emission" in m:

@@ -23,9 +23,13 @@ the renderer's loader), and translated to a Mitsuba scene with the same conventi
   film                                        hdrfilm rgb float32, box rfilter
   background != 0                             'constant' emitter
   render.max_depth                            path integrator max_depth, hide_emitters false
-                                              (volpath when a dielectric has an absorption)
+                                              (volpath when the scene has media or a dielectric
+                                              an absorption)
   JSON materials (replace MTL materials of    tools/mitsuba_materials.py
   the same name), textures, environment
+  lights (point, spot, directional)           tools/mitsuba_lights.py
+  media, medium, camera.medium, objects'      tools/mitsuba_media.py
+  interior / exterior
 
 The image is rendered in K batches with different seeds; OUT.exr is their mean, and --stderr writes
 the per-pixel standard error of that mean (the batches' spread / sqrt(K)) as a half-float EXR, so
@@ -45,17 +49,19 @@ sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 # load_obj and read_png_size are also this module's API (make_test_scenes.py, bench_mitsuba.py).
 from mitsuba_obj import SceneError, load_obj, read_png_size  # noqa: E402,F401
 from mitsuba_materials import JsonMaterials, environment_emitter  # noqa: E402
+from mitsuba_lights import emitters as light_emitters  # noqa: E402
+from mitsuba_media import Media  # noqa: E402
 
 
 # ---- scene.json ----------------------------------------------------------------------------------
 
 SCENE_KEYS = {"camera", "film", "render", "objects", "background", "materials", "textures",
-              "environment"}
-CAMERA_KEYS = {"eye", "target", "up", "fov_y", "aperture", "focus_distance"}
+              "environment", "lights", "media", "medium"}
+CAMERA_KEYS = {"eye", "target", "up", "fov_y", "aperture", "focus_distance", "medium"}
 
 
 def load_scene(scene_path, scene_keys=SCENE_KEYS, camera_keys=CAMERA_KEYS,
-               object_keys=("obj", "material")):
+               object_keys=("obj", "material", "interior", "exterior")):
     """The scene file (or a folder's scene.json), refusing keys this translation does not know
     (tools/mitsuba_forest.py passes its wider key sets)."""
     if os.path.isdir(scene_path):
@@ -146,8 +152,13 @@ def build_scene(scene_path, scene, spp, temp_dir, mi, np):
         sensor["aperture_radius"] = aperture / 2  # our JSON has the lens diameter
         sensor["focus_distance"] = float(cam.get("focus_distance",
                                                  math.dist(eye, target)))
-    mitsuba_scene = {"type": "scene", "sensor": sensor}
     base = os.path.dirname(os.path.abspath(scene_path))
+    media = Media(scene, base)
+    # The media first: the sensor and the shapes refer to them by id.
+    mitsuba_scene = {"type": "scene", **media.plugins(), "sensor": sensor}
+    if media.sensor_medium():
+        sensor["medium"] = media.sensor_medium()
+    mitsuba_scene.update(light_emitters(scene, mi))
     json_materials = JsonMaterials(scene, base, mi, np)
     if "environment" in scene:
         mitsuba_scene["environment"] = environment_emitter(scene["environment"], base, mi, np)
@@ -155,8 +166,8 @@ def build_scene(scene_path, scene, spp, temp_dir, mi, np):
         background = scene.get("background", [0, 0, 0])
         if any(c > 0 for c in background):
             mitsuba_scene["background"] = {"type": "constant", "radiance": rgb(background)}
-    count, has_media = 0, False
-    for obj in scene.get("objects", []):
+    count, has_media = 0, bool(media)
+    for index, obj in enumerate(scene.get("objects", [])):
         override = obj.get("material")
         if override is not None and override not in json_materials:
             raise SceneError(f"{scene_path}: objects[].material '{override}' is not a JSON material")
@@ -167,9 +178,10 @@ def build_scene(scene_path, scene, spp, temp_dir, mi, np):
             name = override or group.material.name
             if name in json_materials:  # a JSON material replaces the MTL one of the same name
                 shape["bsdf"], medium, emission = json_materials.bsdf(name)
-                if medium:
-                    shape["interior"], has_media = medium, True
+                has_media |= medium is not None
+                shape.update(media.shape_media(obj, f"objects[{index}]", medium))
             else:
+                shape.update(media.shape_media(obj, f"objects[{index}]"))
                 shape["bsdf"] = bsdf_for(group.material, mi, np)
                 medium, emission = None, group.material.ke if group.material.emissive else None
             if emission:

@@ -44,7 +44,9 @@ class NoMitsuba:
 TAGS = {"bitmap": "texture", "area": "emitter", "constant": "emitter", "envmap": "emitter",
         "obj": "shape", "hdrfilm": "film", "box": "rfilter", "independent": "sampler",
         "path": "integrator", "volpath": "integrator", "homogeneous": "medium",
-        "perspective": "sensor", "thinlens": "sensor"}
+        "perspective": "sensor", "thinlens": "sensor",
+        "heterogeneous": "medium", "gridvolume": "volume", "hg": "phase",
+        "point": "emitter", "spot": "emitter", "directional": "emitter"}
 
 
 def number(v):
@@ -92,6 +94,12 @@ class Writer:
                                      for k, a in args.items())
                     body.append(f"{inner}    <{op} {attrs}/>")
                 body.append(f"{inner}</transform>")
+            elif isinstance(v, list) and len(v) == 3:  # a point light's position, a direction
+                tag_of = "point" if key == "position" else "vector"
+                body.append(f'{inner}<{tag_of} name="{key}" x="{number(v[0])}" y="{number(v[1])}" '
+                            f'z="{number(v[2])}"/>')
+            elif isinstance(v, dict) and v.get("type") == "ref":  # a medium defined at the top
+                body.append(f'{inner}<ref name="{key}" id="{v["id"]}"/>')
             elif isinstance(v, dict) and v.get("type") == "rgb":
                 body.append(f'{inner}<rgb name="{key}" value="{vector(v["value"])}"/>')
             elif isinstance(v, dict):
