@@ -25,7 +25,8 @@
     X(TEXTURED_SCALARS, "textured-scalars") /* roughness, metallic or mix weight from a texture */ \
     X(ABSORPTION, "absorption")             /* a dielectric with Beer-Lambert absorption */        \
     X(NOISE_TEXTURE, "noise-texture")       /* a procedural texture (fBm, inlined at lookups) */   \
-    X(EMISSION_TEXTURE, "emission-texture")
+    X(EMISSION_TEXTURE, "emission-texture")                                                        \
+    X(REFRACTION, "refraction") /* a dielectric: roulette follows radiance's eta^2 (shade_surface) */
 /* Scene features. INSTANCES is not only an optimisation: it must match the layout that
  * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
 #define SCENE_FEATURES(X)                                                                          \

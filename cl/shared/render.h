@@ -201,7 +201,7 @@ typedef struct {
  * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
  * expand from these lists. */
 #define PATH_STATE_FIELDS(X)                                                                       \
-    X(float4, ray_origin)          /* xyz; w: travelled (ray_origin_pack) */                       \
+    X(float4, ray_origin)          /* xyz; w: travelled or eta scale (ray_origin_pack) */          \
     X(float4, ray_direction)       /* xyz; w: pdf_w (ray_direction_pack) */                        \
     X(float4, throughput)          /* rgb path weight; w: medium (throughput_pack) */              \
     X(float4, hit)                 /* t, u, v, prim (hit_pack) */                                  \
@@ -223,13 +223,24 @@ typedef struct {
  * read with its accessor: a slot's lane stays one 16-byte load and store (the GPU's shading is
  * bound by memory traffic), and no kernel reads a bare .w or as_uint. */
 
-/* travelled: the length of the bent curve from the segment's start to this origin, which
- * intersect_closest_path adds to the hit's t (integrate_geodesic.cl); 0 for every straight ray. */
-inline float4 ray_origin_pack(float3 origin, float travelled)
-{
-    return (float4)(origin, travelled);
-}
+/* w, by the program's features: with PT_FEATURE(BLACK_HOLES) `travelled`, the length of the bent
+ * curve from the segment's start to this origin, which intersect_closest_path adds to the hit's t
+ * (integrate_geodesic.cl; 0 for every straight ray); otherwise `eta scale`, the product of eta^2
+ * over the refractions the path has made (RAY_ORIGIN_START_W at the camera: 1), which Russian
+ * roulette divides back out of the throughput (shade_surface.cl survives_roulette). Scenes with
+ * black holes keep eta scale 1. */
+inline float4 ray_origin_pack(float3 origin, float w) { return (float4)(origin, w); }
 inline float ray_origin_travelled(float4 origin) { return origin.w; }
+inline float ray_origin_eta_scale(float4 origin)
+{
+    return PT_FEATURE(BLACK_HOLES) ? 1.0f : origin.w;
+}
+#define RAY_ORIGIN_START_W (PT_FEATURE(BLACK_HOLES) ? 0.0f : 1.0f)
+/* A new straight segment from origin: travelled 0, or the path's eta scale. */
+inline float4 ray_origin_pack_eta(float3 origin, float eta_scale)
+{
+    return ray_origin_pack(origin, PT_FEATURE(BLACK_HOLES) ? 0.0f : eta_scale);
+}
 
 /* pdf_w: the solid-angle density of the BSDF sample that chose the direction, 0 if specular (and
  * for the camera ray): emission and escaped rays weigh against light sampling with it. */

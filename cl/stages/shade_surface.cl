@@ -218,9 +218,13 @@ PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint
 #ifndef PT_ROULETTE_DEPTH
 #define PT_ROULETTE_DEPTH 3u
 #endif
-PT_INLINE bool survives_roulette(float3 *beta, float u)
+PT_INLINE bool survives_roulette(float3 *beta, float eta_scale, float u)
 {
-    float q = fmin(max3(*beta), 0.95f);
+    /* The throughput without the radiance compression of the refractions so far (eta_scale:
+     * ray_origin_pack), as Mitsuba's and pbrt's roulettes: inside glass beta carries 1 / eta^2,
+     * and judging that would end twice the paths of a medium of ior 1.4 for no gain in
+     * efficiency (bench/README.md "Media against Mitsuba 3"). */
+    float q = fmin(max3(*beta) * eta_scale, 0.95f);
     if (u >= q)
         return false;
     *beta /= q;
@@ -232,8 +236,8 @@ PT_INLINE bool survives_roulette(float3 *beta, float u)
  * direction's side of tm, medium_toward) and returns true. */
 PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
                              const ShadingPoint *sp, const SurfaceBsdf *sb, Material tm,
-                             float3 beta, uint medium, uint crossings, RngKey key, uint bounce,
-                             uint depth)
+                             float3 beta, float eta_scale, uint medium, uint crossings, RngKey key,
+                             uint bounce, uint depth)
 {
     /* DIM_BSDF_U, _V, _LOBE, DIM_ROULETTE: one Sobol tuple (the lobe stratified with the direction) */
     uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
@@ -246,12 +250,18 @@ PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint sl
     bool reflects = (bs.flags & BSDF_REFLECTION) != 0u;
     if (bs.flags == 0u || (dot(wi, sp->ng) > 0.0f) != reflects)
         return false;
-    if (depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, uint_to_unit(u.w)))
+    /* A refraction compressed the radiance by 1 / eta^2 (dielectric.cl). */
+    if (PT_FEATURE(REFRACTION) && (bs.flags & BSDF_TRANSMISSION) &&
+        sb->bsdf.type == MATERIAL_DIELECTRIC) {
+        float eta = dielectric_eta(&sb->bsdf, sp->front);
+        eta_scale *= eta * eta;
+    }
+    if (depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, eta_scale, uint_to_unit(u.w)))
         return false;
     if (!(max3(beta) > 0.0f))
         return false;
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, wi);
-    ray_origin[slot] = ray_origin_pack(origin, 0.0f);
+    ray_origin[slot] = ray_origin_pack_eta(origin, eta_scale);
     ray_direction[slot] = ray_direction_pack(wi, bs.pdf_w);
     uint next = medium_toward(p, tm, sp->surf.geometric_normal, wi, medium);
     throughput[slot] = throughput_pack(beta, medium_state(next, crossings));
@@ -267,8 +277,8 @@ PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint sl
  * ray. The vertex counts toward max_depth. */
 PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *scene,
                                    const EnvMap *env, PATH_STATE_PARAMS uint slot, float3 position,
-                                   float3 d, float3 beta, uint state, float time, RngKey key,
-                                   uint bounce, uint depth)
+                                   float3 d, float3 beta, float eta_scale, uint state, float time,
+                                   RngKey key, uint bounce, uint depth)
 {
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (depth >= p->max_depth) {
@@ -294,12 +304,13 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
     uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
     float pdf_w;
     float3 wi = phase_hg_sample(g, d, uint_to_unit(u.x), uint_to_unit(u.y), &pdf_w);
-    bool survives = !(depth >= PT_ROULETTE_DEPTH && !survives_roulette(&beta, uint_to_unit(u.w)));
+    bool survives = !(depth >= PT_ROULETTE_DEPTH &&
+                      !survives_roulette(&beta, eta_scale, uint_to_unit(u.w)));
     if (!(survives && max3(beta) > 0.0f)) {
         path_depth[slot] = 0u;
         return queued;
     }
-    ray_origin[slot] = ray_origin_pack(position, 0.0f);
+    ray_origin[slot] = ray_origin_pack_eta(position, eta_scale);
     ray_direction[slot] = ray_direction_pack(wi, pdf_w);
     throughput[slot] = throughput_pack(beta, state);
     path_depth[slot] = depth + 1u;
@@ -311,7 +322,7 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
  * grows (medium_state). */
 PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
                                const ShadingPoint *sp, Material m, float4 direction, float3 beta,
-                               uint medium, uint crossings)
+                               float eta_scale, uint medium, uint crossings)
 {
     float3 d = xyz(direction);
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
@@ -321,7 +332,7 @@ PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint 
     }
     uint next = medium_toward(p, m, sp->surf.geometric_normal, d, medium);
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, d);
-    ray_origin[slot] = ray_origin_pack(origin, 0.0f);
+    ray_origin[slot] = ray_origin_pack_eta(origin, eta_scale);
     throughput[slot] = throughput_pack(beta, medium_state(next, crossings + 1u));
 }
 
@@ -341,6 +352,9 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     float3 beta = xyz(throughput4);
     EnvMap env = env_map(p, scene);
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+    /* Read only where a refraction can have changed it (the camera ray's is 1). */
+    float eta_scale = PT_FEATURE(REFRACTION) && depth > 1u
+                          ? ray_origin_eta_scale(ray_origin[slot]) : 1.0f;
     if (PT_FEATURE(MEDIA) && medium_tracks(scene, medium)) {
         /* The segment just traced runs through a medium that scatters or emits: it may end in
          * the medium before the surface (or the sky). */
@@ -355,7 +369,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         if (event == MEDIUM_EVENT_SCATTER)
             return shade_medium_vertex(p, scene, &env, PATH_STATE_ARGS slot,
                                        origin + t_event * xyz(direction), xyz(direction), beta,
-                                       state, time, key, bounce, depth);
+                                       eta_scale, state, time, key, bounce, depth);
         if (event == MEDIUM_EVENT_ABSORB) {
             shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
             path_depth[slot] = 0u;
@@ -374,7 +388,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     ShadingPoint sp = shading_point(scene, h, time, xyz(direction));
     Material m = scene->materials[sp.surf.material];
     if (PT_FEATURE(MEDIA) && m.type == MATERIAL_INTERFACE) {
-        cross_interface(p, PATH_STATE_ARGS slot, &sp, m, direction, beta, medium, crossings);
+        cross_interface(p, PATH_STATE_ARGS slot, &sp, m, direction, beta, eta_scale, medium,
+                        crossings);
         return false;
     }
     float prev_pdf_w = ray_direction_pdf_w(direction);
@@ -393,8 +408,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         ShadowRay shadow =
             connect_light(p, scene, &env, &sp, &sb, tm, beta, medium, time, key, bounce, depth);
         queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce);
-        path_continues = continue_path(p, PATH_STATE_ARGS slot, &sp, &sb, tm, beta, medium,
-                                       crossings, key, bounce, depth);
+        path_continues = continue_path(p, PATH_STATE_ARGS slot, &sp, &sb, tm, beta, eta_scale,
+                                       medium, crossings, key, bounce, depth);
     }
     add_radiance(radiance, k, gathered);
     path_depth[slot] = path_continues ? depth + 1u : 0u;

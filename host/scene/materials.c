@@ -228,6 +228,8 @@ uint32_t material_features(const Material *materials, uint32_t count, const Text
             features |= MATERIAL_FEATURE_CONDUCTOR_FRESNEL;
         if (m->type == MATERIAL_DIELECTRIC && material_may_be_rough(m))
             features |= MATERIAL_FEATURE_ROUGH_DIELECTRIC;
+        if (m->type == MATERIAL_DIELECTRIC)
+            features |= MATERIAL_FEATURE_REFRACTION;
         if (m->type == MATERIAL_DIELECTRIC &&
             (m->absorption.s[0] > 0.0f || m->absorption.s[1] > 0.0f || m->absorption.s[2] > 0.0f))
             features |= MATERIAL_FEATURE_ABSORPTION;
