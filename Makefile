@@ -246,4 +246,4 @@ $(BUILD)/host/io/volume_nvdb.o: CXXFLAGS += -std=c++17
 # The grid reader tests write their NanoVDB files with NanoVDB's own builder (tests/nvdb_fixture.cc).
 $(BUILD)/tests/test_volume_nvdb: $(BUILD)/tests/nvdb_fixture.o
 $(BUILD)/tests/nvdb_fixture.o: CXXFLAGS += -std=c++17
-$(BUILD)/tests/test_media_scene_nvdb: $(BUILD)/tests/nvdb_fixture.o
+$(BUILD)/tests/test_media_scene_nvdb $(BUILD)/tests/test_media_grid: $(BUILD)/tests/nvdb_fixture.o
