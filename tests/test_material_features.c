@@ -22,8 +22,9 @@ Test(material_features, each_scene_reports_what_it_uses)
     cr_expect(!session_sorts_materials(&s.data, SORT_MATERIALS_AUTO), "plain boxes are not sorted");
     cr_expect(session_sorts_materials(&s.data, SORT_MATERIALS_ON));
     scene_free(&s);
-    cr_expect_eq(features_of("scenes/cornell-box/sphere.json", &s), 0u,
-                 "smooth glass and a Fresnel-1 mirror need no feature");
+    cr_expect_eq(features_of("scenes/cornell-box/sphere.json", &s), MATERIAL_FEATURE_REFRACTION,
+                 "smooth glass and a Fresnel-1 mirror need only the refraction's roulette");
+    cr_expect(!session_sorts_materials(&s.data, SORT_MATERIALS_AUTO), "nor sorting");
     scene_free(&s);
     uint32_t mix = features_of("tests/scenes/mix/scene.json", &s);
     cr_expect_eq(mix, MATERIAL_FEATURE_MIX | MATERIAL_FEATURE_ROUGH_CONDUCTOR | MATERIAL_FEATURE_CONDUCTOR_FRESNEL,
@@ -32,7 +33,8 @@ Test(material_features, each_scene_reports_what_it_uses)
     cr_expect(!session_sorts_materials(&s.data, SORT_MATERIALS_OFF));
     scene_free(&s);
     uint32_t glass = features_of("tests/scenes/glass/scene.json", &s);
-    cr_expect_eq(glass, MATERIAL_FEATURE_ROUGH_DIELECTRIC | MATERIAL_FEATURE_ABSORPTION, "glass: %#x", glass);
+    cr_expect_eq(glass, MATERIAL_FEATURE_ROUGH_DIELECTRIC | MATERIAL_FEATURE_ABSORPTION |
+                            MATERIAL_FEATURE_REFRACTION, "glass: %#x", glass);
     scene_free(&s);
     uint32_t copper = features_of("tests/scenes/conductors/scene.json", &s);
     cr_expect_eq(copper, MATERIAL_FEATURE_ROUGH_CONDUCTOR | MATERIAL_FEATURE_CONDUCTOR_FRESNEL |

@@ -68,6 +68,7 @@ typedef struct {
 #define RENDER_ADAPTIVE 4u     /* window sample k traces pixel active_pixels[...] (window_pixel) */
 #define RENDER_CLAMP_INDIRECT 8u /* contributions of 2+ bounces are clamped (clamp_indirect) */
 #define RENDER_SOBOL 16u       /* the Sobol sampler (cl/core/sobol.cl), else independent numbers */
+#define RENDER_BLACK_HOLES 32u /* the scene has black holes: ray_origin's w is `travelled` */
 
 /* The samplers (render.sampler, --sampler): SAMPLER_DEFAULT (0) is "not given", and resolves to
  * SAMPLER_SOBOL (wavefront_init). X(NAME, "word"). */
@@ -223,23 +224,27 @@ typedef struct {
  * read with its accessor: a slot's lane stays one 16-byte load and store (the GPU's shading is
  * bound by memory traffic), and no kernel reads a bare .w or as_uint. */
 
-/* w, by the program's features: with PT_FEATURE(BLACK_HOLES) `travelled`, the length of the bent
- * curve from the segment's start to this origin, which intersect_closest_path adds to the hit's t
+/* w: in a scene with black holes (ray_origin_bent), `travelled`, the length of the bent curve from
+ * the segment's start to this origin, which intersect_closest_path adds to the hit's t
  * (integrate_geodesic.cl; 0 for every straight ray); otherwise `eta scale`, the product of eta^2
- * over the refractions the path has made (RAY_ORIGIN_START_W at the camera: 1), which Russian
- * roulette divides back out of the throughput (shade_surface.cl survives_roulette). Scenes with
- * black holes keep eta scale 1. */
+ * over the refractions the path has made (1 at the camera), which Russian roulette divides back
+ * out of the throughput (shade_surface.cl survives_roulette). Scenes with black holes keep eta
+ * scale 1. By the scene (RENDER_BLACK_HOLES), not only the program: a program with every feature
+ * renders a scene without black holes to the bits of the scene's own program. */
+inline bool ray_origin_bent(constant RenderParams *p)
+{
+    return PT_FEATURE(BLACK_HOLES) && (p->flags & RENDER_BLACK_HOLES);
+}
 inline float4 ray_origin_pack(float3 origin, float w) { return (float4)(origin, w); }
 inline float ray_origin_travelled(float4 origin) { return origin.w; }
-inline float ray_origin_eta_scale(float4 origin)
+inline float ray_origin_eta_scale(constant RenderParams *p, float4 origin)
 {
-    return PT_FEATURE(BLACK_HOLES) ? 1.0f : origin.w;
+    return ray_origin_bent(p) ? 1.0f : origin.w;
 }
-#define RAY_ORIGIN_START_W (PT_FEATURE(BLACK_HOLES) ? 0.0f : 1.0f)
 /* A new straight segment from origin: travelled 0, or the path's eta scale. */
-inline float4 ray_origin_pack_eta(float3 origin, float eta_scale)
+inline float4 ray_origin_pack_eta(constant RenderParams *p, float3 origin, float eta_scale)
 {
-    return ray_origin_pack(origin, PT_FEATURE(BLACK_HOLES) ? 0.0f : eta_scale);
+    return ray_origin_pack(origin, ray_origin_bent(p) ? 0.0f : eta_scale);
 }
 
 /* pdf_w: the solid-angle density of the BSDF sample that chose the direction, 0 if specular (and

@@ -15,7 +15,7 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     uint pixel = window_pixel(p, active_pixels, k), sample = window_sample(p, k);
     float3 origin, dir;
     camera_sample(p, pixel, sample, &origin, &dir);
-    ray_origin[slot] = ray_origin_pack(origin, RAY_ORIGIN_START_W);
+    ray_origin[slot] = ray_origin_pack_eta(p, origin, 1.0f);
     ray_direction[slot] = ray_direction_pack(dir, 0.0f);
     throughput[slot] = throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);

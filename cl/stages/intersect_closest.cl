@@ -36,7 +36,7 @@ PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView 
     }
     /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
      * the curve's length so far is ray_origin's travelled lane (0 for every straight ray). */
-    if (PT_FEATURE(BLACK_HOLES))
+    if (ray_origin_bent(p))
         h.t += ray_origin_travelled(ray_origin[slot]);
     hit[slot] = hit_pack(h.t, h.u, h.v, h.prim);
     if (PT_FEATURE(INSTANCES))

@@ -73,7 +73,8 @@ PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *ori
 }
 
 /* intersect_closest_path for the live paths of slots first .. first + 7 (those < n), as one packet. */
-PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint first, uint n)
+PT_INLINE void extend_packet(constant RenderParams *p, const SceneView *scene,
+                             PATH_STATE_PARAMS uint first, uint n)
 {
     uint lanes = 0;
     for (uint k = 0; k < 8u; k++)
@@ -87,7 +88,7 @@ PT_INLINE void extend_packet(const SceneView *scene, PATH_STATE_PARAMS uint firs
     vstore8(h.t, 0, t), vstore8(h.u, 0, u), vstore8(h.v, 0, v), vstore8(h.prim, 0, prim);
     for (uint k = 0; k < 8u; k++)
         if ((lanes >> k) & 1u) {
-            if (PT_FEATURE(BLACK_HOLES))
+            if (ray_origin_bent(p))
                 t[k] += ray_origin_travelled(ray_origin[first + k]); /* as intersect_closest_path */
             hit[first + k] = hit_pack(t[k], u[k], v[k], prim[k]);
         }
@@ -121,7 +122,7 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
         for (uint slot = first; slot < end; slot++)
             start_path(p, PATH_STATE_ARGS slot, first_sample + slot);
         for (bool live = true; live;) {
-            extend_packet(&scene, PATH_STATE_ARGS first, n);
+            extend_packet(p, &scene, PATH_STATE_ARGS first, n);
             for (uint slot = first; slot < end; slot++)
                 if (path_depth[slot] != 0u) {
                     extension++;

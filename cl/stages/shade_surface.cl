@@ -261,7 +261,7 @@ PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint sl
     if (!(max3(beta) > 0.0f))
         return false;
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, wi);
-    ray_origin[slot] = ray_origin_pack_eta(origin, eta_scale);
+    ray_origin[slot] = ray_origin_pack_eta(p, origin, eta_scale);
     ray_direction[slot] = ray_direction_pack(wi, bs.pdf_w);
     uint next = medium_toward(p, tm, sp->surf.geometric_normal, wi, medium);
     throughput[slot] = throughput_pack(beta, medium_state(next, crossings));
@@ -310,7 +310,7 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
         path_depth[slot] = 0u;
         return queued;
     }
-    ray_origin[slot] = ray_origin_pack_eta(position, eta_scale);
+    ray_origin[slot] = ray_origin_pack_eta(p, position, eta_scale);
     ray_direction[slot] = ray_direction_pack(wi, pdf_w);
     throughput[slot] = throughput_pack(beta, state);
     path_depth[slot] = depth + 1u;
@@ -332,7 +332,7 @@ PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint 
     }
     uint next = medium_toward(p, m, sp->surf.geometric_normal, d, medium);
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, d);
-    ray_origin[slot] = ray_origin_pack_eta(origin, eta_scale);
+    ray_origin[slot] = ray_origin_pack_eta(p, origin, eta_scale);
     throughput[slot] = throughput_pack(beta, medium_state(next, crossings + 1u));
 }
 
@@ -354,7 +354,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     /* Read only where a refraction can have changed it (the camera ray's is 1). */
     float eta_scale = PT_FEATURE(REFRACTION) && depth > 1u
-                          ? ray_origin_eta_scale(ray_origin[slot]) : 1.0f;
+                          ? ray_origin_eta_scale(p, ray_origin[slot]) : 1.0f;
     if (PT_FEATURE(MEDIA) && medium_tracks(scene, medium)) {
         /* The segment just traced runs through a medium that scatters or emits: it may end in
          * the medium before the surface (or the sky). */

@@ -182,7 +182,9 @@ bool session_sorts_materials(const SceneData *d, int request)
 {
     if (request != SORT_MATERIALS_AUTO)
         return request == SORT_MATERIALS_ON;
-    return material_features(d->materials, d->num_materials, &d->textures) != 0;
+    /* Refraction alone (a smooth dielectric) branches no more than Lambert does. */
+    return (material_features(d->materials, d->num_materials, &d->textures) &
+            ~(uint32_t)MATERIAL_FEATURE_REFRACTION) != 0;
 }
 
 void session_settle_settings(const Session *s, RenderSettings *settings, int sort_request)

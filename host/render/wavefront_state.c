@@ -137,7 +137,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) |
                       (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
                       (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u) |
-                      (sampler_resolve(s->sampler, desc->sampler) == SAMPLER_SOBOL ? RENDER_SOBOL : 0u);
+                      (sampler_resolve(s->sampler, desc->sampler) == SAMPLER_SOBOL ? RENDER_SOBOL : 0u) |
+                      (desc->num_black_holes > 0 ? RENDER_BLACK_HOLES : 0u);
     w->params.window_pixels = w->num_pixels;
     w->params.clamp_indirect = s->clamp_indirect;
     w->params_buf = state_buffer(w, "params", sizeof w->params, err);
