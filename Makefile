@@ -241,8 +241,8 @@ $(BUILD)/tools/%: $(BUILD)/tools/%.o $(BUILD)/libpt.a
 	$(Q)$(CXX) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
-# NanoVDB (io/volume_nvdb.cc, header-only) needs C++17.
-$(BUILD)/host/io/volume_nvdb.o: CXXFLAGS += -std=c++17
+# NanoVDB (io/volume_nvdb*.cc, header-only) needs C++17.
+$(BUILD)/host/io/volume_nvdb.o $(BUILD)/host/io/volume_nvdb_grid.o: CXXFLAGS += -std=c++17
 # The grid reader tests write their NanoVDB files with NanoVDB's own builder (tests/nvdb_fixture.cc).
 $(BUILD)/tests/test_volume_nvdb: $(BUILD)/tests/nvdb_fixture.o
 $(BUILD)/tests/nvdb_fixture.o: CXXFLAGS += -std=c++17
