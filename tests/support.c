@@ -153,7 +153,8 @@ void render_fixture_open_with(RenderFixture *f, const char *scene_path, int widt
 
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
 {
-    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT);
+    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT |
+                                                           FEATURE_MEDIA | FEATURE_GRID_MEDIA);
     render_fixture_load(f, test_device_built_for(one_level), scene_path, width, height,
                         INSTANCING_AUTO, false);
     cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);

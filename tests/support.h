@@ -62,7 +62,8 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
 void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
                               InstancingMode instancing);
 /* The same on a program built as pt builds it for scenes of one mesh level without cut-out
- * materials (every feature but FEATURE_INSTANCES and FEATURE_CUTOUT, the one-level BVH): the
+ * materials nor media (every feature but FEATURE_INSTANCES, FEATURE_CUTOUT and the media ones, the
+ * one-level BVH): the
  * kernels that only such programs have (trace_paths_packets). */
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height);
 void render_fixture_close(RenderFixture *f);
