@@ -50,8 +50,9 @@ inline bool medium_tracks(const SceneView *scene, uint slot)
     if (slot == 0u)
         return false;
     const global Medium *m = medium_at_slot(scene, slot);
-    return (m->flags & (MEDIUM_FLAG_SCATTERS | MEDIUM_FLAG_EMITS)) != 0u ||
-           (PT_FEATURE(GRID_MEDIA) && m->type == MEDIUM_GRID);
+    if (m->flags & (MEDIUM_FLAG_SCATTERS | MEDIUM_FLAG_EMITS))
+        return true;
+    return PT_FEATURE(GRID_MEDIA) && m->type == MEDIUM_GRID;
 }
 
 /* The pieces of [0, tmax) with a constant density majorant: one piece of majorant 1 in a
