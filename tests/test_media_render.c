@@ -20,23 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "media_fixtures.h"
 #include "support.h"
 
 static const double PI = 3.14159265358979323846;
-
-/* A closed box (x0, y0, z0) .. (x1, y1, z1) with outward fronts, as OBJ text. */
-static const char *box_obj(const char *dir, const char *name, double x0, double y0, double z0,
-                           double x1, double y1, double z1)
-{
-    char text[1024];
-    snprintf(text, sizeof text,
-             "v %g %g %g\nv %g %g %g\nv %g %g %g\nv %g %g %g\n"
-             "v %g %g %g\nv %g %g %g\nv %g %g %g\nv %g %g %g\n"
-             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n",
-             x0, y0, z0, x1, y0, z0, x1, y1, z0, x0, y1, z0, x0, y0, z1, x1, y0, z1, x1, y1, z1,
-             x0, y1, z1);
-    return test_write_file(dir, name, text);
-}
 
 /* A quad at z = z facing +z, half-size h. */
 static const char *quad_z(const char *dir, const char *name, double z, double h)

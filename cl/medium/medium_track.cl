@@ -95,6 +95,26 @@ inline float medium_density(const SceneView *scene, const global Medium *m, cons
     return s->grid ? grid_density(scene, m, grid_to_index_point(m, p)) : 1.0f;
 }
 
+/* Moves s to the next tentative collision along the pieces (a free flight against each piece's
+ * majorant sigma_bar, the piece's density majorant times st_max; a flight past the piece's end
+ * starts afresh at the next, as exponential flights may): true with the collision's t in s->start
+ * and its sigma_bar, false once the pieces are passed. */
+inline bool majorant_collision(const SceneView *scene, const global Medium *m, MajorantPieces *s,
+                               float st_max, MediumRng *rng, float *sigma_bar)
+{
+    for (;;) {
+        *sigma_bar = s->majorant * st_max;
+        float t = *sigma_bar > 0.0f ? s->start - log(1.0f - medium_rng_next(rng)) / *sigma_bar
+                                    : INFINITY;
+        if (t < s->end) {
+            s->start = t;
+            return true;
+        }
+        if (!majorant_next(scene, m, s))
+            return false;
+    }
+}
+
 /* Tracks the segment o + t d, t in [0, tmax), through medium m for the path of weight *beta:
  * returns MEDIUM_EVENT_* (a scattering's distance in *t_event), updates *beta by the tracking's
  * weights and adds to *emitted what the medium emits toward the path's start (the collision
@@ -110,15 +130,10 @@ PT_INLINE uint medium_track(const SceneView *scene, const global Medium *m, floa
     if (!majorant_first(scene, m, o, d, tmax, &s))
         return MEDIUM_EVENT_NONE;
     for (uint step = 0u; step < MEDIUM_STEP_LIMIT; step++) {
-        float sigma_bar = s.majorant * st_max;
-        float t = sigma_bar > 0.0f ? s.start - log(1.0f - medium_rng_next(rng)) / sigma_bar
-                                   : INFINITY;
-        if (!(t < s.end)) {
-            if (!majorant_next(scene, m, &s))
-                return MEDIUM_EVENT_NONE;
-            continue;
-        }
-        s.start = t;
+        float sigma_bar;
+        if (!majorant_collision(scene, m, &s, st_max, rng, &sigma_bar))
+            return MEDIUM_EVENT_NONE;
+        float t = s.start;
         float density = medium_density(scene, m, &s, o + t * d);
         float3 ca = sa * density, cs = ss * density;
         float3 cn = fmax(sigma_bar - (ca + cs), 0.0f);
@@ -157,16 +172,10 @@ PT_INLINE float3 medium_transmittance(const SceneView *scene, const global Mediu
     if (!majorant_first(scene, m, o, d, tmax, &s))
         return tr;
     for (uint step = 0u; step < MEDIUM_STEP_LIMIT; step++) {
-        float sigma_bar = s.majorant * st_max;
-        float t = sigma_bar > 0.0f ? s.start - log(1.0f - medium_rng_next(rng)) / sigma_bar
-                                   : INFINITY;
-        if (!(t < s.end)) {
-            if (!majorant_next(scene, m, &s))
-                return tr;
-            continue;
-        }
-        s.start = t;
-        float density = medium_density(scene, m, &s, o + t * d);
+        float sigma_bar;
+        if (!majorant_collision(scene, m, &s, st_max, rng, &sigma_bar))
+            return tr;
+        float density = medium_density(scene, m, &s, o + s.start * d);
         tr *= fmax(1.0f - density * st / sigma_bar, 0.0f);
         float q = max3(tr);
         if (q < 0.1f) {
