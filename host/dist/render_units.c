@@ -115,10 +115,24 @@ bool units_workers_flushed(const Worker *workers, int n, uint64_t request)
 
 /* ---- the main thread: waits, checkpoints, progress, the time limit ---- */
 
+/* Whether the render holds samples to write: a run finished here or resumed from a checkpoint,
+ * or this process has no worker of its own, or ranks take part (their units arrive with their
+ * films). */
+static bool units_hold_samples(const Shared *sh, const Worker *workers, int n)
+{
+    if (n == 0 || sh->desc->ranks || sh->film->units_done > 0)
+        return true;
+    for (int i = 0; i < n; i++)
+        if (workers[i].report->units > 0)
+            return true;
+    return false;
+}
+
 typedef struct {
     double start, next_print, next_checkpoint, deadline; /* seconds_now's clock; 1e300: never */
     uint64_t pending_checkpoint; /* the flush request a checkpoint waits for, 0: none */
     uint64_t asked;              /* MPI, ranks other than 0: the film generation rank 0 asked for */
+    bool time_up;                /* the time limit has passed: stop once the film holds a run */
 } Supervision;
 
 static Supervision supervision_start(const UnitRenderDesc *d)
@@ -223,6 +237,13 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
              * the loop spun holding sh->lock, so that no worker could take it to end (with
              * progress lines, print_progress let go of the lock now and then). */
             v.deadline = 1e300;
+            v.time_up = true;
+        }
+        /* Past the limit the render ends as soon as it holds samples: as the one-device loop
+         * (app/render_loop.c) finishes its first pass, a limit shorter than the first run still
+         * gives an image (it once gave none, when no unit had finished by then). Workers signal
+         * `changed` after each run, which wakes this loop. */
+        if (v.time_up && units_hold_samples(sh, workers, n)) {
             if (!sh->stop)
                 *stop = RENDER_STOPPED_BY_TIME_LIMIT;
             sh->stop = true;
