@@ -20,22 +20,13 @@
 
 static const double PI = 3.14159265358979323846;
 
-/* Writes a one-channel float32 Mitsuba .vol (x fastest) spanning bbox lo .. hi. */
+/* write_vol_file into dir. */
 static void write_vol(const char *dir, const char *name, int nx, int ny, int nz,
-                             const float *values, const float lo[3], const float hi[3])
+                      const float *values, const float lo[3], const float hi[3])
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "wb");
-    cr_assert(f, "cannot write %s", path);
-    int32_t header[5] = {1, nx, ny, nz, 1}; /* encoding float32, resolution, channels */
-    float bbox[6] = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
-    fwrite("VOL", 1, 3, f);
-    fputc(3, f);
-    fwrite(header, sizeof header, 1, f);
-    fwrite(bbox, sizeof bbox, 1, f);
-    fwrite(values, sizeof(float), (size_t)nx * ny * nz, f);
-    fclose(f);
+    write_vol_file(path, nx, ny, nz, values, lo, hi);
 }
 
 static float *render_scene(const char *scene, int spp, int max_depth, unsigned seed)
