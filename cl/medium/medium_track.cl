@@ -163,9 +163,7 @@ PT_INLINE float3 medium_transmittance(const SceneView *scene, const global Mediu
 {
     float3 st = xyz(m->sigma_a) + xyz(m->sigma_s);
     if (!(PT_FEATURE(GRID_MEDIA) && m->type == MEDIUM_GRID))
-        return (float3)(st.x > 0.0f ? exp(-st.x * tmax) : 1.0f,
-                        st.y > 0.0f ? exp(-st.y * tmax) : 1.0f,
-                        st.z > 0.0f ? exp(-st.z * tmax) : 1.0f);
+        return dielectric_transmittance(st, tmax); /* Beer-Lambert, exp(-st tmax) per channel */
     float st_max = max3(st);
     float3 tr = (float3)(1.0f);
     MajorantPieces s;
