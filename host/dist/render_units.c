@@ -37,11 +37,26 @@ static bool flush(Worker *k)
     return ok;
 }
 
+/* PT_TEST_HOLD_FIRST_RUN=1 (tests only: test_stop_matrix): with a time limit, device threads take
+ * their first run only once the limit has passed, the order a loaded machine's slow thread start
+ * gives by chance. */
+static void hold_first_run(Shared *sh)
+{
+    const char *hold = getenv("PT_TEST_HOLD_FIRST_RUN");
+    if (!hold || strcmp(hold, "1") != 0 || !(sh->desc->time_limit > 0))
+        return;
+    pthread_mutex_lock(&sh->lock);
+    while (!sh->time_up && !sh->stop)
+        pthread_cond_wait(&sh->changed, &sh->lock);
+    pthread_mutex_unlock(&sh->lock);
+}
+
 static void *worker_main(void *arg)
 {
     Worker *k = arg;
     Shared *sh = k->sh;
     const UnitGrid *g = &sh->desc->grid;
+    hold_first_run(sh);
     for (;;) {
         pthread_mutex_lock(&sh->lock);
         bool stop = sh->stop || units_stop_requested(sh);
@@ -132,7 +147,6 @@ typedef struct {
     double start, next_print, next_checkpoint, deadline; /* seconds_now's clock; 1e300: never */
     uint64_t pending_checkpoint; /* the flush request a checkpoint waits for, 0: none */
     uint64_t asked;              /* MPI, ranks other than 0: the film generation rank 0 asked for */
-    bool time_up;                /* the time limit has passed: stop once the film holds a run */
 } Supervision;
 
 static Supervision supervision_start(const UnitRenderDesc *d)
@@ -237,13 +251,14 @@ static bool supervise(Shared *sh, Worker *workers, int n, UnitRenderReport *repo
              * the loop spun holding sh->lock, so that no worker could take it to end (with
              * progress lines, print_progress let go of the lock now and then). */
             v.deadline = 1e300;
-            v.time_up = true;
+            sh->time_up = true;
+            pthread_cond_broadcast(&sh->changed);
         }
         /* Past the limit the render ends as soon as it holds samples: as the one-device loop
          * (app/render_loop.c) finishes its first pass, a limit shorter than the first run still
          * gives an image (it once gave none, when no unit had finished by then). Workers signal
          * `changed` after each run, which wakes this loop. */
-        if (v.time_up && units_hold_samples(sh, workers, n)) {
+        if (sh->time_up && units_hold_samples(sh, workers, n)) {
             if (!sh->stop)
                 *stop = RENDER_STOPPED_BY_TIME_LIMIT;
             sh->stop = true;

@@ -37,6 +37,7 @@ struct Shared {
     UnitScheduler sched;
     UnitFilm *film;
     bool stop;              /* take no new runs (a signal, the time limit, a failure) */
+    bool time_up;           /* the time limit has passed (the render stops once it holds samples) */
     uint64_t flush_request; /* workers with flushed below it move their film to the host's */
     int running;
     double merge_seconds;
