@@ -26,6 +26,7 @@ static const char *fresh_cache(void)
     unsetenv("PT_CL_OPTIONS");
     unsetenv("PT_KERNEL_CACHE_MB");
     unsetenv("PT_PROGRAM_PARTS");
+    unsetenv("PT_CACHE_BINARIES");
     return dir;
 }
 
@@ -201,4 +202,79 @@ Test(kernel_cache, program_parts_built_when_needed, .timeout = 900)
     clReleaseKernel(aov);
     device_close(&whole);
     unsetenv("PT_PROGRAM_PARTS");
+}
+
+/* The one entry's key and size (the cache holds exactly one). */
+static uint64_t only_entry(long *size)
+{
+    DIR *d = opendir(kernel_cache_dir());
+    cr_assert(d);
+    unsigned long long key = 0;
+    int found = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (sscanf(e->d_name, "kernels-%16llx-v2.bin", &key) == 1 && !strstr(e->d_name, ".tmp")) {
+            char path[1200];
+            snprintf(path, sizeof path, "%s/%s", kernel_cache_dir(), e->d_name);
+            struct stat st;
+            cr_assert_eq(stat(path, &st), 0);
+            *size = (long)st.st_size;
+            found++;
+        }
+    closedir(d);
+    cr_assert_eq(found, 1, "one entry");
+    return key;
+}
+
+static bool build_cornell_part(Device *dev, Error *err)
+{
+    return device_open(dev, "cpu", err) && device_build(dev, 0, NULL, NULL, err);
+}
+
+/* PoCL keeps its programs itself: pt's entry is a small marker, not a binary (asking PoCL for one
+ * compiles every kernel); the marker makes the next build a cache hit, and an entry that is not a
+ * marker is rebuilt over. */
+Test(kernel_cache, pocl_entry_is_a_marker, .timeout = 900)
+{
+    fresh_cache();
+    Device a, b, c, d;
+    Error err = {0};
+    cr_assert(build_cornell_part(&a, &err), "%s", err.message);
+    cr_assert(strstr(a.platform_name, "Portable Computing Language"), "the test device is PoCL");
+    cr_expect_not(a.cache_hit);
+    long size = 0;
+    uint64_t key = only_entry(&size);
+    cr_expect_lt(size, 1024, "a marker, not a program binary (%ld bytes)", size);
+    cr_assert(build_cornell_part(&b, &err), "%s", err.message);
+    cr_expect(b.cache_hit, "the marker is a hit");
+    cl_kernel trace = device_kernel(&b, "trace_paths");
+    cr_expect_not_null(trace);
+    clReleaseKernel(trace);
+    /* A whole entry (its checksum right) that is not a marker: rebuilt, and the marker is back. */
+    kernel_cache_store(key, (const unsigned char *)"not a marker", 12);
+    cr_assert(build_cornell_part(&c, &err), "%s", err.message);
+    cr_expect_not(c.cache_hit, "a foreign entry is no hit");
+    cr_assert(build_cornell_part(&d, &err), "%s", err.message);
+    cr_expect(d.cache_hit, "the rebuild stored the marker again");
+    device_close(&a), device_close(&b), device_close(&c), device_close(&d);
+}
+
+/* PT_CACHE_BINARIES=1 stores the program binary on PoCL too, and the next build loads it. */
+Test(kernel_cache, binaries_when_asked, .timeout = 900)
+{
+    fresh_cache();
+    setenv("PT_CACHE_BINARIES", "1", 1);
+    Device a, b;
+    Error err = {0};
+    cr_assert(build_cornell_part(&a, &err), "%s", err.message);
+    cr_expect_not(a.cache_hit);
+    long size = 0;
+    only_entry(&size);
+    cr_expect_gt(size, 64 << 10, "a program binary (%ld bytes)", size);
+    cr_assert(build_cornell_part(&b, &err), "%s", err.message);
+    cr_expect(b.cache_hit, "the binary is loaded");
+    cl_kernel trace = device_kernel(&b, "trace_paths");
+    cr_expect_not_null(trace);
+    clReleaseKernel(trace);
+    device_close(&a), device_close(&b);
+    unsetenv("PT_CACHE_BINARIES");
 }

@@ -163,6 +163,41 @@ static void store_in_cache(cl_program program, uint64_t key)
     free(binary);
 }
 
+/* Whether the driver keeps each program it builds in a disk cache of its own, so that pt's cache
+ * holds only a marker (below) instead of the binary. PoCL does ($POCL_CACHE_DIR, by default
+ * $XDG_CACHE_HOME/pocl), and asking PoCL for a binary makes it compile every kernel of the
+ * program for a generic work-group size, used or not, before the ones a render launches are
+ * compiled again for their real size: 9 s of a cold Cornell-box run here against 1.4 s
+ * (bench/README.md, "Kernel builds on PoCL"). PT_CACHE_BINARIES=1 stores binaries anyway (the
+ * tests use it to keep that path covered on PoCL). */
+static bool driver_keeps_programs(const Device *dev, bool *keeps, Error *err)
+{
+    bool binaries;
+    if (!env_flag("PT_CACHE_BINARIES", false, &binaries, err))
+        return false;
+    *keeps = !binaries && strstr(dev->platform_name, "Portable Computing Language") != NULL;
+    return true;
+}
+
+/* A driver-kept program's entry: this text instead of the binary. It records that the program was
+ * built once with the driver's cache at the folder in the key (a cleared driver cache makes the
+ * next build a silent compile, never a wrong program: the source is always given). */
+static const char driver_marker[] = "pt: the driver keeps this program in its own cache\n";
+
+static bool marker_in_cache(uint64_t key)
+{
+    unsigned char *data = NULL;
+    size_t size = 0;
+    if (!kernel_cache_load(key, &data, &size))
+        return false;
+    bool marker = size == sizeof driver_marker && memcmp(data, driver_marker, size) == 0;
+    free(data);
+    if (!marker)
+        warn("kernel cache entry %016llx is not a driver-kept program's: rebuilding",
+             (unsigned long long)key);
+    return marker;
+}
+
 static bool build_notice = true;
 
 void device_set_build_notice(bool on) { build_notice = on; }
@@ -203,14 +238,27 @@ static bool build_part(Device *dev, int part, Error *err)
         snprintf(options, sizeof options, "%s", dev->options);
     else
         snprintf(options, sizeof options, "%s -DPT_PARTS=%uu", dev->options, program_parts[part].bit);
+    bool driver_keeps;
+    if (!driver_keeps_programs(dev, &driver_keeps, err))
+        return false;
     double start = seconds_now();
+    /* A driver-kept program's marker is only as good as the driver's cache it speaks for. */
+    const char *driver_cache = getenv("POCL_CACHE_DIR");
     const char *key_parts[] = {dev->source, options, dev->name, dev->platform_name,
-                               dev->driver_version};
+                               dev->driver_version,
+                               driver_keeps ? (driver_cache ? driver_cache : "default") : "binary"};
     uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
-    cl_program program = dev->use_cache ? build_from_cache(dev, options, key) : NULL;
+    cl_program program = NULL;
+    bool hit = false;
+    if (dev->use_cache && driver_keeps)
+        hit = marker_in_cache(key);
+    else if (dev->use_cache)
+        hit = (program = build_from_cache(dev, options, key)) != NULL;
     if (!program) {
-        dev->cache_hit = false;
-        announce_build(dev, part);
+        if (!hit) {
+            dev->cache_hit = false;
+            announce_build(dev, part);
+        }
         cl_int status;
         const char *sources[1] = {dev->source};
         program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
@@ -219,8 +267,12 @@ static bool build_part(Device *dev, int part, Error *err)
         if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS)
             return build_failed(dev, program, options, status, err);
         CL_CHECK_ERR(status, "clBuildProgram");
-        if (dev->use_cache)
-            store_in_cache(program, key);
+        if (dev->use_cache && !hit) {
+            if (driver_keeps)
+                kernel_cache_store(key, (const unsigned char *)driver_marker, sizeof driver_marker);
+            else
+                store_in_cache(program, key);
+        }
     }
     dev->programs[part] = program;
     dev->build_seconds += seconds_now() - start;

@@ -67,6 +67,7 @@ def env_cases():
                 ("PT_BVH_QUANTIZED", ["2", "x", "", "0", "1"]),
                 ("PT_NO_CACHE", ["1", "0", "yes", ""]),
                 ("PT_KERNEL_CACHE_MB", ["0", "-1", "abc", "1", "", "99999999999"]),
+                ("PT_CACHE_BINARIES", ["2", "x", ""]),
                 ("PT_PROGRAM_PARTS", ["2", "x", ""]),
                 ("PT_MEGAKERNEL", ["0", "1", "2", "on", ""]),
                 ("PT_PACKETS", ["0", "1", "2", "off", ""]),
@@ -118,3 +119,8 @@ def env_cases():
                          ("dev-zero", 'rm "$f" && ln -s /dev/zero "$f"'),
                          ("read-only-folder", 'chmod 555 cache/pt')]:
         case("cache-" + name, scene, base, "ok", env=cache_env, setup=copy + damage + "; done")
+        # The same damage to a program binary (the warm cache has one: replay.py's second warm-up;
+        # on PoCL pt stores binaries only when asked to, kernel_cache.h).
+        if name in ("empty", "32-bytes", "half", "flipped", "garbage"):
+            case("cache-binary-" + name, scene, base, "ok",
+                 env=dict(cache_env, PT_CACHE_BINARIES="1"), setup=copy + damage + "; done")
