@@ -82,7 +82,6 @@ typedef cl_uint uint;
         FIELD(Instance, num_prims)                                                                  \
     STRUCT(InstanceMotion, 160) FIELD(InstanceMotion, translation) FIELD(InstanceMotion, rotation)  \
         FIELD(InstanceMotion, scale)                                                                \
-    STRUCT(EnvAlias, 8) FIELD(EnvAlias, prob) FIELD(EnvAlias, alias)                               \
     STRUCT(AnalyticLight, 80) FIELD(AnalyticLight, position) FIELD(AnalyticLight, color)            \
         FIELD(AnalyticLight, axis) FIELD(AnalyticLight, params) FIELD(AnalyticLight, type)          \
         FIELD(AnalyticLight, pad0) FIELD(AnalyticLight, pad1) FIELD(AnalyticLight, pad2)          \

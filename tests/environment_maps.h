@@ -112,7 +112,7 @@ static inline void write_ball_obj(const char *dir, bool floor)
 }
 
 typedef struct {
-    cl_mem texels, alias;
+    cl_mem texels, cdf;
 } EnvBuffers;
 
 /* The map's buffers as the first arguments of an env_test.cl kernel (ENV_TEST_PARAMS); returns
@@ -122,11 +122,12 @@ static inline cl_uint env_args(Device *dev, cl_kernel k, const Environment *env,
     Error err = {0};
     size_t n = (size_t)env->width * env->height;
     b->texels = device_buffer(dev, "env_texels", CL_MEM_READ_ONLY, n * sizeof(float4), env->texels, &err);
-    b->alias = device_buffer(dev, "env_alias", CL_MEM_READ_ONLY, n * sizeof(EnvAlias), env->alias, &err);
+    b->cdf = device_buffer(dev, "env_cdf", CL_MEM_READ_ONLY, (env->height + n) * sizeof(uint32_t), env->cdf,
+                           &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     cl_uint a = 0;
     KERNEL_ARG(k, a++, b->texels);
-    KERNEL_ARG(k, a++, b->alias);
+    KERNEL_ARG(k, a++, b->cdf);
     KERNEL_ARG(k, a++, env->width);
     KERNEL_ARG(k, a++, env->height);
     KERNEL_ARG(k, a++, env->rotation);
@@ -136,7 +137,7 @@ static inline cl_uint env_args(Device *dev, cl_kernel k, const Environment *env,
 static inline void env_buffers_release(EnvBuffers *b)
 {
     clReleaseMemObject(b->texels);
-    clReleaseMemObject(b->alias);
+    clReleaseMemObject(b->cdf);
 }
 
 #endif

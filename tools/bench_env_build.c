@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 /* bench_env_build: the host side of a large environment map. Generates a sky in memory (a
  * gradient, noise and a small sun), times environment_build (the bilinear-aware sampling table:
- * 3 x 3 maxima, the alias table over the texels, pdfs; best of --reps) at 4096 x 2048 (the issue's
+ * 3 x 3 maxima, the rows' and texels' CDFs, pdfs; best of --reps) at 4096 x 2048 (the issue's
  * goal: < 0.2 s) and at 8192 x 4096, and prints the device memory a map takes: env_texels (float4
- * per texel) + env_alias (8 bytes per texel). --write-hdr FILE also writes the 8192 x 4096 map as
+ * per texel) + env_cdf (4 bytes per texel and per row). --write-hdr FILE also writes the 8192 x 4096 map as
  * a Radiance .hdr (for tools/bench_env_8k.sh's render). Appends to --csv FILE when given.
  *   build/tools/bench_env_build [--reps 3] [--write-hdr FILE] [--csv FILE] */
 #include <math.h>
@@ -48,7 +48,7 @@ static void cpu_seconds(double *user, double *sys)
 
 static uint64_t device_bytes(uint64_t w, uint64_t h)
 {
-    return w * h * 16u + w * h * sizeof(EnvAlias);
+    return w * h * 16u + (w * h + h) * sizeof(uint32_t);
 }
 
 int main(int argc, char **argv)
@@ -86,7 +86,7 @@ int main(int argc, char **argv)
         uint64_t bytes = device_bytes((uint64_t)w, (uint64_t)h);
         double user = (user1 - user0) / reps, sys = (sys1 - sys0) / reps;
         printf("%dx%d: sampling tables built in %.3f s (best of %d, mean %.3f s: CPU %.3f s user + %.3f s "
-               "system, the page faults of fresh memory); device memory %.1f MiB (env_texels %.1f + alias table %.1f)\n",
+               "system, the page faults of fresh memory); device memory %.1f MiB (env_texels %.1f + CDFs %.1f)\n",
                w, h, best, reps, total / reps, user, sys, bytes / 1048576.0, (double)w * h * 16 / 1048576.0,
                (bytes - (double)w * h * 16) / 1048576.0);
         if (csv)

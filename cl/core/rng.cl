@@ -123,8 +123,7 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
 #define DIM_MIX 9u        /* which leaf of a mix material */
 #define DIM_OPACITY 10u   /* alpha cut-out pass-through of the closest hit */
 #define DIM_SHADOW_OPACITY 11u /* the same along the bounce's shadow ray */
-#define DIM_ENV_PICK 12u  /* the environment map's alias-table entry (32 bits) */
-#define DIM_ENV_COIN 13u  /* that entry or its alias */
+/* 12 and 13 are free (they drew the environment map's alias-table entry and coin). */
 #define DIM_MEDIUM 15u    /* the first free-flight distance; seeds the tracking's stream */
 
 inline float rng_from_key(RngKey key, uint dimension) { return uint_to_unit(rng_bits(key, dimension)); }

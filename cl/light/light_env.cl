@@ -6,9 +6,10 @@
  *
  * Radiance is the bilinear interpolation of the four texel centres around the direction (wrapping
  * in u, clamped in v), everywhere: escaped rays and next-event estimation see the same function.
- * Sampling is piecewise constant per texel cell (a texel from the alias table over all texels, O(1),
- * then a uniform point in its cell), with each texel's weight the largest luminance of
- * the 3 x 3 texels around it (the only texels bilinear filtering reads inside its cell) x sin(theta
+ * Sampling is piecewise constant per texel cell (a row by inverting the rows' CDF with u2, a texel
+ * by inverting its row's CDF with u1, then a point in the cell from what is left of u1 and u2: a
+ * monotone map, so a stratified (u1, u2) stays stratified over the map, which an alias table does
+ * not do), with each texel's weight the largest luminance of the 3 x 3 texels around it (the only texels bilinear filtering reads inside its cell) x sin(theta
  * of its row): the density is > 0 wherever the bilinear radiance is > 0 (except at the two poles,
  * a set of measure zero). env_pdf_w is exactly the density env_sample draws from, so NEE divides by
  * the true pdf of its samples and the MIS weights of both strategies sum to 1 for every direction:
@@ -16,14 +17,14 @@
 
 typedef struct {
     const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
-    const global EnvAlias *alias;     /* width * height: the alias table over the texels */
+    const global uint *cdf;           /* height + width * height: the CDFs (environment.h) */
     uint width, height;
     float rotation;                   /* theta as a fraction of a turn */
 } EnvMap;
 
 inline EnvMap env_map(constant RenderParams *p, const SceneView *scene)
 {
-    EnvMap env = {scene->env_texels, scene->env_alias, p->scene.env_width, p->scene.env_height,
+    EnvMap env = {scene->env_texels, scene->env_cdf, p->scene.env_width, p->scene.env_height,
                   p->scene.env_rotation};
     return env;
 }
@@ -88,16 +89,33 @@ typedef struct {
     float pdf_w;
 } EnvSample;
 
-/* A direction in proportion to each texel's weight (the 3 x 3 neighbourhood's largest luminance x
- * sin(theta) of the row): the texel from the alias table (an entry uniform from 32 bits by a
- * multiply-high, as light_pick, then it or its alias by an independent coin; texels[].w is the
- * table's exact probability of each texel x W x H), then uniformly within its uv cell by u1, u2. */
-inline EnvSample env_sample(const EnvMap *env, uint pick_bits, float u_coin, float u1, float u2)
+/* The interval of a 32-bit fixed-point CDF of n entries (cdf[0] = 0, the end 2^32 implied) that
+ * holds x: the largest k with cdf[k] <= x (so cdf[k] <= x < its end: an interval of width 0 is
+ * never found); *rest gets where x lies in it, in [0, 1). */
+inline uint cdf_invert(const global uint *cdf, uint n, uint x, float *rest)
 {
-    uint t = mul_hi(pick_bits, env->width * env->height);
-    EnvAlias slot = env->alias[t];
-    t = u_coin < slot.prob ? t : slot.alias;
-    uint j = t / env->width, i = t - j * env->width;
+    uint lo = 0u, hi = n; /* cdf[lo] <= x; hi == n or cdf[hi] > x */
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) >> 1;
+        if (cdf[mid] <= x)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    ulong end = hi < n ? (ulong)cdf[hi] : 4294967296ul;
+    *rest = fmin((float)(x - cdf[lo]) / (float)(end - (ulong)cdf[lo]), 0x1.fffffep-1f);
+    return lo;
+}
+
+/* A direction in proportion to each texel's weight (the 3 x 3 neighbourhood's largest luminance x
+ * sin(theta) of the row): the row from the rows' CDF by the 32 bits v_bits, the texel from that
+ * row's CDF by u_bits, the point in its uv cell from what is left of each (texels[].w is the
+ * probability of each texel x W x H, from the same integers). */
+inline EnvSample env_sample(const EnvMap *env, uint u_bits, uint v_bits)
+{
+    float u1, u2;
+    uint j = cdf_invert(env->cdf, env->height, v_bits, &u2);
+    uint i = cdf_invert(env->cdf + env->height + j * env->width, env->width, u_bits, &u1);
     float u = ((float)i + u1) / (float)env->width, v = ((float)j + u2) / (float)env->height;
     /* phi = 2 pi (u - 1/2 - rotation), theta = pi v. */
     float2 phi = cos_sin_turns(u - 0.5f - env->rotation), theta = cos_sin_turns(0.5f * v);

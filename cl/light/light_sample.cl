@@ -47,9 +47,8 @@ inline float emitter_area_ratio(const SceneView *scene, uint prim, uint instance
 }
 
 /* A light point seen from `from` for bounce `bounce` of the path with key `key`: its dimensions
- * DIM_LIGHT_PICK and DIM_LIGHT_COIN choose the light, DIM_ENV_PICK and DIM_ENV_COIN the environment
- * map's texel when it is chosen (independent numbers: the light's are spent on the light),
- * DIM_LIGHT_U and DIM_LIGHT_V the point on it. time: the path's shutter fraction (where a moving
+ * DIM_LIGHT_PICK and DIM_LIGHT_COIN choose the light, DIM_LIGHT_U and DIM_LIGHT_V the point on it
+ * (on the environment map: the texel and the point in it, env_sample). time: the path's shutter fraction (where a moving
  * instance's emitters are). */
 PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, uint num_lights,
                                    float3 from, float time, RngKey key, uint bounce)
@@ -65,8 +64,7 @@ PT_INLINE LightSample light_sample(const SceneView *scene, const EnvMap *env, ui
     LightEntry entry = light_pick(lights, num_lights, bits.z, uint_to_unit(bits.w));
     float u1 = uint_to_unit(bits.x), u2 = uint_to_unit(bits.y);
     if (PT_FEATURE(ENV) && entry.triangle == LIGHT_ENVIRONMENT) {
-        EnvSample es = env_sample(env, rng_bounce_bits(key, bounce, DIM_ENV_PICK),
-                                  rng_bounce(key, bounce, DIM_ENV_COIN), u1, u2);
+        EnvSample es = env_sample(env, bits.x, bits.y);
         ls.position = from;
         ls.normal = -es.direction;
         ls.direction = es.direction;

@@ -96,12 +96,6 @@ typedef struct {
  * indices stay far below (BVH_QUANTIZED_MAX_TRIANGLES). */
 #define LIGHT_ANALYTIC_BASE 0x80000000u
 
-/* One entry of the environment map's alias table over its texels (host/scene/environment.c):
- * texel i is kept with probability prob, else its alias is taken. */
-typedef struct {
-    float prob;
-    uint alias;
-} EnvAlias;
 
 /* Analytic lights (JSON "lights", shared/DESIGN.md "Lights"; host/scene/analytic_lights.c). */
 #define LIGHT_POINT 0u
@@ -167,7 +161,7 @@ typedef struct {
     X(LightEntry, lights)                                                                           \
     X(AnalyticLight, analytic_lights)                                                               \
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
-    X(EnvAlias, env_alias)     /* the texels' alias table, env_width * env_height */           \
+    X(uint, env_cdf)           /* its sampling CDFs, env_height + env_width * env_height */    \
     X(Instance, instances)                                                                          \
     X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */         \
     X(Medium, media)           /* medium slot k is media[k - 1] (shared/medium.h) */              \

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-/* environment.c: reading the environment map and building its sampling distribution (an alias
- * table over the texels). */
+/* environment.c: reading the environment map and building its sampling distribution (a marginal
+ * CDF over the rows and a conditional one per row, in 32-bit fixed point). */
 #include "scene/environment.h"
 
 #include <limits.h>
@@ -26,17 +26,17 @@ static float luminance(const float4 *c) { return 0.2126f * c->s[0] + 0.7152f * c
  * its own texels and per-row sums, which are added in row order afterwards, so the tables are the
  * same bits on any number of cores. */
 #define ROWS_PER_THREAD 16
-#define ALIAS_UNSET UINT32_MAX
+#define CDF_ONE 4294967296.0 /* 2^32: the fixed point's 1 */
 
 typedef struct {
     const float *rgb;       /* the decoded image, 3 floats per texel */
     float4 *texels;
-    EnvAlias *alias;
+    uint32_t *cdf;          /* Environment.cdf: h row entries, then w per row */
+    float *weight;          /* per texel: the 3 x 3 maximum (scratch) */
     size_t w, h;
     float scale;
     double *row_sum;        /* per row: luminance sum (convert) or weight sum (weights) */
     size_t *row_clamped;    /* per row: texel values clamped to 0 */
-    const double *row_scale;
 } EnvPass;
 
 /* texels = clamp(rgb) x scale, w = luminance. */
@@ -64,8 +64,8 @@ static void convert_rows(void *ctx, size_t begin, size_t end)
 /* A texel's sampling weight is the largest luminance of the 3 x 3 texels around it (wrapping in u,
  * clamped in v) x sin(theta of its row centre): bilinear filtering inside a texel's cell reads only
  * those texels, so the weight is > 0 wherever the displayed radiance is (see
- * cl/light/light_env.cl). This pass puts the 3 x 3 maximum in alias[].prob (scratch until the
- * table is built) and each row's sum of them in row_sum. */
+ * cl/light/light_env.cl). This pass puts the 3 x 3 maximum in weight[] and each row's sum of them
+ * in row_sum. */
 static void weight_rows(void *ctx, size_t begin, size_t end)
 {
     EnvPass *e = ctx;
@@ -79,125 +79,81 @@ static void weight_rows(void *ctx, size_t begin, size_t end)
             float m = 0.0f;
             for (int r = 0; r < 3; r++)
                 m = fmaxf(m, fmaxf(fmaxf(rows[r][left].s[3], rows[r][i].s[3]), rows[r][right].s[3]));
-            e->alias[j * w + i].prob = m;
+            e->weight[j * w + i] = m;
             row += (double)m;
         }
         e->row_sum[j] = row;
     }
 }
 
-/* texels[].w = the 3 x 3 maximum, alias[] = {the weight scaled to mean 1 as a float (for telling
- * small from large), ALIAS_UNSET}; row_scale already holds sin(theta) x n / total. */
-static void init_alias_rows(void *ctx, size_t begin, size_t end)
+/* Fixed point of the cumulative sum `below` of a total `total`: round(2^32 below / total), at most
+ * 2^32 - 1 (the end of the last interval, 2^32, is implied). Monotone in `below`, so the
+ * intervals never overlap; an interval of width 0 is never drawn. */
+static uint32_t fixed_cdf(double below, double total)
+{
+    double f = floor(below / total * CDF_ONE + 0.5);
+    return f >= CDF_ONE - 1.0 ? UINT32_MAX : (uint32_t)f;
+}
+
+/* The width of interval k of a fixed-point CDF of n entries (the last one ends at 2^32). */
+static double cdf_width(const uint32_t *cdf, size_t n, size_t k)
+{
+    return (k + 1 < n ? (double)cdf[k + 1] : CDF_ONE) - (double)cdf[k];
+}
+
+/* Each row's conditional CDF over its texels' weights (a row of weight 0 gets all zeros: its
+ * marginal interval has width 0, it is never drawn). */
+static void conditional_rows(void *ctx, size_t begin, size_t end)
 {
     EnvPass *e = ctx;
-    for (size_t j = begin; j < end; j++)
+    for (size_t j = begin; j < end; j++) {
+        uint32_t *row = e->cdf + e->h + j * e->w;
+        const float *wt = e->weight + j * e->w;
+        double below = 0.0;
         for (size_t i = 0; i < e->w; i++) {
-            size_t t = j * e->w + i;
-            float m = e->alias[t].prob;
-            e->texels[t].s[3] = m;
-            e->alias[t] = (EnvAlias){(float)((double)m * e->row_scale[j]), ALIAS_UNSET};
-        }
-}
-
-/* The first index >= i not yet in the table whose scaled weight is < 1 (small) or >= 1 (large).
- * A large entry keeps its weight in prob until it is finished, a small one for good. */
-static size_t next_small(const EnvAlias *a, size_t n, size_t i)
-{
-    while (i < n && !(a[i].alias == ALIAS_UNSET && a[i].prob < 1.0f))
-        i++;
-    return i;
-}
-static size_t next_large(const EnvAlias *a, size_t n, size_t i)
-{
-    while (i < n && !(a[i].alias == ALIAS_UNSET && a[i].prob >= 1.0f))
-        i++;
-    return i;
-}
-
-/* Texel t's weight scaled to mean 1, in double: its 3 x 3 maximum (texels[t].w until the table
- * is built) x its row's scale. */
-static double scaled_weight(const float4 *texels, const double *row_scale, size_t w, size_t t)
-{
-    return (double)texels[t].s[3] * row_scale[t / w];
-}
-
-/* Vose's alias table over the texels in one sweep (O(n), no work lists): small entries in index
- * order each fill their slot from the current large entry, whose residual weight is kept in
- * double; a large entry whose residual drops below 1 becomes small and fills its own slot from the
- * next large one. On entry a[t] = {the scaled weight as a float, for telling small from large,
- * ALIAS_UNSET}; the sweep takes the residuals from the double weights, so each small entry's float
- * rounding lands on its own large partner (relative 1e-7), not all of them on the last entry.
- * texels[t].w becomes n x the probability that the table picks texel t, prob_t + the sum over the
- * entries j aliasing to t of (1 - prob_j), summed in double from the stored float probs: exactly
- * what env_sample draws. (An entry's texels[].w is written when it is finished: the large entry a
- * slot aliases to is the one being filled then, so its receivers are all known.) */
-static void build_alias(EnvAlias *a, float4 *texels, const double *row_scale, size_t w, size_t n)
-{
-    size_t s = next_small(a, n, 0), l = next_large(a, n, 0), fallback = l;
-    double residual = l < n ? scaled_weight(texels, row_scale, w, l) : 0.0, received = 0.0; /* of l */
-    while (s < n && l < n) {
-        double q = scaled_weight(texels, row_scale, w, s);
-        float p = (float)q;
-        a[s].prob = p, a[s].alias = (uint32_t)l;
-        texels[s].s[3] = p;
-        residual -= 1.0 - q;
-        received += 1.0 - (double)p;
-        s = next_small(a, n, s + 1);
-        while (residual < 1.0) { /* l turns small: it keeps `residual` of its slot */
-            size_t next = next_large(a, n, l + 1);
-            if (next >= n)
-                break; /* rounding only: what is left weighs 1 per slot */
-            float kept = (float)fmax(residual, 0.0);
-            a[l].prob = kept, a[l].alias = (uint32_t)next;
-            texels[l].s[3] = (float)(received + (double)kept);
-            residual = scaled_weight(texels, row_scale, w, next) - (1.0 - fmax(residual, 0.0));
-            received = 1.0 - (double)kept;
-            l = fallback = next;
-        }
-        if (residual < 1.0 && next_large(a, n, l + 1) >= n)
-            break;
-    }
-    /* What is left weighs 1 per slot up to rounding: each keeps its own slot. */
-    if (l < n) {
-        a[l].prob = 1.0f, a[l].alias = (uint32_t)l;
-        texels[l].s[3] = (float)(received + 1.0);
-    }
-    for (size_t t = s < l ? s : l; t < n; t++) { /* all before the two scans are in the table */
-        if (a[t].alias != ALIAS_UNSET)
-            continue;
-        if (a[t].prob > 0.0f || fallback >= n) {
-            a[t].prob = 1.0f, a[t].alias = (uint32_t)t;
-            texels[t].s[3] = 1.0f;
-        } else { /* a black texel must never be drawn: its slot goes to a bright one */
-            a[t].prob = 0.0f, a[t].alias = (uint32_t)fallback;
-            texels[t].s[3] = 0.0f;
-            texels[fallback].s[3] += 1.0f;
+            row[i] = e->row_sum[j] > 0.0 ? fixed_cdf(below, e->row_sum[j]) : 0u;
+            below += (double)wt[i];
         }
     }
 }
 
-/* The sampling table: the texels' weights scaled to mean 1, then the alias table and texels[].w,
- * the pdf per unit uv area. Returns the total weight (0: the map is black). e->row_sum: h doubles
- * of scratch; row_scale: h doubles. */
-static double build_tables(Environment *env, EnvPass *e, double *row_scale)
+/* texels[].w = W x H x the probability env_sample draws the texel with: the product of its row's
+ * and its own interval widths / 2^64, from the stored integers, so the pdf of the MIS weights is
+ * exactly the density of the samples. */
+static void texel_pdf_rows(void *ctx, size_t begin, size_t end)
+{
+    EnvPass *e = ctx;
+    double n = (double)e->w * (double)e->h;
+    for (size_t j = begin; j < end; j++) {
+        double row = cdf_width(e->cdf, e->h, j) / CDF_ONE;
+        const uint32_t *cond = e->cdf + e->h + j * e->w;
+        for (size_t i = 0; i < e->w; i++)
+            e->texels[j * e->w + i].s[3] = (float)(n * row * (cdf_width(cond, e->w, i) / CDF_ONE));
+    }
+}
+
+/* The sampling tables: each texel's weight (its 3 x 3 maximum x sin theta of its row), the
+ * marginal CDF of the rows' weights, each row's conditional CDF, and texels[].w, the pdf per unit
+ * uv area. Inverting two CDFs (not an alias table, which pt used before) keeps a stratified (u1,
+ * u2) stratified over the map: the low-discrepancy sampler's points stay spread over the texels.
+ * Returns the total weight (0: the map is black). e->row_sum: h doubles of scratch. */
+static double build_tables(EnvPass *e)
 {
     const double pi = 3.14159265358979323846;
-    size_t w = e->w, h = e->h;
+    size_t h = e->h;
     parallel_for(h, ROWS_PER_THREAD, weight_rows, e);
+    parallel_for(h, ROWS_PER_THREAD, conditional_rows, e);
     double total = 0.0;
-    for (size_t j = 0; j < h; j++) {
-        row_scale[j] = sin(pi * ((double)j + 0.5) / (double)h);
-        total += e->row_sum[j] * row_scale[j];
-    }
+    for (size_t j = 0; j < h; j++)
+        total += e->row_sum[j] * sin(pi * ((double)j + 0.5) / (double)h);
     if (!(total > 0.0) || !isfinite(total))
         return 0.0;
-    double n = (double)w * (double)h;
-    for (size_t j = 0; j < h; j++)
-        row_scale[j] *= n / total;
-    e->row_scale = row_scale;
-    parallel_for(h, ROWS_PER_THREAD, init_alias_rows, e);
-    build_alias(env->alias, env->texels, row_scale, w, w * h);
+    double below = 0.0;
+    for (size_t j = 0; j < h; j++) {
+        e->cdf[j] = fixed_cdf(below, total);
+        below += e->row_sum[j] * sin(pi * ((double)j + 0.5) / (double)h);
+    }
+    parallel_for(h, ROWS_PER_THREAD, texel_pdf_rows, e);
     return total;
 }
 
@@ -216,19 +172,20 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     size_t w = (size_t)width, h = (size_t)height, n = w * h;
     env->texels = malloc(n * sizeof *env->texels);
-    env->alias = malloc(n * sizeof *env->alias);
-    double *row_scale = malloc(h * sizeof *row_scale), *row_sum = malloc(h * sizeof *row_sum);
+    env->cdf = malloc((h + n) * sizeof *env->cdf);
+    float *weight = malloc(n * sizeof *weight);
+    double *row_sum = malloc(h * sizeof *row_sum);
     size_t *row_clamped = malloc(h * sizeof *row_clamped);
-    if (!env->texels || !env->alias || !row_scale || !row_sum || !row_clamped) {
-        free(row_scale), free(row_sum), free(row_clamped);
+    if (!env->texels || !env->cdf || !weight || !row_sum || !row_clamped) {
+        free(weight), free(row_sum), free(row_clamped);
         environment_free(env);
         error_set(err, ERR_TOO_LARGE, name, 0, "%s: out of memory for a %dx%d environment map", name,
                   width, height);
         return false;
     }
     const double pi = 3.14159265358979323846;
-    EnvPass pass = {.rgb = rgb, .texels = env->texels, .alias = env->alias, .w = w, .h = h,
-                    .scale = scale, .row_sum = row_sum, .row_clamped = row_clamped};
+    EnvPass pass = {.rgb = rgb, .texels = env->texels, .cdf = env->cdf, .weight = weight, .w = w,
+                    .h = h, .scale = scale, .row_sum = row_sum, .row_clamped = row_clamped};
     parallel_for(h, ROWS_PER_THREAD, convert_rows, &pass);
     size_t clamped = 0;
     double solid_angle_sum = 0.0;
@@ -240,8 +197,8 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     if (clamped)
         warn("%s: %zu negative or non-finite texel values clamped to 0", name, clamped);
-    double total = build_tables(env, &pass, row_scale);
-    free(row_scale), free(row_sum), free(row_clamped);
+    double total = build_tables(&pass);
+    free(weight), free(row_sum), free(row_clamped);
     if (!(total > 0.0)) {
         environment_free(env);
         error_set(err, ERR_TEXTURE, name, 0,
@@ -308,6 +265,6 @@ bool environment_load(Environment *env, const char *path, float scale, float rot
 void environment_free(Environment *env)
 {
     free(env->texels);
-    free(env->alias);
+    free(env->cdf);
     memset(env, 0, sizeof *env);
 }

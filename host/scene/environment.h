@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* environment.h: the environment map (shared/DESIGN.md "Environment"): an equirectangular HDR or
  * EXR image, its radiance per texel (times scale) and the piecewise-constant distribution that
- * next-event estimation samples it from (one alias table over all texels: O(1) per sample). The
+ * next-event estimation samples it from (a row by the rows' CDF, then a texel by its row's: the
+ * inversion keeps a stratified sample stratified over the map). The
  * radiance is evaluated bilinearly everywhere; each texel's sampling weight is the largest
  * luminance of its 3 x 3 neighbourhood x sin(theta of its row centre), so the pdf is > 0 wherever
  * the bilinear radiance is, and texels[].w is exactly the density the sampler draws from: MIS with
@@ -18,7 +19,10 @@ typedef struct {
     uint32_t width, height;   /* 0 x 0: no map (the constant background is the environment) */
     float4 *texels;           /* width * height, row 0 at the top: rgb radiance x scale; w: the
                                  sampling pdf in the texel's (u, v) cell per unit uv area */
-    EnvAlias *alias;          /* width * height: the alias table over the texels (Vose) */
+    uint32_t *cdf;            /* height + width * height, 32-bit fixed point (2^32 = 1): the rows'
+                                 marginal CDF (entry j: the weight above row j), then each row's
+                                 conditional CDF over its texels; entry 0 of each is 0, the end
+                                 (2^32) is implied */
     float rotation;           /* DESIGN's theta as a fraction of a turn */
     double mean_luminance;    /* of the radiance over the sphere (solid-angle weighted) */
 } Environment;
