@@ -65,6 +65,20 @@ static void check_cdf_tables(const float *rgb, int w, int h)
         }
     }
     cr_expect_eq(unsorted, 0, "%dx%d: %d CDF entries out of order or not starting at 0", w, h, unsorted);
+    /* Each guide entry is the interval holding its bucket's start, found here by brute force. */
+    int wrong_guide = 0;
+    for (int r = -1; r < h; r++) {
+        size_t len = r < 0 ? (size_t)h : (size_t)w, at = r < 0 ? 0 : (size_t)h + (size_t)r * w;
+        const uint32_t *cdf = env.cdf + at, *guide = env.cdf + h + n + at;
+        for (size_t b = 0; b < len; b++) {
+            uint64_t start = (((uint64_t)b << 32) + len - 1) / len;
+            size_t k = len - 1;
+            while (cdf[k] > start)
+                k--;
+            wrong_guide += guide[b] != k;
+        }
+    }
+    cr_expect_eq(wrong_guide, 0, "%dx%d: %d guide entries wrong", w, h, wrong_guide);
     cr_expect_eq(wrong_table, 0, "%dx%d: %d texels drawn off their weight", w, h, wrong_table);
     cr_expect_eq(wrong_pdf, 0, "%dx%d: %d texels whose pdf is not the CDFs'", w, h, wrong_pdf);
     environment_free(&env);

@@ -17,7 +17,7 @@
 
 typedef struct {
     const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
-    const global uint *cdf;           /* height + width * height: the CDFs (environment.h) */
+    const global uint *cdf;           /* the CDFs, then their guides (environment.h) */
     uint width, height;
     float rotation;                   /* theta as a fraction of a turn */
 } EnvMap;
@@ -91,10 +91,12 @@ typedef struct {
 
 /* The interval of a 32-bit fixed-point CDF of n entries (cdf[0] = 0, the end 2^32 implied) that
  * holds x: the largest k with cdf[k] <= x (so cdf[k] <= x < its end: an interval of width 0 is
- * never found); *rest gets where x lies in it, in [0, 1). */
-inline uint cdf_invert(const global uint *cdf, uint n, uint x, float *rest)
+ * never found), searched between the guide's entries for x's bucket (environment.c build_guide):
+ * one or two steps; *rest gets where x lies in the interval, in [0, 1). */
+inline uint cdf_invert(const global uint *cdf, const global uint *guide, uint n, uint x, float *rest)
 {
-    uint lo = 0u, hi = n; /* cdf[lo] <= x; hi == n or cdf[hi] > x */
+    uint b = mul_hi(x, n);
+    uint lo = guide[b], hi = b + 1u < n ? guide[b + 1u] + 1u : n; /* cdf[lo] <= x < cdf[hi] */
     while (hi - lo > 1u) {
         uint mid = (lo + hi) >> 1;
         if (cdf[mid] <= x)
@@ -102,7 +104,7 @@ inline uint cdf_invert(const global uint *cdf, uint n, uint x, float *rest)
         else
             hi = mid;
     }
-    ulong end = hi < n ? (ulong)cdf[hi] : 4294967296ul;
+    ulong end = lo + 1u < n ? (ulong)cdf[lo + 1u] : 4294967296ul;
     *rest = fmin((float)(x - cdf[lo]) / (float)(end - (ulong)cdf[lo]), 0x1.fffffep-1f);
     return lo;
 }
@@ -114,8 +116,10 @@ inline uint cdf_invert(const global uint *cdf, uint n, uint x, float *rest)
 inline EnvSample env_sample(const EnvMap *env, uint u_bits, uint v_bits)
 {
     float u1, u2;
-    uint j = cdf_invert(env->cdf, env->height, v_bits, &u2);
-    uint i = cdf_invert(env->cdf + env->height + j * env->width, env->width, u_bits, &u1);
+    const global uint *guide = env->cdf + env->height + env->width * env->height;
+    uint j = cdf_invert(env->cdf, guide, env->height, v_bits, &u2);
+    uint i = cdf_invert(env->cdf + env->height + j * env->width, guide + env->height + j * env->width,
+                        env->width, u_bits, &u1);
     float u = ((float)i + u1) / (float)env->width, v = ((float)j + u2) / (float)env->height;
     /* phi = 2 pi (u - 1/2 - rotation), theta = pi v. */
     float2 phi = cos_sin_turns(u - 0.5f - env->rotation), theta = cos_sin_turns(0.5f * v);

@@ -161,7 +161,7 @@ typedef struct {
     X(LightEntry, lights)                                                                           \
     X(AnalyticLight, analytic_lights)                                                               \
     X(float4, env_texels)      /* rgb radiance; w: pdf per unit uv area (host/scene/environment.h) */ \
-    X(uint, env_cdf)           /* its sampling CDFs, env_height + env_width * env_height */    \
+    X(uint, env_cdf)           /* its sampling CDFs and guides, 2 (H + W H) (environment.h) */\
     X(Instance, instances)                                                                          \
     X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */         \
     X(Medium, media)           /* medium slot k is media[k - 1] (shared/medium.h) */              \

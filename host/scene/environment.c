@@ -31,7 +31,7 @@ static float luminance(const float4 *c) { return 0.2126f * c->s[0] + 0.7152f * c
 typedef struct {
     const float *rgb;       /* the decoded image, 3 floats per texel */
     float4 *texels;
-    uint32_t *cdf;          /* Environment.cdf: h row entries, then w per row */
+    uint32_t *cdf;          /* Environment.cdf: h row entries, then w per row; then the guides */
     float *weight;          /* per texel: the 3 x 3 maximum (scratch) */
     size_t w, h;
     float scale;
@@ -117,6 +117,21 @@ static void conditional_rows(void *ctx, size_t begin, size_t end)
     }
 }
 
+/* The guide of a fixed-point CDF of n entries: guide[b] is the interval that holds the start of
+ * bucket b of n equal buckets of the 32-bit range (the bucket is mul_hi(x, n), its start
+ * ceil(b 2^32 / n)), so an x of bucket b lies in an interval from guide[b] to guide[b + 1]: the
+ * kernel's search (cdf_invert) takes one or two steps instead of log2 n. */
+static void build_guide(const uint32_t *cdf, uint32_t *guide, size_t n)
+{
+    size_t k = 0;
+    for (size_t b = 0; b < n; b++) {
+        uint64_t start = (((uint64_t)b << 32) + n - 1) / n;
+        while (k + 1 < n && cdf[k + 1] <= start)
+            k++;
+        guide[b] = (uint32_t)k;
+    }
+}
+
 /* texels[].w = W x H x the probability env_sample draws the texel with: the product of its row's
  * and its own interval widths / 2^64, from the stored integers, so the pdf of the MIS weights is
  * exactly the density of the samples. */
@@ -129,6 +144,7 @@ static void texel_pdf_rows(void *ctx, size_t begin, size_t end)
         const uint32_t *cond = e->cdf + e->h + j * e->w;
         for (size_t i = 0; i < e->w; i++)
             e->texels[j * e->w + i].s[3] = (float)(n * row * (cdf_width(cond, e->w, i) / CDF_ONE));
+        build_guide(cond, e->cdf + 2 * e->h + e->w * e->h + j * e->w, e->w);
     }
 }
 
@@ -153,6 +169,7 @@ static double build_tables(EnvPass *e)
         e->cdf[j] = fixed_cdf(below, total);
         below += e->row_sum[j] * sin(pi * ((double)j + 0.5) / (double)h);
     }
+    build_guide(e->cdf, e->cdf + h + e->w * h, h);
     parallel_for(h, ROWS_PER_THREAD, texel_pdf_rows, e);
     return total;
 }
@@ -172,7 +189,7 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     size_t w = (size_t)width, h = (size_t)height, n = w * h;
     env->texels = malloc(n * sizeof *env->texels);
-    env->cdf = malloc((h + n) * sizeof *env->cdf);
+    env->cdf = malloc(2 * (h + n) * sizeof *env->cdf);
     float *weight = malloc(n * sizeof *weight);
     double *row_sum = malloc(h * sizeof *row_sum);
     size_t *row_clamped = malloc(h * sizeof *row_clamped);

@@ -22,7 +22,8 @@ typedef struct {
     uint32_t *cdf;            /* height + width * height, 32-bit fixed point (2^32 = 1): the rows'
                                  marginal CDF (entry j: the weight above row j), then each row's
                                  conditional CDF over its texels; entry 0 of each is 0, the end
-                                 (2^32) is implied */
+                                 (2^32) is implied; then as many entries again, laid out alike: each
+                                 CDF's guide (environment.c build_guide) */
     float rotation;           /* DESIGN's theta as a fraction of a turn */
     double mean_luminance;    /* of the radiance over the sphere (solid-angle weighted) */
 } Environment;
