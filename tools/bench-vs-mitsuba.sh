@@ -7,9 +7,9 @@
 #   tools/bench-vs-mitsuba.sh [SCENE...] [-o OUT]   default scenes/cornell-box, bench/results/vs-mitsuba
 # Environment: DEVICE cpu (default: pt on PoCL, Mitsuba llvm_ad_rgb) or gpu (pt on the GPU's OpenCL,
 # Mitsuba cuda_ad_rgb); VARIANT overrides the Mitsuba variant; ROUNDS (default 4), WIDTH/HEIGHT
-# (512), SPP (8), DEPTH (8), RR_DEPTH (3: Mitsuba's rr_depth set to pt's Russian roulette, from the
-# third vertex, so that both trace the same rays per path; Mitsuba's own default, 5, traces more:
-# figures before 2026-12-02's third session used it), PT (build/pt), PYTHON (a python3 that imports
+# (512), SPP (8), DEPTH (8), RR_DEPTH (5: Mitsuba's rr_depth set to pt's Russian roulette, from the
+# fifth vertex since 2026-12-06 (before, the third: RR_DEPTH=3 with such a pt), so that both trace
+# the same rays per path), PT (build/pt), PYTHON (a python3 that imports
 # mitsuba and numpy, e.g. from wheels installed with --target; default: .venv-mitsuba, created by
 # tools/mitsuba-venv.sh), MITSUBA_BENCH (default tools/bench_mitsuba.py; tools/mitsuba_forest.py for scenes with transforms,
 # instances and analytic lights: the forest and dragons of bench/README.md "Instancing").
@@ -38,7 +38,7 @@ for round in $(seq "${ROUNDS:-4}"); do
     for scene in $scenes; do
         echo "== round $round: $scene"
         "$VENV_PY" "${MITSUBA_BENCH:-tools/bench_mitsuba.py}" "$scene" --width "$W" --height "$H" --spp "$S" \
-            --max-depth "$D" --reps 3 --variant "$VARIANT" --rr-depth "${RR_DEPTH:-3}" --csv "$out/mitsuba.csv"
+            --max-depth "$D" --reps 3 --variant "$VARIANT" --rr-depth "${RR_DEPTH:-5}" --csv "$out/mitsuba.csv"
         "$PT" bench "$scene" --device "$DEVICE" --width "$W" --height "$H" --spp "$S" --max-depth "$D" \
             --csv "$out/pt.csv" | grep -E '^(mode|default) '
     done

@@ -30,7 +30,8 @@ pt bundle (tools/bundle.sh: bin/pt, tools/, tests/scenes/). On the GPU machine, 
   PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
       --width 320 --height 240 --spp 256 --seeds 4 --ref-spp 16384 --csv efficiency-gpu.csv
 The media scenes (issue 40 "Speed": pt against Mitsuba's cuda_ad_rgb volpath, Mpaths/s and relMSE x
-time in one run), each at its own max depth, both Russian roulette from the third vertex:
+time in one run), each at its own max depth, both Russian roulette from the third vertex (pt's
+before 2026-12-06; its default is now the fifth, Mitsuba's: leave --rr-depth out to compare so):
   PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
       --scenes media --width 1280 --height 960 --spp 16 --seeds 4 --ref-spp 1024 \\
       --max-depth scene --rr-depth 3 --samplers pt:sobol,mitsuba:independent --csv efficiency-media-gpu.csv
@@ -194,10 +195,15 @@ def pt_render(args, scene_path, sampler, seed, out):
     if args.device:
         cmd += ["--device", args.device]
     run = subprocess.run(cmd, capture_output=True, text=True)
-    m = re.search(r" spp in ([0-9.]+) s", run.stderr)
+    m = re.search(r" spp in ([0-9.]+) s: ([0-9.]+) Mpaths/s", run.stderr)
     if run.returncode or not m:
         raise RuntimeError(f"{' '.join(cmd)}: exit {run.returncode}: {run.stderr.strip()}")
-    return float(m.group(1))
+    # Both are printed to two decimals: on a GPU the seconds (0.07) are coarse and the rate (983.04
+    # Mpaths/s) fine, on a CPU the reverse; take whichever figure was rounded the less (same clock).
+    seconds, rate = float(m.group(1)), float(m.group(2))
+    if rate > seconds > 0 or (rate > 0 and seconds == 0):
+        return args.width * args.height * args.spp / (rate * 1e6)
+    return seconds
 
 
 def main():
@@ -215,7 +221,7 @@ def main():
     ap.add_argument("--ref-spp", type=int, default=4096)
     ap.add_argument("--max-depth", default="64", help="a number, or 'scene': each scene's own")
     ap.add_argument("--rr-depth", type=int,
-                    help="Mitsuba's rr_depth (default its own, 5; 3 = pt's Russian roulette)")
+                    help="Mitsuba's rr_depth (default its own, 5, which is pt's Russian roulette too)")
     ap.add_argument("--samplers", help="only these, e.g. pt:sobol,mitsuba:independent (default all)")
     ap.add_argument("--scenes", default=",".join(DEFAULT_SCENES), help="names, or 'media' for the media scenes")
     ap.add_argument("--cache", default=os.path.join(ROOT, "bench", "results", "efficiency-references"))

@@ -46,8 +46,8 @@ def main(name="bench_mitsuba", load_scene=None, build_scene=None, write_image=wr
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv")
     ap.add_argument("--rr-depth", type=int,
-                    help="Mitsuba's rr_depth (default its own, 5); 3 is pt's: Russian roulette from "
-                    "the third vertex, so that both trace the same number of rays per path")
+                    help="Mitsuba's rr_depth (default its own, 5, which is also pt's: Russian roulette "
+                    "from the fifth vertex, so that both trace the same number of rays per path)")
     ap.add_argument("--image", help="also write the last timed render here (EXR; mitsuba_forest: "
                     "or PNG in sRGB), to compare with pt's")
     args = ap.parse_args()

@@ -4,7 +4,7 @@
 with perf on the same scene: ray traversal (pt's walks, TRAVERSAL_SYMBOLS; Mitsuba's
 libembree3) against everything else (pt's kernels otherwise; Mitsuba's JIT-compiled kernels and
 its runtime), as CPU nanoseconds per path. Both renderers use every core; Mitsuba runs with
-pt's Russian roulette (rr_depth 3: from the third vertex) so that both trace the same number of
+pt's Russian roulette (rr_depth 5: from the fifth vertex) so that both trace the same number of
 rays per path in expectation.
 
     python3 tools/profile_vs_mitsuba.py SCENE [--width 512 --height 512 --spp 16 --max-depth 8]
@@ -71,7 +71,7 @@ def main():
 
         bench = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bench_mitsuba.py")
         run = subprocess.run(["perf", "record", "-q", "-F", "2000", "-o", mi_data, "--", args.python, bench,
-                              args.scene, *film, "--reps", "3", "--rr-depth", "3"],
+                              args.scene, *film, "--reps", "3", "--rr-depth", "5"],
                              capture_output=True, text=True)
         times = [float(t) for t in re.findall(r": ([0-9.]+) ms, [0-9.]+ Mpaths/s", run.stdout)]
         if run.returncode != 0 or not times:
@@ -89,7 +89,7 @@ def main():
     print(f"{'renderer':22s} {'Mpaths/s':>9s} {'traversal':>10s} {'the rest':>9s} {'all':>7s} "
           f"{'traversal share':>16s}")
     for name, seconds, share in (("pt (PoCL)", pt_seconds, pt_trace),
-                                 ("Mitsuba (rr_depth 3)", mi_seconds, mi_trace)):
+                                 ("Mitsuba (rr_depth 5)", mi_seconds, mi_trace)):
         per_path = seconds * cores / paths * 1e9
         rows.append((name, paths / seconds * 1e-6, per_path * share, per_path * (1 - share), per_path, share))
         print(f"{name:22s} {rows[-1][1]:9.2f} {rows[-1][2]:10.0f} {rows[-1][3]:9.0f} {per_path:7.0f} "

@@ -212,11 +212,11 @@ PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint
 
 /* Russian roulette (Cycles' path_terminate), driven by the throughput: false when the path ends,
  * else beta is divided by the survival probability. It may end paths from the vertex
- * PT_ROULETTE_DEPTH on (depth counts segments; Mitsuba's rr_depth 5 is PT_ROULETTE_DEPTH 5). A
- * build option so that the estimator studies (bench/README.md "Sampler and estimator") can set it
- * through PT_CL_OPTIONS. */
+ * PT_ROULETTE_DEPTH on (depth counts segments; Mitsuba's default rr_depth 5 is PT_ROULETTE_DEPTH
+ * 5). The fifth, not the third: the error per second measured lower so (bench/README.md "Sampler
+ * and estimator"). A build option so that the estimator studies can set it through PT_CL_OPTIONS. */
 #ifndef PT_ROULETTE_DEPTH
-#define PT_ROULETTE_DEPTH 3u
+#define PT_ROULETTE_DEPTH 5u
 #endif
 PT_INLINE bool survives_roulette(float3 *beta, float eta_scale, float u)
 {
@@ -231,7 +231,7 @@ PT_INLINE bool survives_roulette(float3 *beta, float eta_scale, float u)
     return true;
 }
 
-/* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette from the third vertex on;
+/* Continuation (Cycles' surface_bounce): samples the BSDF, then roulette (PT_ROULETTE_DEPTH);
  * when the path goes on, writes the next segment's ray and throughput (in the medium on the new
  * direction's side of tm, medium_toward) and returns true. */
 PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
