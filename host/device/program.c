@@ -168,14 +168,18 @@ static void store_in_cache(cl_program program, uint64_t key)
  * $XDG_CACHE_HOME/pocl), and asking PoCL for a binary makes it compile every kernel of the
  * program for a generic work-group size, used or not, before the ones a render launches are
  * compiled again for their real size: 9 s of a cold Cornell-box run here against 1.4 s
- * (bench/README.md, "Kernel builds on PoCL"). PT_CACHE_BINARIES=1 stores binaries anyway (the
+ * (bench/README.md, "Kernel builds on PoCL"). PT_CACHE_BINARIES=1 (or PoCL's POCL_KERNEL_CACHE=0)
+ * stores binaries anyway (the
  * tests use it to keep that path covered on PoCL). */
 static bool driver_keeps_programs(const Device *dev, bool *keeps, Error *err)
 {
     bool binaries;
     if (!env_flag("PT_CACHE_BINARIES", false, &binaries, err))
         return false;
-    *keeps = !binaries && strstr(dev->platform_name, "Portable Computing Language") != NULL;
+    /* POCL_KERNEL_CACHE=0 turns PoCL's cache off: then only a binary spares the next compile. */
+    const char *pocl_cache = getenv("POCL_KERNEL_CACHE");
+    *keeps = !binaries && strstr(dev->platform_name, "Portable Computing Language") != NULL &&
+             !(pocl_cache && strcmp(pocl_cache, "0") == 0);
     return true;
 }
 
