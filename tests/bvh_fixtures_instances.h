@@ -116,10 +116,17 @@ static inline void world_box(const InstancedScene *s, const TestInstance *in, fl
     m.num_triangles = s->meshes[in->mesh].num_triangles;
     float olo[3], ohi[3];
     mesh_bounds(&m, olo, ohi);
-    if (in->moving)
+    if (in->moving) {
         trs_swept_box(&in->motion[0], &in->motion[1], olo, ohi, lo, hi);
-    else
-        affine_box(&in->to_world, olo, ohi, lo, hi);
+    } else { /* the transformed corners, as pt's TLAS takes them (render/scene_upload.c) */
+        float4 *corners = malloc(3 * (size_t)m.num_triangles * sizeof *corners);
+        cr_assert(corners);
+        for (uint32_t t = 0; t < m.num_triangles; t++)
+            for (int c = 0; c < 3; c++)
+                corners[3 * t + c] = m.positions[m.triangles[t].v.s[c]];
+        affine_points_box(&in->to_world, corners, 3 * (size_t)m.num_triangles, 1, lo, hi);
+        free(corners);
+    }
     for (int k = 0; k < 3; k++)
         lo[k] -= in->pad, hi[k] += in->pad;
 }

@@ -171,6 +171,23 @@ void affine_box(const Affine *a, const float lo[3], const float hi[3], float out
     }
 }
 
+void affine_points_box(const Affine *a, const float4 *points, size_t n, size_t stride,
+                       float out_lo[3], float out_hi[3])
+{
+    double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < n; i++) {
+        const float4 *q = &points[i * stride];
+        double p[3] = {q->s[0], q->s[1], q->s[2]};
+        affine_point(a, p, p);
+        for (int k = 0; k < 3; k++)
+            blo[k] = fmin(blo[k], p[k]), bhi[k] = fmax(bhi[k], p[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        out_lo[k] = nextafterf((float)blo[k], -INFINITY);
+        out_hi[k] = nextafterf((float)bhi[k], INFINITY);
+    }
+}
+
 void affine_to_rows(const Affine *a, float4 rows[3])
 {
     for (int i = 0; i < 3; i++)
