@@ -153,39 +153,50 @@ void affine_normal(const Affine *inverse, const double n[3], double out[3])
     memcpy(out, r, sizeof r);
 }
 
+/* A box of transformed points in double, grown point by point, then rounded outwards to floats
+ * so that the float box holds the exact one. */
+typedef struct {
+    double lo[3], hi[3];
+} ExactBox;
+
+static ExactBox exact_box_empty(void)
+{
+    return (ExactBox){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+}
+
+static void exact_box_add(ExactBox *b, const Affine *a, double x, double y, double z)
+{
+    double p[3] = {x, y, z};
+    affine_point(a, p, p);
+    for (int k = 0; k < 3; k++)
+        b->lo[k] = fmin(b->lo[k], p[k]), b->hi[k] = fmax(b->hi[k], p[k]);
+}
+
+static void exact_box_round(const ExactBox *b, float out_lo[3], float out_hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        out_lo[k] = nextafterf((float)b->lo[k], -INFINITY);
+        out_hi[k] = nextafterf((float)b->hi[k], INFINITY);
+    }
+}
+
 void affine_box(const Affine *a, const float lo[3], const float hi[3], float out_lo[3],
                 float out_hi[3])
 {
-    double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int corner = 0; corner < 8; corner++) {
-        double p[3] = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1],
-                       corner & 4 ? hi[2] : lo[2]};
-        affine_point(a, p, p);
-        for (int k = 0; k < 3; k++)
-            blo[k] = fmin(blo[k], p[k]), bhi[k] = fmax(bhi[k], p[k]);
-    }
-    /* Rounded outwards, so that the float box holds the exact one. */
-    for (int k = 0; k < 3; k++) {
-        out_lo[k] = nextafterf((float)blo[k], -INFINITY);
-        out_hi[k] = nextafterf((float)bhi[k], INFINITY);
-    }
+    ExactBox b = exact_box_empty();
+    for (int corner = 0; corner < 8; corner++)
+        exact_box_add(&b, a, corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1],
+                      corner & 4 ? hi[2] : lo[2]);
+    exact_box_round(&b, out_lo, out_hi);
 }
 
 void affine_points_box(const Affine *a, const float4 *points, size_t n, size_t stride,
                        float out_lo[3], float out_hi[3])
 {
-    double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < n; i++) {
-        const float4 *q = &points[i * stride];
-        double p[3] = {q->s[0], q->s[1], q->s[2]};
-        affine_point(a, p, p);
-        for (int k = 0; k < 3; k++)
-            blo[k] = fmin(blo[k], p[k]), bhi[k] = fmax(bhi[k], p[k]);
-    }
-    for (int k = 0; k < 3; k++) {
-        out_lo[k] = nextafterf((float)blo[k], -INFINITY);
-        out_hi[k] = nextafterf((float)bhi[k], INFINITY);
-    }
+    ExactBox b = exact_box_empty();
+    for (size_t i = 0; i < n; i++)
+        exact_box_add(&b, a, points[i * stride].s[0], points[i * stride].s[1], points[i * stride].s[2]);
+    exact_box_round(&b, out_lo, out_hi);
 }
 
 void affine_to_rows(const Affine *a, float4 rows[3])
