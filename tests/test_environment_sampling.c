@@ -104,6 +104,17 @@ Test(environment_sampling, cdfs_draw_each_texel_by_its_weight)
     free(axis), free(contrast), free(one), free(sun);
 }
 
+/* The contrast map (environment_maps.h) built, turned by rotation degrees. */
+static Environment contrast_environment(int w, int h, float rotation)
+{
+    float *rgb = contrast_map(w, h);
+    Environment env;
+    Error err = {0};
+    cr_assert(environment_build(&env, rgb, w, h, 1.0f, rotation, "contrast", &err), "%s", err.message);
+    free(rgb);
+    return env;
+}
+
 /* The first 2^k Sobol samples of a pixel stay stratified through env_sample (issue 34): the
  * number that land in each row is within 2 of its expectation (the rows are intervals of the
  * net's second coordinate, which holds one point per 2^-k), for several pixels, bounces and k,
@@ -113,10 +124,8 @@ Test(environment_sampling, cdfs_draw_each_texel_by_its_weight)
 Test(environment_sampling, sobol_samples_stay_stratified_over_the_map, .timeout = 300)
 {
     int w = 32, h = 16;
-    float *rgb = contrast_map(w, h);
-    Environment env;
+    Environment env = contrast_environment(w, h, 0.0f);
     Error err = {0};
-    cr_assert(environment_build(&env, rgb, w, h, 1.0f, 0.0f, "map", &err), "%s", err.message);
     Device *dev = test_device();
     cl_kernel k = device_kernel(dev, "env_test_sobol_texels");
     EnvBuffers b;
@@ -169,7 +178,7 @@ Test(environment_sampling, sobol_samples_stay_stratified_over_the_map, .timeout 
     clReleaseKernel(k);
     test_device_release(dev);
     environment_free(&env);
-    free(rgb), free(texel_of), free(row_count), free(count);
+    free(texel_of), free(row_count), free(count);
 }
 
 /* Samples of env_sample counted per texel pass a chi-square test against the texel weights (a
@@ -280,10 +289,7 @@ static float4 *lookup(const Environment *env, const float4 *dirs, cl_uint n)
 Test(environment_sampling, pdf_integrates_to_one, .timeout = 120)
 {
     int w = 32, h = 16;
-    float *rgb = contrast_map(w, h);
-    Environment env;
-    Error err = {0};
-    cr_assert(environment_build(&env, rgb, w, h, 1.0f, 37.0f, "contrast", &err), "%s", err.message);
+    Environment env = contrast_environment(w, h, 37.0f);
     cl_uint nt = 8 * (cl_uint)h, np = 8 * (cl_uint)w, nd = nt * np;
     float4 *dirs = malloc(nd * sizeof *dirs);
     for (cl_uint j = 0; j < nt; j++)
@@ -298,7 +304,7 @@ Test(environment_sampling, pdf_integrates_to_one, .timeout = 120)
             integral += out[j * np + i].s[3] * sin(ENV_PI * (j + 0.5) / nt) * (ENV_PI / nt) * (2.0 * ENV_PI / np);
     cr_expect(fabs(integral - 1.0) < 2e-3, "the pdf integrates to %.5f over the sphere", integral);
     environment_free(&env);
-    free(rgb), free(dirs), free(out);
+    free(dirs), free(out);
 }
 
 /* Wherever an escaped ray sees light, next-event estimation can sample it: for random directions
