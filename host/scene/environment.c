@@ -132,10 +132,11 @@ static void build_guide(const uint32_t *cdf, uint32_t *guide, size_t n)
     }
 }
 
-/* texels[].w = W x H x the probability env_sample draws the texel with: the product of its row's
- * and its own interval widths / 2^64, from the stored integers, so the pdf of the MIS weights is
- * exactly the density of the samples. */
-static void texel_pdf_rows(void *ctx, size_t begin, size_t end)
+/* Per row, once both CDFs are written: texels[].w = W x H x the probability env_sample draws the
+ * texel with (the product of its row's and its own interval widths / 2^64, from the stored
+ * integers, so the pdf of the MIS weights is exactly the density of the samples), and the row's
+ * guide. */
+static void finish_rows(void *ctx, size_t begin, size_t end)
 {
     EnvPass *e = ctx;
     double n = (double)e->w * (double)e->h;
@@ -159,18 +160,18 @@ static double build_tables(EnvPass *e)
     size_t h = e->h;
     parallel_for(h, ROWS_PER_THREAD, weight_rows, e);
     parallel_for(h, ROWS_PER_THREAD, conditional_rows, e);
-    double total = 0.0;
+    double total = 0.0; /* row_sum becomes each row's weight: x sin theta of its centre */
     for (size_t j = 0; j < h; j++)
-        total += e->row_sum[j] * sin(pi * ((double)j + 0.5) / (double)h);
+        total += e->row_sum[j] *= sin(pi * ((double)j + 0.5) / (double)h);
     if (!(total > 0.0) || !isfinite(total))
         return 0.0;
     double below = 0.0;
     for (size_t j = 0; j < h; j++) {
         e->cdf[j] = fixed_cdf(below, total);
-        below += e->row_sum[j] * sin(pi * ((double)j + 0.5) / (double)h);
+        below += e->row_sum[j];
     }
     build_guide(e->cdf, e->cdf + h + e->w * h, h);
-    parallel_for(h, ROWS_PER_THREAD, texel_pdf_rows, e);
+    parallel_for(h, ROWS_PER_THREAD, finish_rows, e);
     return total;
 }
 
