@@ -167,10 +167,9 @@ static void store_in_cache(cl_program program, uint64_t key)
  * holds only a marker (below) instead of the binary. PoCL does ($POCL_CACHE_DIR, by default
  * $XDG_CACHE_HOME/pocl), and asking PoCL for a binary makes it compile every kernel of the
  * program for a generic work-group size, used or not, before the ones a render launches are
- * compiled again for their real size: 9 s of a cold Cornell-box run here against 1.4 s
- * (bench/README.md, "Kernel builds on PoCL"). PT_CACHE_BINARIES=1 (or PoCL's POCL_KERNEL_CACHE=0)
- * stores binaries anyway (the
- * tests use it to keep that path covered on PoCL). */
+ * compiled again for their real size (bench/README.md, "Kernel builds on PoCL"). PT_CACHE_BINARIES=1
+ * (or PoCL's POCL_KERNEL_CACHE=0) stores binaries anyway (the tests use it to keep that path
+ * covered on PoCL). */
 static bool driver_keeps_programs(const Device *dev, bool *keeps, Error *err)
 {
     bool binaries;
