@@ -124,7 +124,7 @@ static inline void world_box(const InstancedScene *s, const TestInstance *in, fl
         for (uint32_t t = 0; t < m.num_triangles; t++)
             for (int c = 0; c < 3; c++)
                 corners[3 * t + c] = m.positions[m.triangles[t].v.s[c]];
-        affine_points_box(&in->to_world, corners, 3 * (size_t)m.num_triangles, 1, lo, hi);
+        affine_points_box(&in->to_world, corners, 3 * (size_t)m.num_triangles, lo, hi);
         free(corners);
     }
     for (int k = 0; k < 3; k++)

@@ -190,12 +190,12 @@ void affine_box(const Affine *a, const float lo[3], const float hi[3], float out
     exact_box_round(&b, out_lo, out_hi);
 }
 
-void affine_points_box(const Affine *a, const float4 *points, size_t n, size_t stride,
-                       float out_lo[3], float out_hi[3])
+void affine_points_box(const Affine *a, const float4 *points, size_t n, float out_lo[3],
+                       float out_hi[3])
 {
     ExactBox b = exact_box_empty();
     for (size_t i = 0; i < n; i++)
-        exact_box_add(&b, a, points[i * stride].s[0], points[i * stride].s[1], points[i * stride].s[2]);
+        exact_box_add(&b, a, points[i].s[0], points[i].s[1], points[i].s[2]);
     exact_box_round(&b, out_lo, out_hi);
 }
 

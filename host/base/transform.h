@@ -42,11 +42,10 @@ void affine_normal(const Affine *inverse, const double n[3], double out[3]);
 /* The box around the 8 transformed corners of [lo, hi]. */
 void affine_box(const Affine *a, const float lo[3], const float hi[3], float out_lo[3],
                 float out_hi[3]);
-/* The box around n transformed points (xyz of each float4; stride in float4s between points),
- * rounded outwards like affine_box: exact where affine_box of their bounds is loose (a turned
- * instance). */
-void affine_points_box(const Affine *a, const float4 *points, size_t n, size_t stride,
-                       float out_lo[3], float out_hi[3]);
+/* The box around n transformed points (xyz of each float4), rounded outwards like affine_box:
+ * exact where affine_box of their bounds is loose (a turned instance). */
+void affine_points_box(const Affine *a, const float4 *points, size_t n, float out_lo[3],
+                       float out_hi[3]);
 /* Rows as the kernels read them (shared.h Instance.to_world / to_object). */
 void affine_to_rows(const Affine *a, float4 rows[3]);
 

@@ -39,7 +39,7 @@ static void instance_tlas_box(const SceneData *data, const SceneInstance *si, ui
         return;
     *budget -= mesh->num_vertices;
     float elo[3], ehi[3];
-    affine_points_box(&si->to_world, &data->positions[mesh->first_vertex], mesh->num_vertices, 1,
+    affine_points_box(&si->to_world, &data->positions[mesh->first_vertex], mesh->num_vertices,
                       elo, ehi);
     for (int k = 0; k < 3; k++) /* never larger than the corners' box: both hold the mesh */
         lo[k] = fmaxf(lo[k], elo[k]), hi[k] = fminf(hi[k], ehi[k]);
