@@ -102,7 +102,8 @@ static void expect_same_blocks(const BlockEstimate *a, const BlockEstimate *b, c
         }
 }
 
-Test(instances_render, instances_render_their_baked_copies, .timeout = 300)
+/* The Cornell box with three turned, scaled (one mirrored) tetrahedra as instances. */
+static const char *turned_instances_scene(void)
 {
     const char *dir = test_temp_dir();
     char box[1024];
@@ -119,7 +120,12 @@ Test(instances_render, instances_render_their_baked_copies, .timeout = 300)
              "  {\"obj\": \"tetra.obj\", \"transform\": [{\"matrix\": [0.2, 0.1, 0, 0.1, 0, 0.25, 0, "
              "1.2, 0.05, 0, 0.3, 0.1, 0, 0, 0, 1]}]}]}\n",
              box);
-    const char *scene = test_write_file(dir, "scene.json", json);
+    return test_write_file(dir, "scene.json", json);
+}
+
+Test(instances_render, instances_render_their_baked_copies, .timeout = 300)
+{
+    const char *scene = turned_instances_scene();
     RenderSettings s = {.spp = 32, .max_depth = 5};
     RenderFixture baked, instanced;
     render_fixture_open_with(&baked, scene, 32, 32, INSTANCING_NEVER);
@@ -132,6 +138,23 @@ Test(instances_render, instances_render_their_baked_copies, .timeout = 300)
     BlockEstimate b = block_estimate(&instanced, s, 4);
     render_fixture_close(&instanced);
     expect_same_blocks(&a, &b, "instanced vs baked");
+}
+
+/* The two-level BVH (its TLAS boxes: the exact boxes of turned instances, render/scene_upload.c)
+ * finds the hits that testing every instance's every triangle finds: the same bits. A TLAS box
+ * that cut off part of an instance would lose hits there. */
+Test(instances_render, turned_instances_render_the_brute_force_bits, .timeout = 300)
+{
+    RenderFixture f;
+    render_fixture_open_with(&f, turned_instances_scene(), 48, 48, INSTANCING_AUTO);
+    cr_assert(f.scene.data.two_level);
+    RenderSettings s = {.spp = 4, .max_depth = 4, .seed = 5};
+    float *bvh = render_fixture_render(&f, s, NULL);
+    s.brute_force = true;
+    float *brute = render_fixture_render(&f, s, NULL);
+    cr_expect(memcmp(bvh, brute, 48 * 48 * 3 * sizeof(float)) == 0, "the BVH missed hits");
+    free(bvh), free(brute);
+    render_fixture_close(&f);
 }
 
 /* ---- Order, rotation sense, matrix layout: depths by hand ------------------------------------ */
