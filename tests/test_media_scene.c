@@ -386,3 +386,22 @@ Test(media_scene, subsurface_with_an_exterior_keeps_its_walk_medium)
     cr_expect_eq(s.data.materials[0].exterior, MEDIUM_SLOT_WORLD, "the material itself unchanged");
     scene_free(&s);
 }
+
+/* A medium that emits is a light: a scene lit by it alone gets no default rig (no sky and sun over
+ * it, no "has no light" warning); the same scene with a medium that does not emit does. */
+Test(media_scene, an_emissive_medium_counts_as_light_for_the_default_rig)
+{
+    Scene s;
+    load_ok("\"media\": {\"glow\": {\"type\": \"homogeneous\", \"sigma_a\": 0.5, \"emission\": 2}}, "
+            "\"materials\": {\"skin\": {\"type\": \"interface\"}}, "
+            "\"objects\": [{\"obj\": \"cube.obj\", \"material\": \"skin\", \"interior\": \"glow\"}]",
+            &s);
+    cr_expect_eq(scene_default_rig_choice(&s), RIG_NONE);
+    scene_free(&s);
+    load_ok("\"media\": {\"dark\": {\"type\": \"homogeneous\", \"sigma_a\": 0.5}}, "
+            "\"materials\": {\"skin\": {\"type\": \"interface\"}}, "
+            "\"objects\": [{\"obj\": \"cube.obj\", \"material\": \"skin\", \"interior\": \"dark\"}]",
+            &s);
+    cr_expect_neq(scene_default_rig_choice(&s), RIG_NONE, "nothing lights this one");
+    scene_free(&s);
+}

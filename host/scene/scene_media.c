@@ -6,9 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Appends n elements of size `size` to *array (count *count), growing it; false when out of
- * memory or past 2^32 entries (Medium's offsets are 32-bit). */
-static bool append(void **array, size_t *count, const void *items, size_t n, size_t size,
+/* Appends the n elements of size `size` at *items to *array (count *count): an empty array takes
+ * *items over (and *items becomes NULL: the grid's values are never in memory twice), else it
+ * grows; false when out of memory or past 2^32 entries (Medium's offsets are 32-bit). */
+static bool append(void **array, size_t *count, void **items, size_t n, size_t size,
                    const char *what, Error *err)
 {
     if (n == 0)
@@ -17,12 +18,17 @@ static bool append(void **array, size_t *count, const void *items, size_t n, siz
         error_set(err, ERR_TOO_LARGE, NULL, 0, "%s: the grid media hold more than 2^32 entries", what);
         return false;
     }
+    if (!*array) {
+        *array = *items, *items = NULL;
+        *count = n;
+        return true;
+    }
     void *grown = realloc(*array, (*count + n) * size);
     if (!grown) {
         error_set(err, ERR_OUT_OF_MEMORY, NULL, 0, "%s: out of memory for the grid media", what);
         return false;
     }
-    memcpy((char *)grown + *count * size, items, n * size);
+    memcpy((char *)grown + *count * size, *items, n * size);
     *array = grown;
     *count += n;
     return true;
@@ -52,7 +58,7 @@ static bool grid_to_index(Medium *m, const VolumeGrid *grid, const Affine *objec
     return true;
 }
 
-uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGrid *grid,
+uint32_t scene_data_add_medium(SceneData *data, const Medium *m, VolumeGrid *grid,
                                const Affine *object_to_world, Error *err)
 {
     if (data->num_media >= MEDIUM_COUNT_LIMIT) {
@@ -76,13 +82,13 @@ uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGri
         medium.majorants = (uint32_t)data->num_grid_majorants;
         /* A grid whose values all lie in one brick's neighbourhood of zero still tracks: the
          * flags say scattering when the coefficients do, whatever the density. */
-        if (!append((void **)&data->grid_bricks, &data->num_grid_bricks, grid->brick_table, table,
-                    sizeof(uint32_t), "grid medium", err) ||
-            !append((void **)&data->grid_values, &data->num_grid_values, grid->values,
+        if (!append((void **)&data->grid_bricks, &data->num_grid_bricks,
+                    (void **)&grid->brick_table, table, sizeof(uint32_t), "grid medium", err) ||
+            !append((void **)&data->grid_values, &data->num_grid_values, (void **)&grid->values,
                     (size_t)grid->num_bricks * MEDIUM_BRICK_VOXELS, sizeof(float), "grid medium",
                     err) ||
-            !append((void **)&data->grid_majorants, &data->num_grid_majorants, grid->majorants,
-                    table, sizeof(float), "grid medium", err))
+            !append((void **)&data->grid_majorants, &data->num_grid_majorants,
+                    (void **)&grid->majorants, table, sizeof(float), "grid medium", err))
             return 0;
     }
     Medium *grown = realloc(data->media, (data->num_media + 1) * sizeof *grown);

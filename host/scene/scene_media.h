@@ -16,10 +16,11 @@
 /* Appends medium m (its coefficients, g, emission, type; flags are set here from them) and
  * returns its slot (1 + its index), or 0 with err set (ERR_TOO_LARGE past MEDIUM_COUNT_LIMIT or
  * 2^32 grid entries, ERR_OUT_OF_MEMORY). A grid medium (m->type MEDIUM_GRID) gives its grid and
- * object_to_world, the medium's transform: the bricks are copied, and
+ * object_to_world, the medium's transform: the bricks are copied, or taken over when they are the
+ * scene's first (the grid's arrays then become NULL; volume_grid_free frees what is left), and
  * m->to_index is set to the inverse of object_to_world times the grid's index_to_object; a
  * homogeneous one gives NULL for both. */
-uint32_t scene_data_add_medium(SceneData *data, const Medium *m, const VolumeGrid *grid,
+uint32_t scene_data_add_medium(SceneData *data, const Medium *m, VolumeGrid *grid,
                                const Affine *object_to_world, Error *err);
 
 /* Gives every dielectric with an `absorption` and no medium interface of its own a homogeneous

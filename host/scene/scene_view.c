@@ -70,6 +70,9 @@ RigChoice scene_default_rig_choice(const Scene *scene)
     const float *bg = scene->desc.background;
     if (d->num_analytic > 0 || d->environment.width > 0 || bg[0] > 0.0f || bg[1] > 0.0f || bg[2] > 0.0f)
         return RIG_NONE;
+    for (uint32_t i = 0; i < d->num_media; i++) /* an emissive medium lights the scene */
+        if (d->media[i].flags & MEDIUM_FLAG_EMITS)
+            return RIG_NONE;
     bool bare = scene_is_bare_model(scene->desc.path);
     if (d->num_emissive == 0)
         return bare ? RIG_WITH_GROUND : RIG_SKY_AND_KEY;
