@@ -26,9 +26,10 @@ inline void resolve_shadow_ray(PATH_STATE_PARAMS uint slot, float4 contribution,
 /* With media: whether the shadow ray o + t d, t in [0, tmax), starting in medium slot `medium`,
  * reaches its end, passing through `interface` surfaces (into the medium beyond each) and no
  * other; *tr is multiplied by the transmittance of the media along it (medium_transmittance).
- * The queuing bounce's DIM_MEDIUM number seeds the ratio tracking (a stream of its own: the
- * bounce's closest-hit segment hashes it with another salt) and its DIM_SHADOW_OPACITY stream the
- * cut-out pass-throughs, one per piece. */
+ * The queuing bounce's DIM_MEDIUM number seeds the ratio tracking: its hashed stream only, never
+ * the number itself, which placed the vertex this ray starts from (the segment that reached it
+ * took it as its first distance: reused, the first tentative collision here would depend on where
+ * the vertex is). Its DIM_SHADOW_OPACITY stream drives the cut-out pass-throughs, one per piece. */
 #define SHADOW_CROSSING_LIMIT 64u
 PT_INLINE bool shadow_through_media(constant RenderParams *p, const SceneView *scene,
                                     uint brute_count, float3 o, float3 d, float tmax, float time,
@@ -36,6 +37,7 @@ PT_INLINE bool shadow_through_media(constant RenderParams *p, const SceneView *s
                                     float3 *tr)
 {
     MediumRng rng = medium_rng(rng_bounce_bits(key, bounce, DIM_MEDIUM), 0x1b873593u);
+    rng.drawn = 1u; /* past `first`: see above */
     uint opacity = rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY);
     for (uint piece = 0u; piece <= SHADOW_CROSSING_LIMIT; piece++) {
         Hit h;
