@@ -226,9 +226,11 @@ Test(media_render, shadow_rays_pass_interfaces_with_transmittance, .timeout = 60
 /* ---- White furnaces ---------------------------------------------------------------------------- */
 
 /* A box |x|, |y|, |z| <= 1 of `material` (interior: `medium_json` when not NULL) under a uniform
- * sky of 0.5, seen whole: the image is the sky everywhere when nothing absorbs. */
-static void check_furnace(const char *what, const char *material_json, const char *medium_json,
-                          int path_kernel)
+ * sky of 0.5, seen whole: the image is the sky everywhere when nothing absorbs; with `absorbs`
+ * (the control: the same box with a medium that absorbs a little) every channel is darker, which
+ * shows that the paths do enter the medium (a box they passed by would be a furnace too). */
+static void check_furnace_or_darker(const char *what, const char *material_json,
+                                    const char *medium_json, int path_kernel, bool absorbs)
 {
     const char *dir = test_temp_dir();
     box_obj(dir, "box.obj", -1, -1, -1, 1, 1, 1);
@@ -249,8 +251,18 @@ static void check_furnace(const char *what, const char *material_json, const cha
     const double expected[3] = {0.5, 0.5, 0.5};
     cr_log_info("furnace %s: %.5f %.5f %.5f (+- %.5f %.5f %.5f)", what, s.mean[0], s.mean[1],
                 s.mean[2], s.stderr_[0], s.stderr_[1], s.stderr_[2]);
-    expect_mean(what, s, expected, 0.0);
+    if (!absorbs)
+        expect_mean(what, s, expected, 0.0);
+    for (int c = 0; absorbs && c < 3; c++)
+        cr_expect(s.mean[c] < 0.5 - 4.5 * s.stderr_[c], "%s, channel %d: mean %.5f, not darker", what,
+                  c, s.mean[c]);
     free(rgb);
+}
+
+static void check_furnace(const char *what, const char *material_json, const char *medium_json,
+                          int path_kernel)
+{
+    check_furnace_or_darker(what, material_json, medium_json, path_kernel, false);
 }
 
 Test(media_render, white_furnace_media, .timeout = 900)
@@ -263,6 +275,13 @@ Test(media_render, white_furnace_media, .timeout = 900)
     check_furnace("glass of milk", "{\"type\": \"dielectric\", \"ior\": 1.4}",
                   "{\"type\": \"homogeneous\", \"sigma_s\": [4, 2, 1], \"g\": 0.3}",
                   PATH_KERNEL_WAVEFRONT);
+    /* The controls: 10% absorption in the same media must show. */
+    check_furnace_or_darker("grey fog, albedo 0.9", "{\"type\": \"interface\"}",
+                            "{\"type\": \"homogeneous\", \"sigma_s\": 2.7, \"sigma_a\": 0.3, "
+                            "\"g\": 0.6}", PATH_KERNEL_WAVEFRONT, true);
+    check_furnace_or_darker("glass of milk, albedo 0.9", "{\"type\": \"dielectric\", \"ior\": 1.4}",
+                            "{\"type\": \"homogeneous\", \"sigma_s\": [3.6, 1.8, 0.9], "
+                            "\"sigma_a\": [0.4, 0.2, 0.1], \"g\": 0.3}", PATH_KERNEL_MEGAKERNEL, true);
     /* specular 0: the coat, whose Schlick weights are not exactly energy-conserving (principled.cl),
      * is out of the way; what does not reflect diffusely enters and walks without loss. */
     check_furnace("principled subsurface, white",
