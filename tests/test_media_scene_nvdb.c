@@ -45,12 +45,21 @@ Test(media_scene_nvdb, grid_by_name_and_the_first_float_grid)
     Error err = {0};
     cr_assert(scene_load(write_scene("\"a\": {\"type\": \"grid\", \"file\": \"mixed.nvdb\", "
                                      "\"grid\": \"flame\"}, \"b\": {\"type\": \"grid\", \"file\": "
-                                     "\"mixed.nvdb\"}"),
+                                     "\"mixed.nvdb\"}, \"c\": {\"type\": \"grid\", \"file\": "
+                                     "\"mixed.nvdb\", \"grid\": \"density\"}"),
                          &s, &err),
               "%s", err.message);
-    cr_assert_eq(s.data.num_media, 2);
-    cr_expect_eq(s.data.media[0].type, MEDIUM_GRID);
-    cr_expect(s.data.media[1].sigma_s.s[3] > 0.0f, "the first float grid (density) has values");
+    cr_assert_eq(s.data.num_media, 3);
+    const Medium *flame = &s.data.media[0], *first = &s.data.media[1], *density = &s.data.media[2];
+    cr_expect_eq(flame->type, MEDIUM_GRID);
+    /* "flame" is one active voxel of 2.5 (nvdb_fixture.cc): the named grid, not the first. */
+    cr_expect_eq(flame->sigma_s.s[3], 2.5f, "flame's largest density");
+    cr_expect(flame->res_x == 1 && flame->res_y == 1 && flame->res_z == 1, "flame: one voxel");
+    /* No name: the first float grid, "density" (the double "temperature" before it is skipped). */
+    cr_expect_eq(first->sigma_s.s[3], density->sigma_s.s[3], "the first float grid is density");
+    cr_expect(first->res_x == density->res_x && first->res_y == density->res_y &&
+                  first->res_z == density->res_z, "the first float grid is density");
+    cr_expect_neq(first->sigma_s.s[3], 2.5f, "not flame");
     scene_free(&s);
 }
 

@@ -3,6 +3,7 @@
  * inverse, the T R S decomposition (mirrors and shears included), interpolation along the
  * shortest arc, and swept boxes that hold every position a moving box's corners pass through. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 
 #include "base/transform.h"
@@ -247,6 +248,45 @@ Test(transform, swept_box_holds_sampled_corners)
             double extent = seen_hi[k] - seen_lo[k], box = (double)box_hi[k] - box_lo[k];
             cr_expect(box <= 2.0 * extent, "case %d axis %d: swept box %g vs sampled extent %g", n,
                       k, box, extent);
+        }
+    }
+}
+
+/* affine_points_box (the TLAS's box of a turned instance, render/scene_upload.c) holds every point
+ * transformed in double, is no larger than affine_box of the points' bounds, and is tight: each
+ * face touches a point within a few float ulps. */
+Test(transform, points_box_holds_every_point_and_is_tight)
+{
+    uint64_t state = 41;
+    enum { N = 200 };
+    float4 points[N];
+    for (int trial = 0; trial < 50; trial++) {
+        Affine a = random_affine(&state, 180.0);
+        float plo[3] = {INFINITY, INFINITY, INFINITY}, phi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int i = 0; i < N; i++)
+            for (int k = 0; k < 4; k++) {
+                points[i].s[k] = k < 3 ? (float)uniform(&state, -2, 2) : 0.0f;
+                if (k < 3)
+                    plo[k] = fminf(plo[k], points[i].s[k]), phi[k] = fmaxf(phi[k], points[i].s[k]);
+            }
+        float lo[3], hi[3], clo[3], chi[3];
+        affine_points_box(&a, points, N, lo, hi);
+        affine_box(&a, plo, phi, clo, chi);
+        double reach_lo[3] = {INFINITY, INFINITY, INFINITY}, reach_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int i = 0; i < N; i++) {
+            double p[3] = {points[i].s[0], points[i].s[1], points[i].s[2]};
+            affine_point(&a, p, p);
+            for (int k = 0; k < 3; k++) {
+                cr_expect(lo[k] <= p[k] && p[k] <= hi[k], "trial %d point %d axis %d outside", trial,
+                          i, k);
+                reach_lo[k] = fmin(reach_lo[k], p[k]), reach_hi[k] = fmax(reach_hi[k], p[k]);
+            }
+        }
+        for (int k = 0; k < 3; k++) {
+            cr_expect(clo[k] <= lo[k] && hi[k] <= chi[k], "trial %d axis %d: larger than the corners'", trial, k);
+            double ulps = 4.0 * FLT_EPSILON * (1.0 + fabs(reach_lo[k]) + fabs(reach_hi[k]));
+            cr_expect(reach_lo[k] - lo[k] <= ulps && hi[k] - reach_hi[k] <= ulps,
+                      "trial %d axis %d: not tight", trial, k);
         }
     }
 }
