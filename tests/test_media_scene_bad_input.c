@@ -35,7 +35,7 @@ Test(media_scene, bad_scale_overflowing_the_coefficient)
 
 Test(media_scene, bad_negative_emission)
 {
-    refused(FOG(", \"emission\": -1"), "media.fog.emission:");
+    refused(FOG(", \"emission\": -1"), "media.fog.emission: [-1, -1, -1] must be finite and >= 0");
 }
 
 Test(media_scene, bad_coefficient_type)
@@ -98,13 +98,16 @@ Test(media_scene, bad_grid_name_not_in_file)
     refused("\"media\": {\"smoke\": {\"type\": \"grid\", \"file\": \"smoke.vol\", "
             "\"grid\": \"temperature\"}}",
             "media.smoke.grid: ");
+    refused("\"media\": {\"smoke\": {\"type\": \"grid\", \"file\": \"smoke.vol\", "
+            "\"grid\": \"temperature\"}}",
+            "there is no grid 'temperature'");
 }
 
 Test(media_scene, bad_grid_singular_transform)
 {
     refused("\"media\": {\"smoke\": {\"type\": \"grid\", \"file\": \"s.vol\", \"transform\": "
             "[{\"scale\": [1, 0, 1]}]}}",
-            "media.smoke.transform");
+            "media.smoke.transform[0].scale: [1, 0, 1] has a zero component");
 }
 
 Test(media_scene, bad_world_medium_name)
@@ -217,5 +220,5 @@ Test(media_scene, bad_black_holes_with_media)
             "black_holes: not rendered together with media");
     refused("\"materials\": {\"p\": {\"type\": \"principled\", \"subsurface\": 1}}, "
             "\"black_holes\": [{\"position\": [5, 5, 5], \"mass\": 0.1}]",
-            "materials.p.subsurface");
+            "black_holes: not rendered together with media (materials.p.subsurface is one)");
 }
