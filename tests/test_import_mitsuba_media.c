@@ -11,6 +11,7 @@
 
 #include "mitsuba_import.h"
 #include "scene/scene.h"
+#include "media_fixtures.h"
 #include "support.h"
 
 static const char *write_in(const char *name, const char *text)
@@ -24,16 +25,8 @@ static void write_vol(const char *dir, const char *name, float lo, float hi)
 {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "wb");
-    cr_assert(f);
-    int32_t header[5] = {1, 2, 2, 2, 1};
-    float box[6] = {lo, lo, lo, hi, hi, hi}, one = 1.0f;
-    fwrite("VOL\3", 1, 4, f);
-    fwrite(header, sizeof header, 1, f);
-    fwrite(box, sizeof box, 1, f);
-    for (int i = 0; i < 8; i++)
-        fwrite(&one, sizeof one, 1, f);
-    fclose(f);
+    const float ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    write_vol_file(path, 2, 2, 2, ones, (const float[3]){lo, lo, lo}, (const float[3]){hi, hi, hi});
 }
 
 #define CUBE_WITH(media) "<shape type=\"cube\"><bsdf type=\"null\"/>" media "</shape>"

@@ -155,17 +155,7 @@ Test(volume_nvdb, upper_node_tiles)
 
 static void expect_nvdb_error(const char *path, const char *grid_name, ErrorCode code, const char *needle)
 {
-    VolumeGrid grid;
-    Error err = {0};
-    bool ok = volume_grid_read(path, grid_name, &grid, &err);
-    snprintf(last_message, sizeof last_message, "%s", err.message);
-    if (ok)
-        volume_grid_free(&grid);
-    cr_expect_not(ok, "%s (grid '%s') was read; wanted \"%s\"", path, grid_name, needle);
-    cr_expect_eq(err.code, code, "%s: %s", error_code_name(err.code), err.message);
-    cr_expect(strstr(err.message, needle), "\"%s\" does not say \"%s\"", err.message, needle);
-    cr_expect(strstr(err.message, path), "\"%s\" does not name the file", err.message);
-    cr_expect_null(strchr(err.message, '\n'));
+    expect_grid_read_error(path, grid_name, code, needle, last_message, sizeof last_message);
 }
 
 Test(volume_nvdb, grids_by_name_and_type)

@@ -11,6 +11,8 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "base/shared_types.h"
 #include "io/volume_grid.h"
@@ -126,6 +128,25 @@ static inline void check_majorants(const VolumeGrid *g, uint64_t seed, int point
                                   by, bz, density, q[0], q[1], q[2], majorant);
                 }
             }
+}
+
+/* Reading grid `grid_name` of path must fail with `code` and one line that names the file and
+ * holds `needle`; the message is copied to message[size] when message is not NULL. */
+static inline void expect_grid_read_error(const char *path, const char *grid_name, ErrorCode code,
+                                          const char *needle, char *message, size_t size)
+{
+    VolumeGrid grid;
+    Error err = {0};
+    bool ok = volume_grid_read(path, grid_name, &grid, &err);
+    if (message)
+        snprintf(message, size, "%s", err.message);
+    if (ok)
+        volume_grid_free(&grid);
+    cr_expect_not(ok, "%s (grid '%s') was read; wanted \"%s\"", path, grid_name, needle);
+    cr_expect_eq(err.code, code, "%s: %s (%s)", path, error_code_name(err.code), err.message);
+    cr_expect(strstr(err.message, needle), "\"%s\" does not say \"%s\"", err.message, needle);
+    cr_expect(strstr(err.message, path), "\"%s\" does not name the file", err.message);
+    cr_expect_null(strchr(err.message, '\n'));
 }
 
 #endif
