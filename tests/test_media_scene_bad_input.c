@@ -222,3 +222,10 @@ Test(media_scene, bad_black_holes_with_media)
             "\"black_holes\": [{\"position\": [5, 5, 5], \"mass\": 0.1}]",
             "black_holes: not rendered together with media (materials.p.subsurface is one)");
 }
+
+Test(media_scene, bad_grid_sigma_t_overflows_with_density_scale)
+{
+    refused("\"media\": {\"smoke\": {\"type\": \"grid\", \"file\": \"s.vol\", \"sigma_t\": 1e30, "
+            "\"density_scale\": 1e30}}",
+            "media.smoke.sigma_t: [1e+30, 1e+30, 1e+30] times the scale 1e+30 is not finite");
+}

@@ -159,7 +159,6 @@ static bool read_grid(const Reader *r, MediumDesc *d)
     static const char *const keys[] = {"type",   "file", "grid",     "density_scale", "sigma_t",
                                        "albedo", "g",    "emission", "transform",     NULL};
     float density_scale = 1.0f, sigma_t[3] = {1, 1, 1}, albedo[3] = {1, 1, 1}, g;
-    float absorbed[3];
     char key[300];
     const cJSON *transform = json_member(r->e, "transform");
     d->transform = affine_identity();
@@ -170,18 +169,12 @@ static bool read_grid(const Reader *r, MediumDesc *d)
         (transform && !transform_from_json(r->p, transform, key_of(r, "transform", key),
                                            &d->transform)))
         return false;
-    float t[3];
+    float4 t;
+    if (!scaled(r, "sigma_t", sigma_t, density_scale, &t))
+        return false;
     for (int i = 0; i < 3; i++) {
-        t[i] = sigma_t[i] * density_scale;
-        if (!isfinite(t[i]))
-            return json_fail(r->p, ERR_JSON_VALUE, key_of(r, "sigma_t", key),
-                             "[%g, %g, %g] times density_scale %g is not finite", sigma_t[0],
-                             sigma_t[1], sigma_t[2], density_scale);
-        absorbed[i] = 1.0f - albedo[i];
-    }
-    for (int i = 0; i < 3; i++) {
-        d->m.sigma_s.s[i] = albedo[i] * t[i];
-        d->m.sigma_a.s[i] = absorbed[i] * t[i];
+        d->m.sigma_s.s[i] = albedo[i] * t.s[i];
+        d->m.sigma_a.s[i] = (1.0f - albedo[i]) * t.s[i];
     }
     d->m.sigma_a.s[3] = g;
     return true;
