@@ -48,6 +48,10 @@ bool volume_grid_from_dense(const float *values, const uint32_t res[3], VolumeGr
 
 void volume_grid_free(VolumeGrid *grid);
 
+/* The bounding box a Mitsuba .vol file's header gives its grid (xmin, ymin, zmin, xmax, ymax,
+ * zmax), the header checked as volume_grid_read checks it; the values are not read. */
+bool volume_vol_box(const char *path, double box[6], Error *err);
+
 /* The memory one grid's non-zero bricks may take (ERR_TOO_LARGE past it): 4 GiB unless set. A
  * small file can describe a large constant box (a NanoVDB tile); the fuzz targets set less, to
  * stay inside libFuzzer's memory limit. 0 restores the default. */

@@ -140,6 +140,36 @@ static bool read_values(int fd, VolumeGridBuilder *b, Error *err)
     return ok;
 }
 
+/* Opens path and reads its checked header; returns the descriptor (-1 with err set). */
+static int open_vol(const char *path, long long *file_size, VolHeader *h, Error *err)
+{
+    int fd = input_file_open(path, "a .vol grid", file_size, err);
+    if (fd < 0)
+        return -1;
+    unsigned char header[VOL_HEADER_BYTES];
+    if (*file_size < VOL_HEADER_BYTES || !read_at(fd, header, sizeof header, 0)) {
+        error_set(err, ERR_FILE_READ, path, 0, "%s: truncated: %lld bytes, shorter than a .vol header (%d)",
+                  path, *file_size, VOL_HEADER_BYTES);
+    } else if (parse_header(path, header, h, err)) {
+        return fd;
+    }
+    close(fd);
+    return -1;
+}
+
+bool volume_vol_box(const char *path, double box[6], Error *err)
+{
+    long long file_size = 0;
+    VolHeader h;
+    int fd = open_vol(path, &file_size, &h, err);
+    if (fd < 0)
+        return false;
+    close(fd);
+    for (int i = 0; i < 6; i++)
+        box[i] = h.bbox[i];
+    return true;
+}
+
 bool volume_vol_read(const char *path, const char *grid_name, VolumeGrid *out, Error *err)
 {
     memset(out, 0, sizeof *out);
@@ -149,20 +179,15 @@ bool volume_vol_read(const char *path, const char *grid_name, VolumeGrid *out, E
         return false;
     }
     long long file_size = 0;
-    int fd = input_file_open(path, "a .vol grid", &file_size, err);
+    VolHeader h;
+    int fd = open_vol(path, &file_size, &h, err);
     if (fd < 0)
         return false;
-    unsigned char header[VOL_HEADER_BYTES];
-    VolHeader h;
     VolumeGridBuilder b;
     bool ok = false;
-    if (file_size < VOL_HEADER_BYTES || !read_at(fd, header, sizeof header, 0)) {
-        error_set(err, ERR_FILE_READ, path, 0, "%s: truncated: %lld bytes, shorter than a .vol header (%d)",
-                  path, file_size, VOL_HEADER_BYTES);
-    } else if (parse_header(path, header, &h, err) &&
-               volume_grid_begin(&b, out, (const uint32_t[3]){(uint32_t)h.res[0], (uint32_t)h.res[1],
-                                                               (uint32_t)h.res[2]},
-                                 path, err)) {
+    if (volume_grid_begin(&b, out, (const uint32_t[3]){(uint32_t)h.res[0], (uint32_t)h.res[1],
+                                                       (uint32_t)h.res[2]},
+                          path, err)) {
         /* Within 2^31 voxels: the byte count below cannot overflow. */
         long long need = VOL_HEADER_BYTES + (long long)h.res[0] * h.res[1] * h.res[2] * 4;
         if (file_size < need)

@@ -16,9 +16,8 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
-#include "io/input_file.h"
+#include "io/volume_grid.h"
 
 static const XmlElement *phase_of(const XmlElement *e)
 {
@@ -72,31 +71,11 @@ static bool constant(Mitsuba *m, const XmlElement *e, const char *name, double f
     return true;
 }
 
-/* The .vol file's bounding box (header bytes 24..47, six little-endian float32). */
+/* The .vol file's bounding box, its header checked as the reader checks it (io/volume_vol.c). */
 static bool vol_bbox(Mitsuba *m, const XmlElement *e, const char *path, double box[6])
 {
-    long long size = 0;
     Error inner = {0};
-    unsigned char h[48];
-    int fd = input_file_open(path, "a .vol grid", &size, &inner);
-    if (fd < 0)
-        return mi_fail(m, e, "%s", inner.message);
-    bool ok = size >= 48 && pread(fd, h, sizeof h, 0) == (ssize_t)sizeof h &&
-              memcmp(h, "VOL", 3) == 0;
-    close(fd);
-    if (!ok)
-        return mi_fail(m, e, "%s: not a Mitsuba .vol grid (no 48-byte VOL header)", path);
-    for (int i = 0; i < 6; i++) {
-        uint32_t bits = (uint32_t)h[24 + 4 * i] | (uint32_t)h[25 + 4 * i] << 8 |
-                        (uint32_t)h[26 + 4 * i] << 16 | (uint32_t)h[27 + 4 * i] << 24;
-        float f;
-        memcpy(&f, &bits, sizeof f);
-        box[i] = f;
-    }
-    for (int a = 0; a < 3; a++)
-        if (!(box[3 + a] > box[a]) || !(box[3 + a] - box[a] < 1e30))
-            return mi_fail(m, e, "%s: its bounding box is empty or not finite on axis %d", path, a);
-    return true;
+    return volume_vol_box(path, box, &inner) || mi_fail(m, e, "%s", inner.message);
 }
 
 /* A gridvolume's file and the transform that puts pt's grid (on the header's box) where Mitsuba
