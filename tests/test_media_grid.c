@@ -143,11 +143,14 @@ Test(media_grid, sparse_grid_dims_only_where_the_blob_is, .timeout = 600)
 {
     const char *dir = test_temp_dir();
     /* 64^3 voxels over [-1, 1]^2 x [-0.5, 0.5]: zero but for a dense cube of 8^3 voxels around
-     * (0.5, 0.5): most bricks empty, the walk must skip them and stop in the blob. */
+     * (0.5, 0.5): most bricks empty, the walk must skip them and stop in the blob. Along z the
+     * blob fills one brick, so its interpolation ramps reach into two bricks with no voxel of their
+     * own (3% of the optical depth: below this test's noise; the majorants that must cover them
+     * are checked exactly in test_volume_grid). */
     enum { N = 64 };
     float *v = calloc((size_t)N * N * N, sizeof *v);
     cr_assert(v);
-    for (int z = 28; z < 36; z++)
+    for (int z = 24; z < 32; z++) /* one brick exactly: its ramps spill into two empty bricks */
         for (int y = 44; y < 52; y++)
             for (int x = 44; x < 52; x++)
                 v[((size_t)z * N + y) * N + x] = 4.0f;
@@ -176,7 +179,7 @@ Test(media_grid, sparse_grid_dims_only_where_the_blob_is, .timeout = 600)
                 exp(-1.0), far_sum / far_n);
     cr_expect(fabs(far_sum / far_n - 1.0) < 1e-6, "light away from the blob is dimmed: %.6f",
               far_sum / far_n);
-    cr_expect(fabs(core - exp(-1.0)) < 0.06, "through the blob: %.4f, expected about %.4f", core,
+    cr_expect(fabs(core - exp(-1.0)) < 0.03, "through the blob: %.4f, expected about %.4f", core,
               exp(-1.0));
     free(rgb);
 }
