@@ -10,15 +10,11 @@
 
 #include "support.h"
 
-/* Kernel k's render against the wavefront's: the same rays, the same bits. */
-static void expect_same_as_wavefront(const char *scene, RenderFixture *f, RenderSettings s, int k,
-                                     const float *wave_image, const RenderStats *wave,
-                                     RenderStats *stats)
+/* Render b (by `name`) against the wavefront's a: the same rays, the same bits. */
+static void expect_same_bits(const char *scene, const char *name, RenderFixture *f,
+                             const float *wave_image, const float *b, const RenderStats *wave,
+                             const RenderStats *stats)
 {
-    s.path_kernel = k;
-    float *b = render_fixture_render(f, s, stats);
-    const char *name = k == PATH_KERNEL_MEGAKERNEL ? "megakernel" : "megakernel-single";
-    cr_expect(stats->config.megakernel, "%s: %s: the megakernel was not used", scene, name);
     cr_expect_eq(stats->extension_rays, wave->extension_rays, "%s: %s: %llu extension rays, wavefront %llu",
                  scene, name, (unsigned long long)stats->extension_rays,
                  (unsigned long long)wave->extension_rays);
@@ -29,6 +25,19 @@ static void expect_same_as_wavefront(const char *scene, RenderFixture *f, Render
         differ += memcmp(&wave_image[i], &b[i], sizeof b[i]) != 0;
     cr_expect_eq(differ, 0, "%s: %s: %zu of %zu values differ from the wavefront's", scene, name,
                  differ, n);
+}
+
+/* Kernel k's render against the wavefront's: the same rays, the same bits. */
+static void expect_same_as_wavefront(const char *scene, RenderFixture *f, RenderSettings s, int k,
+                                     const float *wave_image, const RenderStats *wave,
+                                     RenderStats *stats)
+{
+    s.path_kernel = k;
+    s.tail_paths = 0;
+    float *b = render_fixture_render(f, s, stats);
+    const char *name = k == PATH_KERNEL_MEGAKERNEL ? "megakernel" : "megakernel-single";
+    cr_expect(stats->config.megakernel, "%s: %s: the megakernel was not used", scene, name);
+    expect_same_bits(scene, name, f, wave_image, b, wave, stats);
     free(b);
 }
 
@@ -45,11 +54,24 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     else
         render_fixture_open(&f, scene, width, height);
     bool packets = one_level;
-    RenderStats wave, mega, single;
+    RenderStats wave, tail, mega, single;
     s.path_kernel = PATH_KERNEL_WAVEFRONT;
+    s.tail_paths = -1; /* every bounce a step of its own */
     float *a = render_fixture_render(&f, s, &wave);
     cr_expect(!wave.config.megakernel, "%s: the wavefront was not used", scene);
     cr_expect_gt(wave.extension_rays, (uint64_t)width * (uint64_t)height, "%s: no bounces traced", scene);
+    cr_expect_eq(wave.stage_launches[STAGE_FINISH_PATHS], 0, "%s: finish_paths ran with the tail off",
+                 scene);
+    /* The tail kernel takes each window's paths once its samples have all started: with a small
+     * pool, after steps that refilled slots, and over more than one window. */
+    RenderSettings t = s;
+    t.tail_paths = 1 << 30;
+    if (!t.pool_size)
+        t.pool_size = 512;
+    float *b = render_fixture_render(&f, t, &tail);
+    cr_expect_gt(tail.stage_launches[STAGE_FINISH_PATHS], 0, "%s: finish_paths never ran", scene);
+    expect_same_bits(scene, "the wavefront's tail", &f, a, b, &wave, &tail);
+    free(b);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
     bool wide = f.dev->bvh_width == 8;

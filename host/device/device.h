@@ -21,7 +21,8 @@
     X(CORE, "")                                                                                    \
     X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
     X(AOV, "render_aov")                                                                           \
-    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")
+    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
+    X(FUSED, "finish_paths shade_connect step_paths")
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
 #undef PROGRAM_PART_ENUM

@@ -18,4 +18,17 @@ bool megakernel_init(Wavefront *w, Error *err);
  * the window's radiance, a pool of paths per launch. */
 void megakernel_trace_window(Wavefront *w, uint32_t window_size);
 
+/* The wavefront's tail: once a window has no samples left to start, its last live paths, when
+ * there are at most settings.tail_paths of them (0: PT_TAIL_PATHS, else TAIL_PATHS_DEFAULT), go
+ * to their ends in one launch of finish_paths (cl/stages/megakernel.cl) instead of a step per
+ * bounce, each of which costs its launches and a count read-back however few paths it has. Same
+ * stage functions, same order: the same bits. Sets w->tail_paths and creates the kernel in
+ * w->kernels[STAGE_FINISH_PATHS] for a wavefront render that can take it (not the megakernel, the
+ * ablations or scenes with black holes); false with err set on a bad PT_TAIL_PATHS. */
+#define TAIL_PATHS_DEFAULT 65536
+/* PT_FUSE (an experiment): FUSE_SHADOW traces the shadow rays in the shading kernel
+ * (shade_connect), FUSE_STEP a whole step in one kernel (step_paths). */
+enum { FUSE_NONE, FUSE_SHADOW, FUSE_STEP };
+bool fused_init(Wavefront *w, Error *err);
+
 #endif

@@ -43,6 +43,10 @@ typedef struct {
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
     int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
+    int tail_paths;       /* the wavefront takes a window's last paths to their ends in one launch
+                           * (finish_paths, megakernel.h) once no samples are left to start and at
+                           * most this many are live; 0: PT_TAIL_PATHS, else TAIL_PATHS_DEFAULT;
+                           * < 0: never (every bounce a step of its own) */
 } RenderSettings;
 
 /* How the paths of a window are traced: the wavefront (a kernel per stage, compaction, refills)
@@ -68,6 +72,7 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
  *            its own, which adds their device time to the stage.
  *   made     INIT: by wavefront_init; HOLES: by black_holes_init, for scenes with black holes only;
  *            MEGAKERNEL: by megakernel_init (trace_paths or trace_paths_packets, megakernel.h);
+ *            FUSED: by fused_init (megakernel.h), the wavefront's fused stages;
  *            HELPER: by the helper.
  *   variant  a second kernel "<kernel>_<variant>" that some settings take instead: BRUTE_FORCE (the
  *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), or NONE. */
@@ -80,7 +85,10 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
     X(COMPACT_PATHS, compact_paths, HELPER, HELPER, NONE)                                          \
     X(ACCUMULATE_FILM, accumulate_film, OWN_COUNT, INIT, MOMENTS)                                  \
     X(INTEGRATE_GEODESIC, integrate_geodesic, OVER_ACTIVE, HOLES, NONE)                            \
-    X(TRACE_PATHS, trace_paths, OWN_COUNT, MEGAKERNEL, NONE)
+    X(TRACE_PATHS, trace_paths, OWN_COUNT, MEGAKERNEL, NONE)                                      \
+    X(FINISH_PATHS, finish_paths, OVER_ACTIVE, FUSED, NONE)                                        \
+    X(SHADE_CONNECT, shade_connect, OVER_ACTIVE, FUSED, NONE)                                      \
+    X(STEP_PATHS, step_paths, OVER_ACTIVE, FUSED, NONE)
 
 #define STAGE_ENUM(id, kernel, launch, made, variant) STAGE_##id,
 enum { STAGES(STAGE_ENUM) STAGE_COUNT };

@@ -8,6 +8,7 @@
 #include "parallel/material_sort.h"
 #include "render/adaptive.h"
 #include "render/film.h"
+#include "render/megakernel.h"
 #include "render/wavefront.h"
 
 /* Everything one render holds on the device. */
@@ -46,6 +47,9 @@ struct Wavefront {
     cl_uint megakernel_counts_arg; /* index of trace_paths' first_sample (render/megakernel.c) */
     uint32_t megakernel_paths;     /* paths per work item: 1, or PACKET_RAYS for
                                     * trace_paths_packets */
+    uint32_t tail_paths;           /* finish_paths takes a window's last paths once at most this
+                                    * many are live (fused_init); 0: never */
+    int fuse;                      /* FUSE_* (megakernel.h) */
 };
 
 /* Binds params, [the scene's buffers] and the path state to k's first arguments, in the order of

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/env.h"
 #include "render/megakernel.h"
 #include "render/wavefront_internal.h"
 #include "scene/sampler.h"
@@ -16,7 +17,7 @@ const char *const stage_names[STAGE_COUNT] = {STAGES(STAGE_NAME)};
 
 /* The columns of STAGES that setting up the kernels reads (wavefront.h says what they mean). */
 enum { STAGE_OVER_ACTIVE, STAGE_OWN_COUNT, STAGE_HELPER };
-enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_HELPER };
+enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_FUSED, STAGE_MADE_HELPER };
 enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS };
 #define STAGE_VARIANT_KERNEL_NONE(kernel) NULL
 #define STAGE_VARIANT_KERNEL_BRUTE_FORCE(kernel) #kernel "_brute_force"
@@ -42,10 +43,10 @@ static const uint64_t bytes_per_sample = 0 SAMPLE_STATE_FIELDS(FIELD_BYTES);
 /* Path slots and window: enough paths in flight to fill a GPU, modest on a CPU; both shrink until
  * every buffer fits the device's max allocation and all of them half its memory. */
 static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples,
-                             uint32_t *pool_out, uint32_t *window_out)
+                             uint32_t window_pools, uint32_t *pool_out, uint32_t *window_out)
 {
     uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 16;
-    uint64_t window = s->window_size ? s->window_size : WINDOW_PER_POOL * pool;
+    uint64_t window = s->window_size ? s->window_size : window_pools * pool;
     if (s->no_compaction || window < pool)
         window = pool; /* without compaction there are no free slots to refill */
     while (pool > 1024 && (window * sizeof(float4) > dev->max_alloc ||
@@ -125,7 +126,11 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     uint32_t pool, window;
-    choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, &pool, &window);
+    long window_pools; /* PT_WINDOW_POOLS: an experiment's knob */
+    if (!env_int("PT_WINDOW_POOLS", 1, 4096, WINDOW_PER_POOL, &window_pools, err))
+        return false;
+    choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, (uint32_t)window_pools,
+                     &pool, &window);
     stats->config.pool_size = pool;
     stats->config.window_size = window;
     stats->config.device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
@@ -175,6 +180,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         if (stage_kinds[k].made == STAGE_MADE_INIT &&
             (!w->kernels[STAGE_TRACE_PATHS] || k == STAGE_ACCUMULATE_FILM))
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
+    if (!fused_init(w, err))
+        return false;
     /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
     if (s->sort_materials && !stats->config.megakernel) {
         w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
@@ -232,7 +239,8 @@ static void set_all_args(Wavefront *w)
         if (stage_kinds[st].launch != STAGE_OVER_ACTIVE || !w->kernels[st])
             continue;
         /* shade_surface walks the list sorted by material when sorting */
-        cl_mem list = st == STAGE_SHADE_SURFACE && w->sorted_active ? w->sorted_active : w->active;
+        cl_mem list = (st == STAGE_SHADE_SURFACE || st == STAGE_SHADE_CONNECT) && w->sorted_active
+                          ? w->sorted_active : w->active;
         i = wavefront_set_path_args(w, w->kernels[st], true);
         w->n_active_arg[st] = i + 1;
         own[st] = KERNEL_ARGS(w->kernels[st], i, KARG(list), KARG(zero));
@@ -248,6 +256,9 @@ static void set_all_args(Wavefront *w)
         KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
                     KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
     }
+    for (int st = STAGE_FINISH_PATHS; st <= STAGE_STEP_PATHS; st++)
+        if (w->kernels[st])
+            KERNEL_ARG(w->kernels[st], own[st], w->counters);
     cl_kernel geodesic = w->kernels[STAGE_INTEGRATE_GEODESIC];
     if (geodesic)
         KERNEL_ARGS(geodesic, own[STAGE_INTEGRATE_GEODESIC], KARG(w->black_holes),
