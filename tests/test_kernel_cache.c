@@ -204,6 +204,58 @@ Test(kernel_cache, program_parts_built_when_needed, .timeout = 900)
     unsetenv("PT_PROGRAM_PARTS");
 }
 
+/* A part a render can do without (the wavefront's tail) builds on a thread of its own when the
+ * kernel cache does not have it, and at once when it does; device_kernel and device_close wait for
+ * a build under way rather than start another or leave it running. */
+Test(kernel_cache, part_built_in_background, .timeout = 900)
+{
+    fresh_cache();
+    Error err = {0};
+    Device dev;
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    cr_assert(device_build(&dev, 0, NULL, NULL, &err), "%s", err.message);
+    device_build_in_background(&dev, "finish_paths");
+    cr_expect_not_null(dev.background, "an empty cache: the part builds on a thread");
+    cr_expect_null(dev.programs[PROGRAM_PART_TAIL], "taken in only by the render's thread");
+    device_finish_background_build(&dev);
+    cr_expect_null(dev.background);
+    cr_expect_not_null(dev.programs[PROGRAM_PART_TAIL], "the finished build was taken in");
+    cl_kernel ready = device_kernel_ready(&dev, "finish_paths");
+    cr_expect_not_null(ready);
+    device_build_in_background(&dev, "finish_paths");
+    cr_expect_null(dev.background, "a part already built is not built again");
+    clReleaseKernel(ready);
+    device_close(&dev);
+
+    Device again; /* the entry the thread stored: at once */
+    cr_assert(device_open(&again, "cpu", &err), "%s", err.message);
+    cr_assert(device_build(&again, 0, NULL, NULL, &err), "%s", err.message);
+    device_build_in_background(&again, "finish_paths");
+    cr_expect_null(again.background, "a cached part is built at once");
+    cr_expect_not_null(again.programs[PROGRAM_PART_TAIL]);
+    device_close(&again);
+
+    Device waits; /* device_kernel waits for the thread's build */
+    cr_assert(device_open(&waits, "cpu", &err), "%s", err.message);
+    waits.use_cache = false;
+    cr_assert(device_build(&waits, 0, NULL, NULL, &err), "%s", err.message);
+    device_build_in_background(&waits, "finish_paths");
+    cr_expect_not_null(waits.background);
+    cl_kernel k = device_kernel(&waits, "finish_paths");
+    cr_expect_not_null(k);
+    cr_expect_null(waits.background, "device_kernel took the thread's build in");
+    clReleaseKernel(k);
+    device_close(&waits);
+
+    Device closed; /* closed while the thread builds: joined, nothing left running */
+    cr_assert(device_open(&closed, "cpu", &err), "%s", err.message);
+    closed.use_cache = false;
+    cr_assert(device_build(&closed, 0, NULL, NULL, &err), "%s", err.message);
+    device_build_in_background(&closed, "finish_paths");
+    device_close(&closed);
+    cr_expect_null(closed.background);
+}
+
 /* The one entry's key and size (the cache holds exactly one). */
 static uint64_t only_entry(long *size)
 {

@@ -18,7 +18,7 @@
 #define PT_PART_BIT_MEGAKERNEL 2u /* trace_paths, trace_paths_packets */
 #define PT_PART_BIT_AOV 4u        /* render_aov */
 #define PT_PART_BIT_ABLATION 8u   /* the brute-force intersection kernels (--brute-force) */
-#define PT_PART_BIT_FUSED 16u     /* the wavefront's fused stages: finish_paths, shade_connect, step_paths */
+#define PT_PART_BIT_TAIL 16u      /* finish_paths: the last paths of the wavefront's windows */
 #define PT_PARTS_ALL 31u
 
 #ifdef __OPENCL_C_VERSION__

@@ -35,24 +35,18 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
 }
 #endif
 
-/* The wavefront's fused kernels (host/render/wavefront.c), each the stage functions of several of
- * its stages in their order for one path, so that the film's bits and the ray counts stay the
- * wavefront's; a part of their own, which a GPU render builds beside the wavefront's stages and a
- * CPU render, which takes trace_paths, never does. Not for scenes with black holes (their bent
- * rays are a stage of their own) nor the brute-force ablation.
- *
- * finish_paths: the wavefront's tail. Once a window has no samples left to start and few paths
- * are live, stepping them bounce by bounce costs a handful of launches and a count read-back per
- * step for little work each; this kernel takes the live paths of the active list (after a
- * compaction: each waits for its extension ray) to their ends in one launch.
- * shade_connect: shade_surface and intersect_shadow in one (the shadow ray traced where it is
- * made, never stored). step_paths: intersect_closest, shade_surface and intersect_shadow in one. */
-#define FUSED_PARAMS                                                                               \
-    constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \
-        uint n_active, global uint *counters
-
-#if PT_PART(FUSED)
-kernel void finish_paths(FUSED_PARAMS)
+/* finish_paths: the wavefront's tail (host/render/wavefront.c). Once a window has no samples left
+ * to start and few paths are live, stepping them bounce by bounce costs a handful of launches and
+ * a count read-back per step for little work each; this kernel takes the live paths of the active
+ * list (after a compaction: each waits for its extension ray) to their ends in one launch, with
+ * the same stage functions in the same order as the steps it replaces, so the film's bits and the
+ * ray counts are the wavefront's. Not for scenes with black holes (their bent rays are a stage of
+ * their own) nor the brute-force ablation. A part of its own (TAIL), which a GPU render builds
+ * beside its first windows (device_build_in_background) and a CPU render, which takes
+ * trace_paths, never asks for. */
+#if PT_PART(TAIL)
+kernel void finish_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
+                         const global uint *active, uint n_active, global uint *counters)
 {
     local uint group_rays[2];
     clear_group_rays(group_rays);
@@ -70,33 +64,6 @@ kernel void finish_paths(FUSED_PARAMS)
     }
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, extension, shadow, counters);
-}
-
-kernel void shade_connect(FUSED_PARAMS)
-{
-    local uint group_rays[2];
-    clear_group_rays(group_rays);
-    SceneView scene = SCENE_VIEW;
-    uint i = get_global_id(0);
-    uint slot = i < n_active ? active[i] : 0u;
-    bool shadow = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot) &&
-                  connect_path(p, &scene, PATH_STATE_ARGS slot, false);
-    /* Every work item gets here: no early return above. */
-    count_group_rays(group_rays, 0u, shadow ? 1u : 0u, counters);
-}
-
-kernel void step_paths(FUSED_PARAMS)
-{
-    local uint group_rays[2];
-    clear_group_rays(group_rays);
-    SceneView scene = SCENE_VIEW;
-    uint i = get_global_id(0);
-    uint slot = i < n_active ? active[i] : 0u;
-    bool extension = i < n_active && intersect_closest_path(p, &scene, PATH_STATE_ARGS slot, false);
-    bool shadow = extension && shade_path(p, &scene, PATH_STATE_ARGS slot) &&
-                  connect_path(p, &scene, PATH_STATE_ARGS slot, false);
-    /* Every work item gets here: no early return above. */
-    count_group_rays(group_rays, extension ? 1u : 0u, shadow ? 1u : 0u, counters);
 }
 #endif
 

@@ -332,6 +332,7 @@ bool device_open(Device *dev, const char *spec, Error *err)
 
 void device_close(Device *dev)
 {
+    device_finish_background_build(dev);
     for (int i = 0; i < PROGRAM_PART_COUNT; i++)
         if (dev->programs[i])
             clReleaseProgram(dev->programs[i]);

@@ -22,7 +22,8 @@
     X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
     X(AOV, "render_aov")                                                                           \
     X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
-    X(FUSED, "finish_paths shade_connect step_paths")
+    X(TAIL, "finish_paths")
+typedef struct BackgroundBuild BackgroundBuild;
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
 #undef PROGRAM_PART_ENUM
@@ -59,6 +60,8 @@ typedef struct {
     bool use_cache;       /* set before device_build; device_open sets it unless PT_NO_CACHE=1 */
     bool cache_hit;       /* every part built so far came from the kernel cache */
     ProgramFeatures features; /* what the program was built for (device_build) */
+    struct BackgroundBuild *background; /* a part building on a thread of its own
+                                         * (device_build_in_background), else NULL */
 } Device;
 
 /* Prints every platform and device (name, type, compute units, memory, max allocation, OpenCL C
@@ -112,6 +115,14 @@ void program_features_summary(ProgramFeatures features, char out[PROGRAM_FEATURE
 cl_kernel device_kernel(Device *dev, const char *name);
 /* The kernel, or NULL where the program's options compiled it out (#if around the kernel). */
 cl_kernel device_kernel_if_built(Device *dev, const char *name);
+/* For a kernel a render can do without until it is there: builds its part on a thread of its own
+ * (one at a time; at once when the kernel cache has it, or no thread can be had), so that the
+ * render goes on meanwhile. device_kernel_ready gives the kernel once its part is built, NULL
+ * before, without waiting; device_kernel, device_finish_background_build and device_close wait for
+ * it. A failed build ends the process when it is taken in, as device_kernel's do. */
+void device_build_in_background(Device *dev, const char *name);
+cl_kernel device_kernel_ready(Device *dev, const char *name);
+void device_finish_background_build(Device *dev);
 
 /* Allocates a buffer named for error messages; a size above CL_DEVICE_MAX_MEM_ALLOC_SIZE is
  * ERR_ALLOC_TOO_LARGE naming the buffer, its size and the limit. host may be NULL. A zero size

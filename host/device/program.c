@@ -9,6 +9,8 @@
 #include "base/env.h"
 
 #include <ctype.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -232,35 +234,50 @@ static void announce_build(const Device *dev, int part)
     fflush(stderr);
 }
 
-/* Builds part `part` (or the whole program: dev->whole_program) from the kernel cache or the
- * source into dev->programs[part], adding its time to dev->build_seconds. */
-static bool build_part(Device *dev, int part, Error *err)
+/* Part `part`'s options (or the whole program's: dev->whole_program) and kernel cache key. */
+static bool part_options_and_key(const Device *dev, int part, char *options, size_t size,
+                                 bool *driver_keeps, uint64_t *key, Error *err)
 {
-    char options[sizeof dev->build_options + PROGRAM_FEATURE_OPTIONS_SIZE + 32];
     if (dev->whole_program)
-        snprintf(options, sizeof options, "%s", dev->options);
+        snprintf(options, size, "%s", dev->options);
     else
-        snprintf(options, sizeof options, "%s -DPT_PARTS=%uu", dev->options, program_parts[part].bit);
-    bool driver_keeps;
-    if (!driver_keeps_programs(dev, &driver_keeps, err))
+        snprintf(options, size, "%s -DPT_PARTS=%uu", dev->options, program_parts[part].bit);
+    if (!driver_keeps_programs(dev, driver_keeps, err))
         return false;
-    double start = seconds_now();
     /* A driver-kept program's marker is only as good as the driver's cache it speaks for. */
     const char *driver_cache = getenv("POCL_CACHE_DIR");
     const char *key_parts[] = {dev->source, options, dev->name, dev->platform_name,
                                dev->driver_version,
-                               driver_keeps ? (driver_cache ? driver_cache : "default") : "binary"};
-    uint64_t key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
+                               *driver_keeps ? (driver_cache ? driver_cache : "default") : "binary"};
+    *key = kernel_cache_key(key_parts, sizeof key_parts / sizeof key_parts[0]);
+    return true;
+}
+
+#define PART_OPTIONS_SIZE (sizeof ((Device *)0)->build_options + PROGRAM_FEATURE_OPTIONS_SIZE + 32)
+
+/* Part `part` from the kernel cache or the source into *out, without touching dev (so that a
+ * thread of its own can run it: device_build_in_background); *compiled: the cache could not spare
+ * the compile, which is announced first when `announce`. */
+static bool build_part_program(Device *dev, int part, bool announce, cl_program *out,
+                               bool *compiled, Error *err)
+{
+    char options[PART_OPTIONS_SIZE];
+    bool driver_keeps;
+    uint64_t key;
+    if (!part_options_and_key(dev, part, options, sizeof options, &driver_keeps, &key, err))
+        return false;
     cl_program program = NULL;
     bool hit = false;
     if (dev->use_cache && driver_keeps)
         hit = marker_in_cache(key);
     else if (dev->use_cache)
         hit = (program = build_from_cache(dev, options, key)) != NULL;
+    *compiled = false;
     if (!program) {
         if (!hit) {
-            dev->cache_hit = false;
-            announce_build(dev, part);
+            *compiled = true;
+            if (announce)
+                announce_build(dev, part);
         }
         cl_int status;
         const char *sources[1] = {dev->source};
@@ -277,10 +294,105 @@ static bool build_part(Device *dev, int part, Error *err)
                 store_in_cache(program, key);
         }
     }
-    dev->programs[part] = program;
+    *out = program;
+    return true;
+}
+
+/* Builds part `part` (or the whole program: dev->whole_program) from the kernel cache or the
+ * source into dev->programs[part], adding its time to dev->build_seconds. */
+static bool build_part(Device *dev, int part, Error *err)
+{
+    double start = seconds_now();
+    bool compiled;
+    if (!build_part_program(dev, part, true, &dev->programs[part], &compiled, err))
+        return false;
+    if (compiled)
+        dev->cache_hit = false;
     dev->build_seconds += seconds_now() - start;
     return true;
 }
+
+/* ---- A part built on a thread of its own ---------------------------------------------------- */
+
+struct BackgroundBuild {
+    pthread_t thread;
+    Device *dev;
+    int part;
+    atomic_bool done;
+    bool ok, compiled;
+    cl_program program;
+    double seconds;
+    Error err;
+};
+
+static void *build_in_background(void *arg)
+{
+    BackgroundBuild *b = arg;
+    double start = seconds_now();
+    b->ok = build_part_program(b->dev, b->part, false, &b->program, &b->compiled, &b->err);
+    b->seconds = seconds_now() - start;
+    atomic_store(&b->done, true);
+    return NULL;
+}
+
+/* Takes in the background build's part once it is done (at once when `wait`): then
+ * dev->programs[part] is set, or the process ends with the build's error as device_kernel's
+ * builds do. */
+static void take_background_build(Device *dev, bool wait)
+{
+    BackgroundBuild *b = dev->background;
+    if (!b || (!wait && !atomic_load(&b->done)))
+        return;
+    pthread_join(b->thread, NULL);
+    dev->background = NULL;
+    if (!b->ok)
+        die("%s", b->err.message);
+    dev->programs[b->part] = b->program;
+    dev->build_seconds += b->seconds;
+    free(b);
+}
+
+void device_build_in_background(Device *dev, const char *name)
+{
+    int part = dev->whole_program ? 0 : part_of_kernel(name);
+    if (dev->programs[part] || dev->background)
+        return;
+    /* A part the kernel cache has loads in milliseconds: then now, so that the render has it from
+     * its first window. */
+    char options[PART_OPTIONS_SIZE];
+    bool driver_keeps;
+    uint64_t key;
+    Error err = {0};
+    unsigned char *entry = NULL;
+    size_t size;
+    bool cached = dev->use_cache &&
+                  part_options_and_key(dev, part, options, sizeof options, &driver_keeps, &key, &err) &&
+                  kernel_cache_load(key, &entry, &size);
+    free(entry);
+    BackgroundBuild *b = cached ? NULL : calloc(1, sizeof *b);
+    if (b) {
+        b->dev = dev, b->part = part;
+        atomic_init(&b->done, false);
+        if (pthread_create(&b->thread, NULL, build_in_background, b) == 0) {
+            dev->background = b;
+            return;
+        }
+        free(b);
+    }
+    if (!build_part(dev, part, &err)) /* cached, or no thread could be had */
+        die("%s", err.message);
+}
+
+cl_kernel device_kernel_ready(Device *dev, const char *name)
+{
+    take_background_build(dev, false);
+    int part = dev->whole_program ? 0 : part_of_kernel(name);
+    if (!dev->programs[part])
+        return NULL;
+    return device_kernel(dev, name);
+}
+
+void device_finish_background_build(Device *dev) { take_background_build(dev, true); }
 
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err)
@@ -318,6 +430,8 @@ bool device_build(Device *dev, ProgramFeatures features, const char *extra_sourc
 static cl_kernel create_kernel(Device *dev, const char *name, cl_int *status)
 {
     int part = dev->whole_program ? 0 : part_of_kernel(name);
+    if (dev->background && dev->background->part == part)
+        take_background_build(dev, true); /* rather than build it a second time */
     if (!dev->whole_program && part == PROGRAM_PART_CORE)
         for (int i = 0; i < PROGRAM_PART_COUNT; i++) {
             if (!dev->programs[i])

@@ -76,27 +76,30 @@ void megakernel_trace_window(Wavefront *w, uint32_t window_size)
     }
 }
 
-bool fused_init(Wavefront *w, Error *err)
+bool tail_init(Wavefront *w, Error *err)
 {
     const RenderSettings *s = &w->settings;
     w->tail_paths = 0;
-    w->fuse = FUSE_NONE;
     if (w->kernels[STAGE_TRACE_PATHS] || s->no_compaction || s->brute_force ||
-        w->kernels[STAGE_INTEGRATE_GEODESIC])
+        w->kernels[STAGE_INTEGRATE_GEODESIC] || s->tail_paths < 0)
         return true;
-    long paths = s->tail_paths, fuse;
+    long paths = s->tail_paths;
     if (paths == 0 && !env_int("PT_TAIL_PATHS", 0, 1L << 30, TAIL_PATHS_DEFAULT, &paths, err))
         return false;
-    if (!env_int("PT_FUSE", FUSE_NONE, FUSE_STEP, FUSE_NONE, &fuse, err))
-        return false;
-    if (paths > 0) {
-        w->tail_paths = (uint32_t)paths;
+    w->tail_paths = (uint32_t)paths;
+    if (s->tail_paths > 0) /* asked for: from the first window on */
         w->kernels[STAGE_FINISH_PATHS] = device_kernel(w->dev, "finish_paths");
-    }
-    w->fuse = (int)fuse;
-    if (fuse == FUSE_SHADOW)
-        w->kernels[STAGE_SHADE_CONNECT] = device_kernel(w->dev, "shade_connect");
-    if (fuse == FUSE_STEP)
-        w->kernels[STAGE_STEP_PATHS] = device_kernel(w->dev, "step_paths");
+    else if (paths > 0)
+        device_build_in_background(w->dev, "finish_paths");
     return true;
+}
+
+bool tail_kernel_ready(Wavefront *w)
+{
+    if (!w->kernels[STAGE_FINISH_PATHS] && w->tail_paths > 0) {
+        w->kernels[STAGE_FINISH_PATHS] = device_kernel_ready(w->dev, "finish_paths");
+        if (w->kernels[STAGE_FINISH_PATHS])
+            wavefront_bind_tail(w);
+    }
+    return w->kernels[STAGE_FINISH_PATHS] != NULL;
 }

@@ -22,13 +22,14 @@ void megakernel_trace_window(Wavefront *w, uint32_t window_size);
  * there are at most settings.tail_paths of them (0: PT_TAIL_PATHS, else TAIL_PATHS_DEFAULT), go
  * to their ends in one launch of finish_paths (cl/stages/megakernel.cl) instead of a step per
  * bounce, each of which costs its launches and a count read-back however few paths it has. Same
- * stage functions, same order: the same bits. Sets w->tail_paths and creates the kernel in
- * w->kernels[STAGE_FINISH_PATHS] for a wavefront render that can take it (not the megakernel, the
- * ablations or scenes with black holes); false with err set on a bad PT_TAIL_PATHS. */
+ * stage functions, same order: the same bits. tail_init sets w->tail_paths for a wavefront render
+ * that can take the kernel (not the megakernel, the ablations or scenes with black holes) and
+ * starts building its part on a thread of its own (device_build_in_background: a first build is
+ * a compile of seconds that no render needs to wait for; a tail_paths given in the settings
+ * builds it now instead); false with err set on a bad PT_TAIL_PATHS. tail_kernel_ready: whether
+ * finish_paths is there for this window's tail (taken in and bound once its part is built). */
 #define TAIL_PATHS_DEFAULT 65536
-/* PT_FUSE (an experiment): FUSE_SHADOW traces the shadow rays in the shading kernel
- * (shade_connect), FUSE_STEP a whole step in one kernel (step_paths). */
-enum { FUSE_NONE, FUSE_SHADOW, FUSE_STEP };
-bool fused_init(Wavefront *w, Error *err);
+bool tail_init(Wavefront *w, Error *err);
+bool tail_kernel_ready(Wavefront *w);
 
 #endif

@@ -53,10 +53,6 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         w->stats->live_per_step[step] += n_active;
     if (w->kernels[STAGE_INTEGRATE_GEODESIC]) /* bends the rays near black holes */
         run_over_active(w, STAGE_INTEGRATE_GEODESIC, n_active);
-    if (w->fuse == FUSE_STEP) {
-        run_over_active(w, STAGE_STEP_PATHS, n_active);
-        return;
-    }
     run_over_active(w, STAGE_INTERSECT_CLOSEST, n_active);
     if (w->sorter) {
         double ms = 0.0;
@@ -65,10 +61,6 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
                             n_active);
         w->stats->stage_ms[STAGE_SORT_MATERIALS] += ms;
         w->stats->stage_launches[STAGE_SORT_MATERIALS]++;
-    }
-    if (w->fuse == FUSE_SHADOW) {
-        run_over_active(w, STAGE_SHADE_CONNECT, n_active);
-        return;
     }
     if (!w->settings.shadow_flags) {
         uint32_t zero = 0;
@@ -112,8 +104,9 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
                 break;
             trace_step(w, n_active, step);
             n_live = compact_paths(w, pool);
-            if (next == window_size && n_live > 0 && n_live <= w->tail_paths) {
-                run_over_active(w, STAGE_FINISH_PATHS, n_live); /* megakernel.h: tail_init */
+            if (next == window_size && n_live > 0 && n_live <= w->tail_paths &&
+                tail_kernel_ready(w)) {
+                run_over_active(w, STAGE_FINISH_PATHS, n_live); /* megakernel.h */
                 break;
             }
         }

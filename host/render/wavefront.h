@@ -41,7 +41,7 @@ typedef struct {
                            * turns it on itself) */
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
-                           * steps); 0 = WINDOW_PER_POOL pools; at least the pool */
+                           * steps); 0 = WINDOW_PER_POOL(_GPU) pools; at least the pool */
     int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
     int tail_paths;       /* the wavefront takes a window's last paths to their ends in one launch
                            * (finish_paths, megakernel.h) once no samples are left to start and at
@@ -60,8 +60,13 @@ typedef struct {
 enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KERNEL_MEGAKERNEL_SINGLE };
 
 /* Default window: long enough that the pool stays full for most of it (the tail, where the last
- * paths of the window run with no refills, is about a pool's worth of work). */
+ * paths of the window run with no refills, is about a pool's worth of work). On GPUs, whose tails
+ * leave most of the device idle however they are run (finish_paths, megakernel.h), a window of
+ * WINDOW_PER_POOL_GPU pools pays for one tail over four times the samples; on CPUs, which run the
+ * megakernel, the window is only the unit of progress and of the film's updates. PT_WINDOW_POOLS
+ * overrides both. */
 #define WINDOW_PER_POOL 4
+#define WINDOW_PER_POOL_GPU 16
 
 /* The frame loop's stages, one line each, in the order of the --profile table:
  * X(ID, kernel, launch, made, variant). STAGE_<ID> indexes the per-stage tables (the kernels,
@@ -72,7 +77,7 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
  *            its own, which adds their device time to the stage.
  *   made     INIT: by wavefront_init; HOLES: by black_holes_init, for scenes with black holes only;
  *            MEGAKERNEL: by megakernel_init (trace_paths or trace_paths_packets, megakernel.h);
- *            FUSED: by fused_init (megakernel.h), the wavefront's fused stages;
+ *            TAIL: by tail_init or tail_kernel_ready (megakernel.h), the windows' last paths;
  *            HELPER: by the helper.
  *   variant  a second kernel "<kernel>_<variant>" that some settings take instead: BRUTE_FORCE (the
  *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), or NONE. */
@@ -86,9 +91,7 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
     X(ACCUMULATE_FILM, accumulate_film, OWN_COUNT, INIT, MOMENTS)                                  \
     X(INTEGRATE_GEODESIC, integrate_geodesic, OVER_ACTIVE, HOLES, NONE)                            \
     X(TRACE_PATHS, trace_paths, OWN_COUNT, MEGAKERNEL, NONE)                                      \
-    X(FINISH_PATHS, finish_paths, OVER_ACTIVE, FUSED, NONE)                                        \
-    X(SHADE_CONNECT, shade_connect, OVER_ACTIVE, FUSED, NONE)                                      \
-    X(STEP_PATHS, step_paths, OVER_ACTIVE, FUSED, NONE)
+    X(FINISH_PATHS, finish_paths, OVER_ACTIVE, TAIL, NONE)
 
 #define STAGE_ENUM(id, kernel, launch, made, variant) STAGE_##id,
 enum { STAGES(STAGE_ENUM) STAGE_COUNT };

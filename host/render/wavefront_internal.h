@@ -48,12 +48,14 @@ struct Wavefront {
     uint32_t megakernel_paths;     /* paths per work item: 1, or PACKET_RAYS for
                                     * trace_paths_packets */
     uint32_t tail_paths;           /* finish_paths takes a window's last paths once at most this
-                                    * many are live (fused_init); 0: never */
-    int fuse;                      /* FUSE_* (megakernel.h) */
+                                    * many are live (tail_init); 0: never */
 };
 
 /* Binds params, [the scene's buffers] and the path state to k's first arguments, in the order of
  * cl/stages/path_state.cl; returns the index of the kernel's own first argument. */
 cl_uint wavefront_set_path_args(Wavefront *w, cl_kernel k, bool with_scene);
+/* Binds finish_paths' arguments (kernels[STAGE_FINISH_PATHS]): the path state, the active list,
+ * n_active (set again before each launch) and the counters. */
+void wavefront_bind_tail(Wavefront *w);
 
 #endif

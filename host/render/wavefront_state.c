@@ -17,7 +17,7 @@ const char *const stage_names[STAGE_COUNT] = {STAGES(STAGE_NAME)};
 
 /* The columns of STAGES that setting up the kernels reads (wavefront.h says what they mean). */
 enum { STAGE_OVER_ACTIVE, STAGE_OWN_COUNT, STAGE_HELPER };
-enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_FUSED, STAGE_MADE_HELPER };
+enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_TAIL, STAGE_MADE_HELPER };
 enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS };
 #define STAGE_VARIANT_KERNEL_NONE(kernel) NULL
 #define STAGE_VARIANT_KERNEL_BRUTE_FORCE(kernel) #kernel "_brute_force"
@@ -49,10 +49,13 @@ static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_
     uint64_t window = s->window_size ? s->window_size : window_pools * pool;
     if (s->no_compaction || window < pool)
         window = pool; /* without compaction there are no free slots to refill */
+    /* A long default window gives way first, down to WINDOW_PER_POOL pools, before the pool. */
     while (pool > 1024 && (window * sizeof(float4) > dev->max_alloc ||
                            pool * bytes_per_slot + window * bytes_per_sample > dev->global_mem / 2)) {
-        pool /= 2;
-        window /= 2;
+        if (!s->window_size && window > WINDOW_PER_POOL * pool)
+            window /= 2;
+        else
+            pool /= 2, window /= 2;
     }
     if (window > total_samples)
         window = total_samples;
@@ -126,8 +129,10 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     uint32_t pool, window;
-    long window_pools; /* PT_WINDOW_POOLS: an experiment's knob */
-    if (!env_int("PT_WINDOW_POOLS", 1, 4096, WINDOW_PER_POOL, &window_pools, err))
+    long window_pools;
+    if (!env_int("PT_WINDOW_POOLS", 1, 4096,
+                 (dev->type & CL_DEVICE_TYPE_GPU) ? WINDOW_PER_POOL_GPU : WINDOW_PER_POOL,
+                 &window_pools, err))
         return false;
     choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, (uint32_t)window_pools,
                      &pool, &window);
@@ -180,7 +185,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         if (stage_kinds[k].made == STAGE_MADE_INIT &&
             (!w->kernels[STAGE_TRACE_PATHS] || k == STAGE_ACCUMULATE_FILM))
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
-    if (!fused_init(w, err))
+    if (!tail_init(w, err))
         return false;
     /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
     if (s->sort_materials && !stats->config.megakernel) {
@@ -236,11 +241,11 @@ static void set_all_args(Wavefront *w)
 {
     cl_uint zero = 0, i, own[STAGE_COUNT] = {0};
     for (int st = 0; st < STAGE_COUNT; st++) {
-        if (stage_kinds[st].launch != STAGE_OVER_ACTIVE || !w->kernels[st])
+        if (stage_kinds[st].launch != STAGE_OVER_ACTIVE || !w->kernels[st] ||
+            st == STAGE_FINISH_PATHS) /* wavefront_bind_tail */
             continue;
         /* shade_surface walks the list sorted by material when sorting */
-        cl_mem list = (st == STAGE_SHADE_SURFACE || st == STAGE_SHADE_CONNECT) && w->sorted_active
-                          ? w->sorted_active : w->active;
+        cl_mem list = st == STAGE_SHADE_SURFACE && w->sorted_active ? w->sorted_active : w->active;
         i = wavefront_set_path_args(w, w->kernels[st], true);
         w->n_active_arg[st] = i + 1;
         own[st] = KERNEL_ARGS(w->kernels[st], i, KARG(list), KARG(zero));
@@ -256,9 +261,8 @@ static void set_all_args(Wavefront *w)
         KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
                     KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
     }
-    for (int st = STAGE_FINISH_PATHS; st <= STAGE_STEP_PATHS; st++)
-        if (w->kernels[st])
-            KERNEL_ARG(w->kernels[st], own[st], w->counters);
+    if (w->kernels[STAGE_FINISH_PATHS])
+        wavefront_bind_tail(w);
     cl_kernel geodesic = w->kernels[STAGE_INTEGRATE_GEODESIC];
     if (geodesic)
         KERNEL_ARGS(geodesic, own[STAGE_INTEGRATE_GEODESIC], KARG(w->black_holes),
@@ -270,6 +274,14 @@ static void set_all_args(Wavefront *w)
     i = KERNEL_ARGS(accumulate, i, KARG(w->film.sums), KARG(w->counters));
     if (w->settings.moments)
         KERNEL_ARG(accumulate, i, w->film.moments);
+}
+
+void wavefront_bind_tail(Wavefront *w)
+{
+    cl_kernel k = w->kernels[STAGE_FINISH_PATHS];
+    cl_uint zero = 0, i = wavefront_set_path_args(w, k, true);
+    w->n_active_arg[STAGE_FINISH_PATHS] = i + 1;
+    KERNEL_ARGS(k, i, KARG(w->active), KARG(zero), KARG(w->counters));
 }
 
 int wavefront_spp_done(const Wavefront *w)

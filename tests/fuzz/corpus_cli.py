@@ -72,11 +72,16 @@ def env_cases():
                 ("PT_MEGAKERNEL", ["0", "1", "2", "on", ""]),
                 ("PT_PACKETS", ["0", "1", "2", "off", ""]),
                 ("PT_LOCAL_SIZE", ["0", "-1", "abc", "1", "3", "100000", "99999999999"]),
+                ("PT_WINDOW_POOLS", ["0", "-1", "abc", "1", "4097", "99999999999", ""]),
                 ("PT_CL_OPTIONS", ["-this-is-not-an-option", "-D"]),
                 ("OCL_ICD_VENDORS", ["/nonexistent"])]
     for var, values in settings:
         for i, value in enumerate(values):
             case("env-%s-%d" % (var, i), scene, base, "any", env={var: value})
+    # The wavefront's tail (read where the wavefront renders: PT_MEGAKERNEL=0 on a CPU).
+    for i, value in enumerate(["-1", "abc", "0", "1", "99999999999", "", "2x"]):
+        case("env-PT_TAIL_PATHS-%d" % i, scene, base, "any",
+             env={"PT_TAIL_PATHS": value, "PT_MEGAKERNEL": "0"})
     # Issue 42: PT_TEST_RAISE with bad values is one line; good ones stop the render (unit path
     # and --quiet included) and still write the image.
     for i, value in enumerate(["SEGV@render", "INT@", "@render", "TERM@unit:0", "TERM@unit:x",
