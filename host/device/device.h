@@ -119,7 +119,9 @@ cl_kernel device_kernel_if_built(Device *dev, const char *name);
  * (one at a time; at once when the kernel cache has it, or no thread can be had), so that the
  * render goes on meanwhile. device_kernel_ready gives the kernel once its part is built, NULL
  * before, without waiting; device_kernel, device_finish_background_build and device_close wait for
- * it. A failed build ends the process when it is taken in, as device_kernel's do. */
+ * it (the last two with a line on stderr, under the build notice, when it is still compiling: a
+ * first render shorter than the compile waits for it once, so that the next renders have it). A
+ * failed build ends the process when it is taken in, as device_kernel's do. */
 void device_build_in_background(Device *dev, const char *name);
 cl_kernel device_kernel_ready(Device *dev, const char *name);
 void device_finish_background_build(Device *dev);

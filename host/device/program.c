@@ -392,7 +392,21 @@ cl_kernel device_kernel_ready(Device *dev, const char *name)
     return device_kernel(dev, name);
 }
 
-void device_finish_background_build(Device *dev) { take_background_build(dev, true); }
+void device_finish_background_build(Device *dev)
+{
+    BackgroundBuild *b = dev->background;
+    /* A first render shorter than the build waits for it here, once: say why. */
+    if (b && build_notice && !atomic_load(&b->done)) {
+        char part[32];
+        snprintf(part, sizeof part, "%s", program_parts[b->part].name);
+        for (char *c = part; *c; c++)
+            *c = (char)tolower((unsigned char)*c);
+        fprintf(stderr, "pt: finishing the kernels of the %s part for the next renders (first time "
+                "only) ...\n", part);
+        fflush(stderr);
+    }
+    take_background_build(dev, true);
+}
 
 bool device_build(Device *dev, ProgramFeatures features, const char *extra_source,
                   const char *extra_name, Error *err)

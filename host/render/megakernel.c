@@ -89,8 +89,11 @@ bool tail_init(Wavefront *w, Error *err)
     w->tail_paths = (uint32_t)paths;
     if (s->tail_paths > 0) /* asked for: from the first window on */
         w->kernels[STAGE_FINISH_PATHS] = device_kernel(w->dev, "finish_paths");
-    else if (paths > 0)
+    else if (paths > 0) {
         device_build_in_background(w->dev, "finish_paths");
+        tail_kernel_ready(w); /* a part from the kernel cache is there now: its kernel too, so
+                               * that no render's time includes creating it */
+    }
     return true;
 }
 

@@ -26,7 +26,9 @@ void megakernel_trace_window(Wavefront *w, uint32_t window_size);
  * that can take the kernel (not the megakernel, the ablations or scenes with black holes) and
  * starts building its part on a thread of its own (device_build_in_background: a first build is
  * a compile of seconds that no render needs to wait for; a tail_paths given in the settings
- * builds it now instead); false with err set on a bad PT_TAIL_PATHS. tail_kernel_ready: whether
+ * builds it now instead). Not earlier, beside the wavefront's own part: NVIDIA's driver builds one
+ * program at a time, so that put off the first pixel by the tail's compile (bench/README.md,
+ * "The wavefront's tail"). False with err set on a bad PT_TAIL_PATHS. tail_kernel_ready: whether
  * finish_paths is there for this window's tail (taken in and bound once its part is built). */
 #define TAIL_PATHS_DEFAULT 65536
 bool tail_init(Wavefront *w, Error *err);
