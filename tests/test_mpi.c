@@ -35,12 +35,23 @@ static void run(MpiRun *r, const char *env, int ranks, const char *args)
     memset(r, 0, sizeof *r);
     char err_path[64], cmd[4096];
     snprintf(err_path, sizeof err_path, "/tmp/pt-mpi-err-%d", (int)getpid());
-    char launcher[300] = "";
+    /* OpenMPI's session folder of its own for each mpirun: Criterion runs this file's tests side
+     * by side, and two mpiruns that create the shared /tmp/ompi.<host>.<uid> at once can fail
+     * with "File exists" (seen once in CI). */
+    char session[64] = "/tmp/pt-ompi-XXXXXX";
+    cr_assert(ranks == 0 || mkdtemp(session), "mkdtemp for OpenMPI's session folder");
+    char launcher[400] = "";
     if (ranks > 0)
-        snprintf(launcher, sizeof launcher, "%s -n %d", MPIRUN, ranks);
+        snprintf(launcher, sizeof launcher, "OMPI_MCA_orte_tmpdir_base=%s %s -n %d", session,
+                 MPIRUN, ranks);
     snprintf(cmd, sizeof cmd, "env %s %s '%s' %s >/dev/null 2>%s", env ? env : "", launcher,
              test_pt_bin(), args, err_path);
     int status = system(cmd);
+    if (ranks > 0) {
+        char rm[128];
+        snprintf(rm, sizeof rm, "rm -rf '%s'", session);
+        cr_expect_eq(system(rm), 0, "removing %s", session);
+    }
     r->exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     char *text = test_read_file(err_path, NULL);
     snprintf(r->err, sizeof r->err, "%s", text ? text : "");

@@ -206,7 +206,9 @@ typedef struct {
     X(uint, hit_instance)          /* the instance hit (PT_FEATURE(INSTANCES); else unused) */     \
     X(float, path_time)            /* shutter fraction s in [0, 1) (PT_FEATURE(MOTION), else 0) */ \
     X(uint, sample_id)             /* the window sample k the slot traces */                       \
-    X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */
+    X(uint, path_depth)            /* depth of the ray to trace (1: camera ray); 0: free slot */ \
+    X(float, since_vertex)         /* PT_FEATURE(MEDIA), medium_state_crossed: distance from */     \
+                                   /* the last scattering vertex to ray_origin */
 #define SAMPLE_STATE_FIELDS(X)                                                                     \
     X(float4, radiance)            /* rgb gathered so far by sample k's path */
 /* Per pixel (one entry when adaptive sampling is off): read by window_pixel. */
@@ -254,14 +256,24 @@ inline float ray_direction_pdf_w(float4 direction) { return direction.w; }
 inline float4 throughput_pack(float3 beta, uint medium) { return (float4)(beta, as_float(medium)); }
 inline uint throughput_medium(float4 throughput) { return as_uint(throughput.w); }
 
-/* A medium state: the slot of the medium (shared/medium.h; low 16 bits, 0 = none) and the count
- * of `interface` surfaces the path has passed through (high bits, at most MEDIUM_CROSSING_LIMIT).
- * A crossing is no bounce (max_depth does not count it, as pbrt's volpath) but the next vertex
- * must draw new numbers: its bounce for the sampler is depth - 1 + crossings. */
+/* A medium state: the slot of the medium (shared/medium.h; low 16 bits, 0 = none), the count of
+ * `interface` surfaces the path has passed through (bits 16-30, at most MEDIUM_CROSSING_LIMIT) and
+ * whether it has passed one since its last scattering vertex (bit 31, medium_state_crossed; then
+ * since_vertex holds the distance from that vertex to ray_origin, which an emitter hit's MIS
+ * weight needs: light sampling saw the emitter from the vertex). A crossing is no bounce
+ * (max_depth does not count it, as pbrt's volpath) but the next vertex must draw new numbers: its
+ * bounce for the sampler is depth - 1 + crossings. medium_state: the state at a vertex (the bit
+ * clear); medium_state_after_crossing: the state a crossing leaves. */
 #define MEDIUM_CROSSING_LIMIT 32767u
+#define MEDIUM_STATE_CROSSED 0x80000000u
 inline uint medium_state(uint slot, uint crossings) { return slot | crossings << 16; }
+inline uint medium_state_after_crossing(uint slot, uint crossings)
+{
+    return medium_state(slot, crossings) | MEDIUM_STATE_CROSSED;
+}
 inline uint medium_state_slot(uint state) { return state & 0xffffu; }
-inline uint medium_state_crossings(uint state) { return state >> 16; }
+inline uint medium_state_crossings(uint state) { return (state >> 16) & 0x7fffu; }
+inline bool medium_state_crossed(uint state) { return (state & MEDIUM_STATE_CROSSED) != 0u; }
 
 /* t, u, v: distance and barycentrics; prim: the triangle, HIT_NONE for an escaped ray. */
 inline float4 hit_pack(float t, float u, float v, uint prim)

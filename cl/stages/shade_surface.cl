@@ -121,10 +121,12 @@ PT_INLINE float3 escaped_radiance(constant RenderParams *p, const SceneView *sce
  * clamped as indirect light from segment 3 on. */
 PT_INLINE float3 surface_emission(constant RenderParams *p, const SceneView *scene, Material m,
                                   Hit h, const ShadingPoint *sp, float prev_pdf_w, float3 beta,
-                                  uint depth)
+                                  uint depth, float since_vertex)
 {
-    float3 L = emission_seen(p, scene, m, h, &sp->surf, h.t, sp->cos_o_geometric, prev_pdf_w,
-                             depth);
+    /* Light sampling saw the emitter from the last scattering vertex, which is since_vertex
+     * before this segment's origin when the path passed interfaces on its way. */
+    float3 L = emission_seen(p, scene, m, h, &sp->surf, since_vertex + h.t, sp->cos_o_geometric,
+                             prev_pdf_w, depth);
     return clamp_indirect(p, beta * L, depth >= 3u);
 }
 
@@ -312,17 +314,18 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
     }
     ray_origin[slot] = ray_origin_pack_eta(p, position, eta_scale);
     ray_direction[slot] = ray_direction_pack(wi, pdf_w);
-    throughput[slot] = throughput_pack(beta, state);
+    throughput[slot] = throughput_pack(beta, medium_state(medium, medium_state_crossings(state)));
     path_depth[slot] = depth + 1u;
     return queued;
 }
 
-/* An `interface` surface: the path goes on along d from just past it, in the medium on the far
- * side, with the same MIS density (the last scattering's) and depth; only the crossing count
- * grows (medium_state). */
+/* An `interface` surface, reached after since_vertex + t from the last scattering vertex: the path
+ * goes on along d from just past it, in the medium on the far side, with the same MIS density
+ * (the last scattering's) and depth; the crossing count grows and since_vertex keeps the distance
+ * (medium_state). */
 PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
                                const ShadingPoint *sp, Material m, float4 direction, float3 beta,
-                               float eta_scale, uint medium, uint crossings)
+                               float eta_scale, uint medium, uint crossings, float distance)
 {
     float3 d = xyz(direction);
     shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
@@ -333,7 +336,8 @@ PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint 
     uint next = medium_toward(p, m, sp->surf.geometric_normal, d, medium);
     float3 origin = offset_ray_origin(sp->surf.position, sp->surf.geometric_normal, d);
     ray_origin[slot] = ray_origin_pack_eta(p, origin, eta_scale);
-    throughput[slot] = throughput_pack(beta, medium_state(next, crossings + 1u));
+    throughput[slot] = throughput_pack(beta, medium_state_after_crossing(next, crossings + 1u));
+    since_vertex[slot] = distance;
 }
 
 /* Shades the path in slot; true when it queued a shadow ray. */
@@ -387,13 +391,15 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     Hit h = path_hit(hit4, PT_FEATURE(INSTANCES) ? hit_instance[slot] : 0u);
     ShadingPoint sp = shading_point(scene, h, time, xyz(direction));
     Material m = scene->materials[sp.surf.material];
+    /* The distance from the last scattering vertex to this segment's origin (medium_state). */
+    float before = PT_FEATURE(MEDIA) && medium_state_crossed(state) ? since_vertex[slot] : 0.0f;
     if (PT_FEATURE(MEDIA) && m.type == MATERIAL_INTERFACE) {
         cross_interface(p, PATH_STATE_ARGS slot, &sp, m, direction, beta, eta_scale, medium,
-                        crossings);
+                        crossings, before + h.t);
         return false;
     }
     float prev_pdf_w = ray_direction_pdf_w(direction);
-    float3 gathered = surface_emission(p, scene, m, h, &sp, prev_pdf_w, beta, depth);
+    float3 gathered = surface_emission(p, scene, m, h, &sp, prev_pdf_w, beta, depth, before);
 
     bool path_continues = depth < p->max_depth;
     bool queued = false;
