@@ -292,6 +292,50 @@ Test(media_render, white_furnace_media, .timeout = 900)
 
 /* ---- Next-event estimation in media ------------------------------------------------------------ */
 
+/* Two 16 x 16 renders that estimate the same value per pixel (NEE + MIS and BSDF or phase sampling
+ * alone): their difference has mean 0 in every pixel, and its spread over a block of 8 x 8 pixels
+ * gives the standard error of its mean. The largest |z| over the 4 blocks and 3 channels. */
+static double worst_block_z(const float *a, const float *b)
+{
+    float *diff = malloc(16 * 16 * 3 * sizeof *diff);
+    cr_assert(diff);
+    for (int i = 0; i < 16 * 16 * 3; i++)
+        diff[i] = a[i] - b[i];
+    double worst = 0.0;
+    for (int by = 0; by < 2; by++)
+        for (int bx = 0; bx < 2; bx++) {
+            ImageStats d = region_stats(diff, 16, 8 * bx, 8 * by, 8 * bx + 8, 8 * by + 8);
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(d.mean[c]) / fmax(d.stderr_[c], 1e-9));
+        }
+    free(diff);
+    return worst;
+}
+
+/* On the wavefront and the megakernel: scene rendered with NEE + MIS (1024 spp, seed) and with
+ * `alone` (BSDF or phase sampling only, alone_spp, seed + 1), max depth `depth`, agree per block
+ * (worst_block_z); the NEE render's mean (green) exceeds min_mean, so that a black image does not
+ * pass. */
+static void expect_nee_agrees(const char *scene, int alone_spp, int depth, unsigned seed,
+                              const char *alone, double min_mean)
+{
+    for (int kernel = PATH_KERNEL_WAVEFRONT; kernel <= PATH_KERNEL_MEGAKERNEL; kernel++) {
+        float *nee = render_scene(scene, 1024, depth, seed, false, kernel);
+        float *only = render_scene(scene, alone_spp, depth, seed + 1, true, kernel);
+        double worst = worst_block_z(nee, only);
+        ImageStats a = region_stats(nee, 16, 0, 0, 16, 16), b = region_stats(only, 16, 0, 0, 16, 16);
+        cr_log_info("kernel %d: NEE %.4f %.4f %.4f, %s only %.4f %.4f %.4f, worst block z %.2f",
+                    kernel, a.mean[0], a.mean[1], a.mean[2], alone, b.mean[0], b.mean[1], b.mean[2],
+                    worst);
+        cr_expect(a.mean[1] > min_mean, "kernel %d: the image is dark (%.4f)", kernel, a.mean[1]);
+        /* 12 z-values of 64 pixels each: 4.5 is passed by chance once in about 10^4 seeds. */
+        cr_expect(worst < 4.5, "kernel %d: NEE + MIS and %s differ (block z %.2f)", kernel, alone,
+                  worst);
+        free(nee);
+        free(only);
+    }
+}
+
 Test(media_render, light_sampling_agrees_with_phase_sampling, .timeout = 900)
 {
     const char *dir = test_temp_dir();
@@ -306,33 +350,7 @@ Test(media_render, light_sampling_agrees_with_phase_sampling, .timeout = 900)
         "               \"boundary\": {\"type\": \"interface\"}},\n"
         " \"objects\": [{\"obj\": \"lamp.obj\", \"material\": \"lamp\"},\n"
         "             {\"obj\": \"box.obj\", \"material\": \"boundary\", \"interior\": \"fog\"}]}\n");
-    for (int kernel = PATH_KERNEL_WAVEFRONT; kernel <= PATH_KERNEL_MEGAKERNEL; kernel++) {
-        float *nee = render_scene(scene, 1024, 12, 31, false, kernel);
-        float *bsdf = render_scene(scene, 4096, 12, 32, true, kernel);
-        /* Both estimate the same value per pixel: their difference has mean 0 in every pixel,
-         * and its spread over a block of 8 x 8 pixels gives the standard error of its mean. */
-        float *diff = malloc(16 * 16 * 3 * sizeof *diff);
-        cr_assert(diff);
-        for (int i = 0; i < 16 * 16 * 3; i++)
-            diff[i] = nee[i] - bsdf[i];
-        double worst = 0.0;
-        for (int by = 0; by < 2; by++)
-            for (int bx = 0; bx < 2; bx++) {
-                ImageStats d = region_stats(diff, 16, 8 * bx, 8 * by, 8 * bx + 8, 8 * by + 8);
-                for (int c = 0; c < 3; c++)
-                    worst = fmax(worst, fabs(d.mean[c]) / fmax(d.stderr_[c], 1e-9));
-            }
-        free(diff);
-        ImageStats a = region_stats(nee, 16, 0, 0, 16, 16), b = region_stats(bsdf, 16, 0, 0, 16, 16);
-        cr_log_info("kernel %d: NEE %.4f %.4f %.4f, phase only %.4f %.4f %.4f, worst block z %.2f",
-                    kernel, a.mean[0], a.mean[1], a.mean[2], b.mean[0], b.mean[1], b.mean[2], worst);
-        cr_expect(a.mean[1] > 0.01, "kernel %d: the fog is dark (%.4f)", kernel, a.mean[1]);
-        /* 12 z-values of 64 pixels each: 4.5 is passed by chance once in about 10^4 seeds. */
-        cr_expect(worst < 4.5, "kernel %d: NEE and phase sampling differ (block z %.2f)", kernel,
-                  worst);
-        free(nee);
-        free(bsdf);
-    }
+    expect_nee_agrees(scene, 4096, 12, 31, "phase sampling", 0.01);
 }
 
 /* An area light seen through an `interface` surface: a BSDF-sampled ray that crosses it and hits
@@ -359,29 +377,5 @@ Test(media_render, mis_across_interfaces, .timeout = 900)
         " \"objects\": [{\"obj\": \"lamp.obj\", \"material\": \"lamp\"},\n"
         "             {\"obj\": \"floor.obj\", \"material\": \"floor\"},\n"
         "             {\"obj\": \"box.obj\", \"material\": \"boundary\", \"interior\": \"clear\"}]}\n");
-    for (int kernel = PATH_KERNEL_WAVEFRONT; kernel <= PATH_KERNEL_MEGAKERNEL; kernel++) {
-        float *nee = render_scene(scene, 1024, 2, 41, false, kernel);
-        float *bsdf = render_scene(scene, 8192, 2, 42, true, kernel);
-        float *diff = malloc(16 * 16 * 3 * sizeof *diff);
-        cr_assert(diff);
-        for (int i = 0; i < 16 * 16 * 3; i++)
-            diff[i] = nee[i] - bsdf[i];
-        double worst = 0.0;
-        for (int by = 0; by < 2; by++)
-            for (int bx = 0; bx < 2; bx++) {
-                ImageStats d = region_stats(diff, 16, 8 * bx, 8 * by, 8 * bx + 8, 8 * by + 8);
-                for (int c = 0; c < 3; c++)
-                    worst = fmax(worst, fabs(d.mean[c]) / fmax(d.stderr_[c], 1e-9));
-            }
-        free(diff);
-        ImageStats a = region_stats(nee, 16, 0, 0, 16, 16), b = region_stats(bsdf, 16, 0, 0, 16, 16);
-        cr_log_info("kernel %d: NEE %.4f, BSDF only %.4f, worst block z %.2f", kernel, a.mean[1],
-                    b.mean[1], worst);
-        cr_expect(b.mean[1] > 0.05, "kernel %d: the floor is dark (%.4f)", kernel, b.mean[1]);
-        /* 12 z-values of 64 pixels each: 4.5 is passed by chance once in about 10^4 seeds. */
-        cr_expect(worst < 4.5, "kernel %d: NEE + MIS and BSDF sampling differ (block z %.2f)",
-                  kernel, worst);
-        free(nee);
-        free(bsdf);
-    }
+    expect_nee_agrees(scene, 8192, 2, 41, "BSDF sampling", 0.05);
 }
