@@ -160,6 +160,20 @@ void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int
     cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
 }
 
+void render_fixture_open_in_parts(RenderFixture *f, const char *scene_path, int width, int height)
+{
+    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT |
+                                                           FEATURE_MEDIA | FEATURE_GRID_MEDIA);
+    Device *dev = calloc(1, sizeof *dev);
+    Error err = {0};
+    const char *spec = getenv("PT_TEST_DEVICE");
+    cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
+    dev->use_cache = false;
+    cr_assert(device_build(dev, one_level, NULL, NULL, &err), "device_build: %s", err.message);
+    render_fixture_load(f, dev, scene_path, width, height, INSTANCING_AUTO, false);
+    cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
+}
+
 void render_fixture_close(RenderFixture *f)
 {
     scene_buffers_release(&f->buffers);

@@ -66,6 +66,9 @@ void render_fixture_open_with(RenderFixture *f, const char *scene_path, int widt
  * one-level BVH): the
  * kernels that only such programs have (trace_paths_packets). */
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height);
+/* The same program built in parts as pt builds it (no kernels of the tests': program parts, the
+ * wavefront's tail built on a thread of its own), without the kernel cache. */
+void render_fixture_open_in_parts(RenderFixture *f, const char *scene_path, int width, int height);
 void render_fixture_close(RenderFixture *f);
 /* Renders quietly and asserts no sample was NaN/Inf; returns malloc'ed rgb. */
 float *render_fixture_render(RenderFixture *f, RenderSettings s, RenderStats *stats_out);

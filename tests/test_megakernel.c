@@ -100,6 +100,46 @@ Test(megakernel, same_bits_and_rays_as_the_wavefront, .timeout = 600)
         expect_same_render(scenes[i], (RenderSettings){.spp = 4, .max_depth = 8, .seed = 5});
 }
 
+/* Media and `interface` surfaces (the medium state and since_vertex ride along with the path):
+ * the tail and the megakernel render the wavefront's bits (tests' program only: the one-level
+ * program has no media). */
+Test(megakernel, same_bits_with_media, .timeout = 600)
+{
+    const char *scenes[] = {"tests/scenes/fog-room/scene.json", "tests/scenes/liquid/scene.json"};
+    for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++)
+        expect_same_render_on(scenes[i], (RenderSettings){.spp = 4, .max_depth = 16, .seed = 7},
+                              24, 24, false);
+}
+
+/* The tail's part built on a thread of its own beside the renders, as pt builds it: a render
+ * before it is there steps every bounce, one after takes it (here from its start, once the build
+ * is taken in); both have the bits of a render with the tail off. */
+Test(megakernel, tail_built_beside_the_renders, .timeout = 600)
+{
+    RenderFixture f;
+    render_fixture_open_in_parts(&f, "scenes/cornell-box/scene.json", 24, 24);
+    RenderSettings s = {.spp = 4, .max_depth = 8, .seed = 5, .path_kernel = PATH_KERNEL_WAVEFRONT,
+                        .pool_size = 512, .tail_paths = -1};
+    RenderStats off, early, late;
+    float *a = render_fixture_render(&f, s, &off);
+    s.tail_paths = 0; /* the default: the part builds beside the render */
+    float *b = render_fixture_render(&f, s, &early);
+    cr_expect(f.dev->background || f.dev->programs[PROGRAM_PART_TAIL],
+              "the tail's part is neither building nor built");
+    expect_same_bits("scenes/cornell-box/scene.json", "a render beside the tail's build", &f, a, b,
+                     &off, &early);
+    device_finish_background_build(f.dev);
+    cr_assert_not_null(f.dev->programs[PROGRAM_PART_TAIL]);
+    float *c = render_fixture_render(&f, s, &late);
+    cr_expect_gt(late.stage_launches[STAGE_FINISH_PATHS], 0, "the built tail was not taken");
+    expect_same_bits("scenes/cornell-box/scene.json", "a render after the tail's build", &f, a, c,
+                     &off, &late);
+    free(a);
+    free(b);
+    free(c);
+    render_fixture_close(&f);
+}
+
 /* Windows smaller than the film and pools smaller than a window: the megakernel launches a pool
  * of samples at a time, the wavefront refills; both cover every sample once. */
 Test(megakernel, same_bits_with_small_pools_and_windows, .timeout = 300)

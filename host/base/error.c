@@ -2,11 +2,12 @@
 #include "base/error.h"
 
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int g_warning_count;
+static atomic_int g_warning_count; /* warn() may run on a part's build thread too */
 static SettingNamer g_setting_namer;
 static bool g_warnings_quiet;
 

@@ -62,6 +62,7 @@ typedef struct {
     ProgramFeatures features; /* what the program was built for (device_build) */
     struct BackgroundBuild *background; /* a part building on a thread of its own
                                          * (device_build_in_background), else NULL */
+    unsigned parts_failed; /* 1 << part for each part whose background build failed */
 } Device;
 
 /* Prints every platform and device (name, type, compute units, memory, max allocation, OpenCL C
@@ -120,8 +121,9 @@ cl_kernel device_kernel_if_built(Device *dev, const char *name);
  * render goes on meanwhile. device_kernel_ready gives the kernel once its part is built, NULL
  * before, without waiting; device_kernel, device_finish_background_build and device_close wait for
  * it (the last two with a line on stderr, under the build notice, when it is still compiling: a
- * first render shorter than the compile waits for it once, so that the next renders have it). A
- * failed build ends the process when it is taken in, as device_kernel's do. */
+ * first render shorter than the compile waits for it once, so that the next renders have it), and
+ * so does the process's exit. A failed background build is a warning when it is taken in, and
+ * device_kernel_ready offers that part no more. */
 void device_build_in_background(Device *dev, const char *name);
 cl_kernel device_kernel_ready(Device *dev, const char *name);
 void device_finish_background_build(Device *dev);

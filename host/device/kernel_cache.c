@@ -2,6 +2,7 @@
 #include "device/kernel_cache.h"
 
 #include <errno.h>
+#include <stdatomic.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,7 +51,9 @@ uint64_t kernel_cache_key(const char *const *parts, size_t n)
 
 const char *kernel_cache_dir(void)
 {
-    static char dir[1024];
+    /* One buffer per thread: a part can build on a thread of its own (device_build_in_background)
+     * while the render's thread builds or loads another. */
+    static _Thread_local char dir[1024];
     const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
     if (xdg && *xdg)
         snprintf(dir, sizeof dir, "%s/pt", xdg);
@@ -210,14 +213,13 @@ static bool make_dirs(const char *dir)
     return access(dir, W_OK | X_OK) == 0;
 }
 
-static bool warned_unwritable;
+static atomic_bool warned_unwritable;
 
 static void warn_unwritable(const char *dir, int error)
 {
-    if (!warned_unwritable)
+    if (!atomic_exchange(&warned_unwritable, true))
         warn("kernel cache folder %s is not writable (%s): kernels are compiled on every run", dir,
              strerror(error));
-    warned_unwritable = true;
 }
 
 void kernel_cache_prepare(void)
@@ -252,7 +254,10 @@ void kernel_cache_store(uint64_t key, const unsigned char *data, size_t size)
     }
     char path[1100], tmp[1200];
     entry_path(key, path, sizeof path);
-    snprintf(tmp, sizeof tmp, "%s.tmp-%d", path, (int)getpid());
+    /* Unique to the store, not only the process: two threads of one process can store the same
+     * key (identical devices each building a part). */
+    static atomic_uint stores;
+    snprintf(tmp, sizeof tmp, "%s.tmp-%d-%u", path, (int)getpid(), atomic_fetch_add(&stores, 1u));
     FILE *f = fopen(tmp, "wb");
     if (!f) {
         warn_unwritable(dir, errno);

@@ -108,14 +108,17 @@ static int part_of_kernel(const char *name)
 static bool build_failed(Device *dev, cl_program program, const char *options, cl_int status,
                          Error *err)
 {
+    /* No abort here, whatever fails: a part's build may run on a thread of its own. */
     size_t log_size = 0;
-    CL_CHECK(clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size));
-    char *log = malloc(log_size + 1);
-    if (!log)
-        die("out of memory");
-    CL_CHECK(clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL));
-    log[log_size] = '\0';
-    fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name, options, log);
+    char *log = NULL;
+    if (clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size) ==
+            CL_SUCCESS &&
+        (log = malloc(log_size + 1)) != NULL &&
+        clGetProgramBuildInfo(program, dev->device, CL_PROGRAM_BUILD_LOG, log_size, log, NULL) ==
+            CL_SUCCESS) {
+        log[log_size] = '\0';
+        fprintf(stderr, "pt: kernel build log (%s, options %s):\n%s\n", dev->name, options, log);
+    }
     free(log);
     clReleaseProgram(program);
     error_set(err, ERR_KERNEL_BUILD, NULL, 0, "kernel build failed on %s (%s): see the log above",
@@ -150,18 +153,19 @@ static cl_program build_from_cache(Device *dev, const char *options, uint64_t ke
     return program;
 }
 
+/* Best effort, like every store: a binary the driver will not give is not cached. */
 static void store_in_cache(cl_program program, uint64_t key)
 {
     size_t size = 0;
-    CL_CHECK(clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL));
-    if (size == 0)
+    if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL) != CL_SUCCESS ||
+        size == 0)
         return;
     unsigned char *binary = malloc(size);
     if (!binary)
         return;
     unsigned char *binaries[1] = {binary};
-    CL_CHECK(clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL));
-    kernel_cache_store(key, binary, size);
+    if (clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof binaries, binaries, NULL) == CL_SUCCESS)
+        kernel_cache_store(key, binary, size);
     free(binary);
 }
 
@@ -282,11 +286,20 @@ static bool build_part_program(Device *dev, int part, bool announce, cl_program 
         cl_int status;
         const char *sources[1] = {dev->source};
         program = clCreateProgramWithSource(dev->context, 1, sources, NULL, &status);
-        CL_CHECK_ERR(status, "clCreateProgramWithSource");
+        if (status != CL_SUCCESS) {
+            error_set(err, ERR_KERNEL_BUILD, NULL, 0, "clCreateProgramWithSource failed on %s: %s",
+                      dev->name, cl_error_name(status));
+            return false;
+        }
         status = clBuildProgram(program, 1, &dev->device, options, NULL, NULL);
         if (status == CL_BUILD_PROGRAM_FAILURE || status == CL_INVALID_BUILD_OPTIONS)
             return build_failed(dev, program, options, status, err);
-        CL_CHECK_ERR(status, "clBuildProgram");
+        if (status != CL_SUCCESS) {
+            clReleaseProgram(program);
+            error_set(err, ERR_KERNEL_BUILD, NULL, 0, "clBuildProgram failed on %s: %s", dev->name,
+                      cl_error_name(status));
+            return false;
+        }
         if (dev->use_cache && !hit) {
             if (driver_keeps)
                 kernel_cache_store(key, (const unsigned char *)driver_marker, sizeof driver_marker);
@@ -335,27 +348,78 @@ static void *build_in_background(void *arg)
     return NULL;
 }
 
+/* The builds under way, joined at exit: a die() on the render's thread must not run the exit
+ * handlers (the driver's among them) while a compile is inside the driver. */
+#define MAX_BACKGROUND_BUILDS 64
+static pthread_mutex_t background_lock = PTHREAD_MUTEX_INITIALIZER;
+static BackgroundBuild *background_builds[MAX_BACKGROUND_BUILDS];
+
+static void join_background_builds_at_exit(void)
+{
+    pthread_mutex_lock(&background_lock);
+    for (int i = 0; i < MAX_BACKGROUND_BUILDS; i++)
+        if (background_builds[i])
+            pthread_join(background_builds[i]->thread, NULL), background_builds[i] = NULL;
+    pthread_mutex_unlock(&background_lock);
+}
+
+/* Starts b's thread (with room on its stack for a compiler) and registers it; false when no
+ * thread can be had. */
+static bool start_background_build(BackgroundBuild *b)
+{
+    static atomic_bool registered;
+    if (!atomic_exchange(&registered, true))
+        atexit(join_background_builds_at_exit);
+    pthread_mutex_lock(&background_lock);
+    int slot = -1;
+    for (int i = 0; i < MAX_BACKGROUND_BUILDS && slot < 0; i++)
+        if (!background_builds[i])
+            slot = i;
+    bool started = false;
+    pthread_attr_t attr;
+    if (slot >= 0 && pthread_attr_init(&attr) == 0) {
+        pthread_attr_setstacksize(&attr, 64u << 20);
+        started = pthread_create(&b->thread, &attr, build_in_background, b) == 0;
+        pthread_attr_destroy(&attr);
+    }
+    if (started)
+        background_builds[slot] = b;
+    pthread_mutex_unlock(&background_lock);
+    return started;
+}
+
 /* Takes in the background build's part once it is done (at once when `wait`): then
- * dev->programs[part] is set, or the process ends with the build's error as device_kernel's
- * builds do. */
+ * dev->programs[part] is set; a failed build is a warning (the render goes on without the part,
+ * which device_kernel_ready no longer offers; device_kernel builds it again, and fails there). */
 static void take_background_build(Device *dev, bool wait)
 {
     BackgroundBuild *b = dev->background;
     if (!b || (!wait && !atomic_load(&b->done)))
         return;
+    pthread_mutex_lock(&background_lock);
+    for (int i = 0; i < MAX_BACKGROUND_BUILDS; i++)
+        if (background_builds[i] == b)
+            background_builds[i] = NULL;
     pthread_join(b->thread, NULL);
+    pthread_mutex_unlock(&background_lock);
     dev->background = NULL;
-    if (!b->ok)
-        die("%s", b->err.message);
-    dev->programs[b->part] = b->program;
-    dev->build_seconds += b->seconds;
+    if (b->ok) {
+        dev->programs[b->part] = b->program;
+        dev->build_seconds += b->seconds;
+        if (b->compiled)
+            dev->cache_hit = false;
+    } else {
+        dev->parts_failed |= 1u << b->part;
+        warn("%s (the %s part, built beside the render: going on without it)", b->err.message,
+             program_parts[b->part].name);
+    }
     free(b);
 }
 
 void device_build_in_background(Device *dev, const char *name)
 {
     int part = dev->whole_program ? 0 : part_of_kernel(name);
-    if (dev->programs[part] || dev->background)
+    if (dev->programs[part] || dev->background || (dev->parts_failed & 1u << part))
         return;
     /* A part the kernel cache has loads in milliseconds: then now, so that the render has it from
      * its first window. */
@@ -373,7 +437,7 @@ void device_build_in_background(Device *dev, const char *name)
     if (b) {
         b->dev = dev, b->part = part;
         atomic_init(&b->done, false);
-        if (pthread_create(&b->thread, NULL, build_in_background, b) == 0) {
+        if (start_background_build(b)) {
             dev->background = b;
             return;
         }
@@ -387,7 +451,7 @@ cl_kernel device_kernel_ready(Device *dev, const char *name)
 {
     take_background_build(dev, false);
     int part = dev->whole_program ? 0 : part_of_kernel(name);
-    if (!dev->programs[part])
+    if (!dev->programs[part] || (dev->parts_failed & 1u << part))
         return NULL;
     return device_kernel(dev, name);
 }

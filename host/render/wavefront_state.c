@@ -47,6 +47,8 @@ static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_
 {
     uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 16;
     uint64_t window = s->window_size ? s->window_size : window_pools * pool;
+    if (window > UINT32_MAX)
+        window = UINT32_MAX; /* the count a window's launches take */
     if (s->no_compaction || window < pool)
         window = pool; /* without compaction there are no free slots to refill */
     /* A long default window gives way first, down to WINDOW_PER_POOL pools, before the pool. */
