@@ -195,6 +195,24 @@ Test(integrator, compaction_does_not_change_the_image, .timeout = 120)
     render_fixture_close(&f);
 }
 
+/* Passing an `interface` surface takes a step but is no bounce: without compaction (every step
+ * over the whole window) the paths that cross one still run to their ends, as with it. */
+Test(integrator, no_compaction_with_interfaces, .timeout = 300)
+{
+    RenderFixture f;
+    render_fixture_open(&f, "tests/scenes/fog-room/scene.json", 24, 24);
+    RenderStats with, without;
+    RenderSettings s = {.spp = 4, .max_depth = 6, .seed = 3, .path_kernel = PATH_KERNEL_WAVEFRONT};
+    float *a = render_fixture_render(&f, s, &with);
+    s.no_compaction = true;
+    float *b = render_fixture_render(&f, s, &without);
+    cr_expect_eq(without.extension_rays, with.extension_rays, "%llu extension rays, %llu with compaction",
+                 (unsigned long long)without.extension_rays, (unsigned long long)with.extension_rays);
+    cr_expect(memcmp(a, b, 24 * 24 * 3 * sizeof(float)) == 0, "images differ");
+    free(a), free(b);
+    render_fixture_close(&f);
+}
+
 Test(integrator, same_seed_same_bits_and_window_split_independent, .timeout = 120)
 {
     RenderFixture f;

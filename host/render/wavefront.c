@@ -70,6 +70,14 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
     run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
 }
 
+/* The window's extension rays so far (a read-back: waits for the queue). */
+static uint32_t extension_rays(Wavefront *w)
+{
+    uint32_t n;
+    device_read(w->dev, w->counters, COUNTER_EXTENSION_RAYS * sizeof(uint32_t), sizeof n, &n);
+    return n;
+}
+
 /* One window of samples, traced to the end: the wavefront loop. With compaction, each step's live
  * paths are compacted into the active list and the slots of the paths that ended are refilled
  * with the window's next samples, so the pool stays full until the window runs dry; the host
@@ -87,8 +95,18 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
         megakernel_trace_window(w, window_size); /* render/megakernel.c */
     } else if (w->settings.no_compaction) {
         generate(w, 0, 0, window_size, true);
-        for (uint32_t depth = 1; depth <= (uint32_t)w->settings.max_depth; depth++)
-            trace_step(w, window_size, depth - 1);
+        uint32_t step = 0;
+        for (; step < (uint32_t)w->settings.max_depth; step++)
+            trace_step(w, window_size, step);
+        /* Passing an `interface` surface takes a step but is no bounce: with media a path may need
+         * more steps than max_depth. Go on until a step extends no path. */
+        for (uint32_t before = extension_rays(w); w->dev->features & FEATURE_MEDIA; step++) {
+            trace_step(w, window_size, step);
+            uint32_t now = extension_rays(w);
+            if (now == before)
+                break;
+            before = now;
+        }
     } else {
         uint32_t n_live = 0, next = 0;
         for (uint32_t step = 0;; step++) {
