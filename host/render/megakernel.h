@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* megakernel.h: the CPU's way through a window (PATH_KERNEL_MEGAKERNEL in render/wavefront.h): every
  * stage of a path in one kernel, cl/stages/megakernel.cl's trace_paths (one path per work item) or
- * trace_paths_packets (eight, their rays traced as packets). */
+ * trace_paths_packets (eight, their rays traced as packets); and the same for the last paths of
+ * the wavefront's windows on any device (finish_paths, the tail). */
 #ifndef PT_MEGAKERNEL_H
 #define PT_MEGAKERNEL_H
 
