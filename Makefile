@@ -48,11 +48,12 @@ CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shar
               cl/material/bsdf_common.cl cl/material/surface_detail.cl cl/material/microfacet.cl cl/material/diffuse.cl \
               cl/material/conductor.cl cl/material/dielectric.cl cl/material/principled.cl \
               cl/material/bsdf.cl cl/material/shading_point.cl \
-              cl/medium/phase.cl cl/medium/medium_grid.cl cl/medium/medium_track.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
+              cl/medium/phase.cl cl/medium/medium_grid.cl cl/medium/medium_track.cl cl/medium/medium_boundary.cl cl/light/light_env.cl cl/light/light_analytic.cl cl/light/light_sample.cl \
               cl/light/accretion_disk.cl \
               cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \
-              cl/stages/intersect_closest.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
+              cl/stages/intersect_closest.cl cl/stages/shade_emission.cl \
+              cl/stages/shade_next_event.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
               cl/stages/integrate_geodesic.cl cl/stages/megakernel.cl \
               cl/stages/accumulate_film.cl cl/stages/film_variance.cl cl/stages/adaptive_select.cl
 

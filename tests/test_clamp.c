@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /* --clamp (RenderSettings.clamp_indirect): direct light is never clamped, each contribution of
- * indirect light is (shade_surface.cl, clamp_indirect). */
+ * indirect light is (shade_emission.cl, clamp_indirect). */
 #include <criterion/criterion.h>
 #include <stdlib.h>
 #include <string.h>

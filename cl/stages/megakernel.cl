@@ -12,6 +12,20 @@
  * Not for the ablations (no compaction, brute force) nor scenes with black holes (their bent rays
  * are a stage of their own). */
 
+/* The path in slot, waiting for its extension ray, to its end: intersect_closest_path, shade_path
+ * and connect_path in turn, the wavefront's stages in their order; the rays traced are added to
+ * *extension and *shadow. */
+PT_INLINE void run_path(constant RenderParams *p, const SceneView *scene, PATH_STATE_PARAMS uint slot,
+                        uint *extension, uint *shadow)
+{
+    while (intersect_closest_path(p, scene, PATH_STATE_ARGS slot, false)) {
+        (*extension)++;
+        if (shade_path(p, scene, PATH_STATE_ARGS slot) &&
+            connect_path(p, scene, PATH_STATE_ARGS slot, false))
+            (*shadow)++;
+    }
+}
+
 #if PT_PART(MEGAKERNEL)
 kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS uint first_sample,
                         uint n, global uint *counters)
@@ -23,12 +37,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
     uint extension = 0, shadow = 0;
     if (slot < n) {
         start_path(p, PATH_STATE_ARGS slot, first_sample + slot);
-        while (intersect_closest_path(p, &scene, PATH_STATE_ARGS slot, false)) {
-            extension++;
-            if (shade_path(p, &scene, PATH_STATE_ARGS slot) &&
-                connect_path(p, &scene, PATH_STATE_ARGS slot, false))
-                shadow++;
-        }
+        run_path(p, &scene, PATH_STATE_ARGS slot, &extension, &shadow);
     }
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, extension, shadow, counters);
@@ -53,15 +62,8 @@ kernel void finish_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAM
     SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
     uint extension = 0, shadow = 0;
-    if (i < n_active) {
-        uint slot = active[i];
-        while (intersect_closest_path(p, &scene, PATH_STATE_ARGS slot, false)) {
-            extension++;
-            if (shade_path(p, &scene, PATH_STATE_ARGS slot) &&
-                connect_path(p, &scene, PATH_STATE_ARGS slot, false))
-                shadow++;
-        }
-    }
+    if (i < n_active)
+        run_path(p, &scene, PATH_STATE_ARGS active[i], &extension, &shadow);
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, extension, shadow, counters);
 }
