@@ -122,7 +122,7 @@ static inline cl_uint env_args(Device *dev, cl_kernel k, const Environment *env,
     Error err = {0};
     size_t n = (size_t)env->width * env->height;
     b->texels = device_buffer(dev, "env_texels", CL_MEM_READ_ONLY, n * sizeof(float4), env->texels, &err);
-    b->cdf = device_buffer(dev, "env_cdf", CL_MEM_READ_ONLY, 2 * (env->height + n) * sizeof(uint32_t), env->cdf,
+    b->cdf = device_buffer(dev, "env_cdf", CL_MEM_READ_ONLY, environment_cdf_count(env) * sizeof(uint32_t), env->cdf,
                            &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     cl_uint a = 0;

@@ -101,7 +101,8 @@ inline float uint_to_unit(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f
  *   drawn together so);
  *   bounce b, DIM_BOUNCE_BASE + b * DIMS_PER_BOUNCE + which: light u, v, light pick, alias coin,
  *   BSDF u, v, lobe, roulette, BSDF w, mix leaf, opacity of the closest hit, opacity along
- *   the shadow ray, environment texel pick, its alias coin, black-hole disk pass-through coins
+ *   the shadow ray, two free (12, 13: the environment's texel pick and alias coin until its
+ *   CDFs took the light sample's numbers), black-hole disk pass-through coins
  *   (14, DIM_DISK_COIN in integrate_geodesic.cl), the medium tracking of the segment that reached
  *   the vertex and of its shadow ray (15, cl/medium/medium_track.cl). */
 #define DIM_CAMERA_JITTER_X 0u

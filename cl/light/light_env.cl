@@ -92,7 +92,8 @@ typedef struct {
 /* The interval of a 32-bit fixed-point CDF of n entries (cdf[0] = 0, the end 2^32 implied) that
  * holds x: the largest k with cdf[k] <= x (so cdf[k] <= x < its end: an interval of width 0 is
  * never found), searched between the guide's entries for x's bucket (environment.c build_guide):
- * one or two steps; *rest gets where x lies in the interval, in [0, 1). */
+ * one or two steps on average, up to log2 of the bucket's entries where many narrow intervals
+ * share it (a sun on a dim sky); *rest gets where x lies in the interval, in [0, 1). */
 inline uint cdf_invert(const global uint *cdf, const global uint *guide, uint n, uint x, float *rest)
 {
     uint b = mul_hi(x, n);

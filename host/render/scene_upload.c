@@ -146,7 +146,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     const Environment *env = &data->environment;
     size_t env_w = env->width, env_h = env->height;
     src.env_texels = source(env_w * env_h, sizeof(float4), env->texels);
-    src.env_cdf = source(env->cdf ? 2 * (env_h + env_w * env_h) : 0, sizeof(uint32_t), env->cdf);
+    src.env_cdf = source(environment_cdf_count(env), sizeof(uint32_t), env->cdf);
     out->params.env_width = env->width;
     out->params.env_height = env->height;
     out->params.env_rotation = env->rotation;

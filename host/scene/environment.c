@@ -88,7 +88,10 @@ static void weight_rows(void *ctx, size_t begin, size_t end)
 
 /* Fixed point of the cumulative sum `below` of a total `total`: round(2^32 below / total), at most
  * 2^32 - 1 (the end of the last interval, 2^32, is implied). Monotone in `below`, so the
- * intervals never overlap; an interval of width 0 is never drawn. */
+ * intervals never overlap; an interval of width 0 is never drawn. Zero-weight entries at the end
+ * (a black ground's last rows, a row's last black texels) are the exception: the clamp leaves the
+ * last of them [2^32 - 1, 2^32), drawn once in 2^32, with its pdf from the same integers and a
+ * radiance of 0, so nothing is biased. */
 static uint32_t fixed_cdf(double below, double total)
 {
     double f = floor(below / total * CDF_ONE + 0.5);
@@ -190,7 +193,7 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
     }
     size_t w = (size_t)width, h = (size_t)height, n = w * h;
     env->texels = malloc(n * sizeof *env->texels);
-    env->cdf = malloc(2 * (h + n) * sizeof *env->cdf);
+    env->cdf = malloc(2 * (h + n) * sizeof *env->cdf); /* environment_cdf_count */
     float *weight = malloc(n * sizeof *weight);
     double *row_sum = malloc(h * sizeof *row_sum);
     size_t *row_clamped = malloc(h * sizeof *row_clamped);

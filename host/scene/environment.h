@@ -11,6 +11,7 @@
 #define PT_ENVIRONMENT_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "base/error.h"
 #include "base/shared_types.h"
@@ -37,5 +38,10 @@ bool environment_build(Environment *env, const float *rgb, int width, int height
 bool environment_load(Environment *env, const char *path, float scale, float rotation_degrees,
                       Error *err);
 void environment_free(Environment *env);
+/* The entries of env->cdf: 2 (height + width * height), 0 without a map (the layout above). */
+static inline size_t environment_cdf_count(const Environment *env)
+{
+    return 2 * ((size_t)env->height + (size_t)env->width * env->height);
+}
 
 #endif

@@ -175,7 +175,7 @@ uint64_t scene_hash(const Scene *scene)
     size_t env_texels = (size_t)env->width * env->height;
     hash64_u32(&s, env->width), hash64_u32(&s, env->height);
     hash_array(&s, env->texels, env_texels, sizeof *env->texels);
-    hash_array(&s, env->cdf, env->cdf ? 2 * (env->height + env_texels) : 0, sizeof *env->cdf);
+    hash_array(&s, env->cdf, environment_cdf_count(env), sizeof *env->cdf);
     hash64_float(&s, env->rotation);
     hash_array(&s, desc->black_holes, (size_t)desc->num_black_holes, sizeof *desc->black_holes);
     hash_camera(&s, &desc->camera);

@@ -19,7 +19,9 @@ static bool append(void **array, size_t *count, void **items, size_t n, size_t s
         return false;
     }
     if (!*array) {
-        *array = *items, *items = NULL;
+        /* Taken over, without the spare capacity the grid's reader grew it with. */
+        void *exact = realloc(*items, n * size);
+        *array = exact ? exact : *items, *items = NULL;
         *count = n;
         return true;
     }
