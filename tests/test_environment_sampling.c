@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 /* The environment map's sampling on the device (tests/cl/env_test.cl): env_sample's directions
- * follow each texel's weight (the 3 x 3 neighbourhood's largest luminance x sin theta, computed
- * here from the map, not from the host's tables), the pdf integrates to one over the sphere, and
- * the pdf is > 0 wherever the bilinear radiance an escaped ray sees is > 0. */
+ * follow each texel's weight (how far the 3 x 3 neighbourhood's largest luminance rises above its
+ * mean over the sphere, x sin theta: MIS compensation; computed here from the map, not from the
+ * host's tables), the pdf integrates to one over the sphere, and the pdf is > 0 wherever the
+ * bilinear radiance an escaped ray sees rises above the map's mean. */
 #include "environment_maps.h"
 
-/* The weight DESIGN's sampler gives texel (i, j): the largest luminance of the texels bilinear
- * filtering reads inside its cell (3 x 3, wrapping in u, clamped in v) x sin(row centre). */
-static double texel_weight(const float *rgb, int w, int h, int i, int j)
+/* The largest luminance of the texels bilinear filtering reads inside texel (i, j)'s cell (3 x 3,
+ * wrapping in u, clamped in v). */
+static double neighbourhood_max(const float *rgb, int w, int h, int i, int j)
 {
     double best = 0.0;
     for (int dj = -1; dj <= 1; dj++)
@@ -16,7 +17,31 @@ static double texel_weight(const float *rgb, int w, int h, int i, int j)
             const float *t = &rgb[3 * (jj * w + ii)];
             best = fmax(best, 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]);
         }
-    return best * sin(ENV_PI * (j + 0.5) / h);
+    return best;
+}
+
+/* Every texel's sampling weight, computed here from the map and not from the host's tables: the
+ * neighbourhood maximum less its mean over the sphere (MIS compensation: each texel's maximum x
+ * sin theta of its row over W x the rows' sin theta), clamped at 0, x sin theta of the row; the
+ * uncompensated maximum x sin theta where no texel rises above the mean. */
+static double *texel_weights(const float *rgb, int w, int h)
+{
+    double *weight = malloc((size_t)w * h * sizeof *weight), sum = 0.0, area = 0.0, above = 0.0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double s = sin(ENV_PI * (j + 0.5) / h);
+            sum += (weight[j * w + i] = neighbourhood_max(rgb, w, h, i, j)) * s;
+            area += s;
+        }
+    double mean = sum / area;
+    for (int t = 0; t < w * h; t++)
+        above += fmax(weight[t] - mean, 0.0);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double m = weight[j * w + i];
+            weight[j * w + i] = (above > 0.0 ? fmax(m - mean, 0.0) : m) * sin(ENV_PI * (j + 0.5) / h);
+        }
+    return weight;
 }
 
 /* The width of interval k of a fixed-point CDF of n entries (environment.h: the end is 2^32). */
@@ -36,10 +61,9 @@ static void check_cdf_tables(const float *rgb, int w, int h)
     Error err = {0};
     cr_assert(environment_build(&env, rgb, w, h, 1.0f, 0.0f, "map", &err), "%s", err.message);
     size_t n = (size_t)w * h;
-    double total = 0.0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++)
-            total += texel_weight(rgb, w, h, i, j);
+    double *weight = texel_weights(rgb, w, h), total = 0.0;
+    for (size_t t = 0; t < n; t++)
+        total += weight[t];
     cr_expect_eq(env.cdf[0], 0u, "the rows' CDF starts at 0");
     int wrong_table = 0, wrong_pdf = 0, unsorted = 0;
     for (int j = 0; j < h; j++) {
@@ -49,7 +73,7 @@ static void check_cdf_tables(const float *rgb, int w, int h)
         for (int i = 0; i < w; i++) {
             unsorted += i > 0 && row[i] < row[i - 1];
             size_t t = (size_t)j * w + i;
-            double want = texel_weight(rgb, w, h, i, j) / total * (double)n;
+            double want = weight[t] / total * (double)n;
             double drawn = row_p * (cdf_width(row, (size_t)w, (size_t)i) / 4294967296.0) * (double)n;
             double pdf = env.texels[t].s[3];
             /* The fixed point rounds each interval's ends by 2^-33 (of the row or of the map). */
@@ -82,16 +106,25 @@ static void check_cdf_tables(const float *rgb, int w, int h)
     cr_expect_eq(wrong_table, 0, "%dx%d: %d texels drawn off their weight", w, h, wrong_table);
     cr_expect_eq(wrong_pdf, 0, "%dx%d: %d texels whose pdf is not the CDFs'", w, h, wrong_pdf);
     environment_free(&env);
+    free(weight);
 }
 
 /* Maps from smooth to extreme: every texel's weight near the mean, a sun 10^5 x the sky (one
- * texel holds most of the mass), black rows and single texels (many weights of 0). */
+ * texel holds most of the mass, and the sky falls below the mean: only the sun is drawn), black
+ * rows and single texels (many weights of 0), and a constant map (nothing above its mean: each
+ * texel by sin theta). Compensating by a mean not over the sphere (each texel alike), or not at
+ * all, fails. */
 Test(environment_sampling, cdfs_draw_each_texel_by_its_weight)
 {
     float *axis = axis_map(64, 32), *contrast = contrast_map(64, 32), *one = one_texel_map(32, 16, 0, 5);
     check_cdf_tables(axis, 64, 32);
     check_cdf_tables(contrast, 64, 32);
     check_cdf_tables(one, 32, 16);
+    float *flat = malloc(48 * 24 * 3 * sizeof *flat);
+    for (int t = 0; t < 48 * 24 * 3; t++)
+        flat[t] = 0.75f;
+    check_cdf_tables(flat, 48, 24);
+    free(flat);
     int w = 512, h = 256;
     float *sun = malloc((size_t)w * h * 3 * sizeof *sun);
     uint64_t state = 11;
@@ -189,10 +222,9 @@ static void check_samples_follow_the_weights(const float *rgb, int w, int h)
     Environment env;
     Error err = {0};
     cr_assert(environment_build(&env, rgb, w, h, 1.0f, 37.0f, "map", &err), "%s", err.message);
-    double *expected = malloc((size_t)w * h * sizeof *expected), total = 0.0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++)
-            total += expected[j * w + i] = texel_weight(rgb, w, h, i, j);
+    double *expected = texel_weights(rgb, w, h), total = 0.0;
+    for (int t = 0; t < w * h; t++)
+        total += expected[t];
     Device *dev = test_device();
     cl_kernel k = device_kernel(dev, "env_test_sample");
     EnvBuffers b;
@@ -307,7 +339,8 @@ Test(environment_sampling, pdf_integrates_to_one, .timeout = 120)
     free(dirs), free(out);
 }
 
-/* Wherever an escaped ray sees light, next-event estimation can sample it: for random directions
+/* Wherever an escaped ray sees light above the map's mean, next-event estimation can sample it
+ * (below it, the BSDF's samples alone cover the light, with MIS weight 1): for random directions
  * and a grid around a single bright texel (bilinear filtering spreads it over the cells around it,
  * across the u seam and at the top row), radiance > 0 implies pdf > 0. A sampler weighting each
  * texel by its own luminance only (not its neighbourhood's) leaves a pdf of 0 in the half-cells

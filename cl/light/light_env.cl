@@ -9,11 +9,15 @@
  * Sampling is piecewise constant per texel cell (a row by inverting the rows' CDF with u2, a texel
  * by inverting its row's CDF with u1, then a point in the cell from what is left of u1 and u2: a
  * monotone map, so a stratified (u1, u2) stays stratified over the map, which an alias table does
- * not do), with each texel's weight the largest luminance of the 3 x 3 texels around it (the only texels bilinear filtering reads inside its cell) x sin(theta
- * of its row): the density is > 0 wherever the bilinear radiance is > 0 (except at the two poles,
- * a set of measure zero). env_pdf_w is exactly the density env_sample draws from, so NEE divides by
- * the true pdf of its samples and the MIS weights of both strategies sum to 1 for every direction:
- * NEE + MIS and BSDF-only sampling are both unbiased for the bilinear radiance. */
+ * not do), with each texel's weight how far the largest luminance of the 3 x 3 texels around it
+ * (the only texels bilinear filtering reads inside its cell) rises above that maximum's mean over
+ * the sphere, x sin(theta of its row) (MIS compensation, host/scene/environment.c): the density is
+ * > 0 wherever the bilinear radiance rises above the mean (except at the two poles, a set of
+ * measure zero); below it the BSDF's samples alone carry the light, with MIS weight 1. env_pdf_w
+ * is exactly the density env_sample draws from, so NEE divides by the true pdf of its samples and
+ * the MIS weights of both strategies sum to 1 for every direction: NEE + MIS and BSDF-only
+ * sampling are both unbiased for the bilinear radiance (NEE alone would not be; pt never uses it
+ * alone). */
 
 typedef struct {
     const global float4 *texels;      /* rgb radiance, w: pdf per unit uv area */
@@ -110,8 +114,8 @@ inline uint cdf_invert(const global uint *cdf, const global uint *guide, uint n,
     return lo;
 }
 
-/* A direction in proportion to each texel's weight (the 3 x 3 neighbourhood's largest luminance x
- * sin(theta) of the row): the row from the rows' CDF by the 32 bits v_bits, the texel from that
+/* A direction in proportion to each texel's weight (how far the 3 x 3 neighbourhood's largest
+ * luminance rises above its mean, x sin(theta) of the row): the row from the rows' CDF by the 32 bits v_bits, the texel from that
  * row's CDF by u_bits, the point in its uv cell from what is left of each (texels[].w is the
  * probability of each texel x W x H, from the same integers). */
 inline EnvSample env_sample(const EnvMap *env, uint u_bits, uint v_bits)

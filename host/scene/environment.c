@@ -37,6 +37,7 @@ typedef struct {
     float scale;
     double *row_sum;        /* per row: luminance sum (convert) or weight sum (weights) */
     size_t *row_clamped;    /* per row: texel values clamped to 0 */
+    float mean_weight;      /* compensate_rows: the weights' mean over the sphere */
 } EnvPass;
 
 /* texels = clamp(rgb) x scale, w = luminance. */
@@ -61,11 +62,11 @@ static void convert_rows(void *ctx, size_t begin, size_t end)
     }
 }
 
-/* A texel's sampling weight is the largest luminance of the 3 x 3 texels around it (wrapping in u,
- * clamped in v) x sin(theta of its row centre): bilinear filtering inside a texel's cell reads only
- * those texels, so the weight is > 0 wherever the displayed radiance is (see
- * cl/light/light_env.cl). This pass puts the 3 x 3 maximum in weight[] and each row's sum of them
- * in row_sum. */
+/* A texel's sampling weight starts as the largest luminance of the 3 x 3 texels around it
+ * (wrapping in u, clamped in v): bilinear filtering inside a texel's cell reads only those texels,
+ * so it is > 0 wherever the displayed radiance is (see cl/light/light_env.cl); compensate_rows
+ * then takes the mean off, and build_tables multiplies by sin(theta of the row centre). This pass
+ * puts the 3 x 3 maximum in weight[] and each row's sum of them in row_sum. */
 static void weight_rows(void *ctx, size_t begin, size_t end)
 {
     EnvPass *e = ctx;
@@ -84,6 +85,44 @@ static void weight_rows(void *ctx, size_t begin, size_t end)
         }
         e->row_sum[j] = row;
     }
+}
+
+/* MIS compensation (Karlik, Sik, Vevoda, Skrivan and Krivanek 2019, "MIS compensation:
+ * optimizing sampling techniques in multiple importance sampling"; pbrt-v4's image light): next-event
+ * estimation draws texels in proportion to how far their weight rises above the map's mean, not to
+ * the weight itself. Every escaped BSDF ray is weighed against light sampling by MIS, and the BSDF
+ * already samples the even part of the sky well, so light samples spent there were wasted: they go
+ * to the sun and the bright windows instead. A texel at or below the mean gets weight 0 (its
+ * directions reach NEE + MIS through the BSDF's samples alone, whose MIS weight is then 1, so the
+ * sum stays unbiased: every strategy's pdf is the density it draws from). The mean is over the
+ * sphere (each texel's weight x sin theta of its row, as its solid angle). A map whose weights are
+ * all equal keeps them: nothing rises above its mean. */
+static void compensate_rows(void *ctx, size_t begin, size_t end)
+{
+    EnvPass *e = ctx;
+    for (size_t j = begin; j < end; j++) {
+        double row = 0.0;
+        for (size_t i = 0; i < e->w; i++) {
+            float *wt = &e->weight[j * e->w + i];
+            *wt = *wt > e->mean_weight ? *wt - e->mean_weight : 0.0f;
+            row += (double)*wt;
+        }
+        e->row_sum[j] = row;
+    }
+}
+
+/* The mean over the sphere of the texels' weights (before the rows' sin theta): their sum per row
+ * (row_sum) x sin theta of the row, over W x the sum of the rows' sin theta. */
+static float mean_weight(const EnvPass *e)
+{
+    const double pi = 3.14159265358979323846;
+    double sum = 0.0, area = 0.0;
+    for (size_t j = 0; j < e->h; j++) {
+        double s = sin(pi * ((double)j + 0.5) / (double)e->h);
+        sum += e->row_sum[j] * s;
+        area += (double)e->w * s;
+    }
+    return (float)(sum / area);
 }
 
 /* Fixed point of the cumulative sum `below` of a total `total`: round(2^32 below / total), at most
@@ -152,9 +191,9 @@ static void finish_rows(void *ctx, size_t begin, size_t end)
     }
 }
 
-/* The sampling tables: each texel's weight (its 3 x 3 maximum x sin theta of its row), the
- * marginal CDF of the rows' weights, each row's conditional CDF, and texels[].w, the pdf per unit
- * uv area. Inverting two CDFs (not an alias table, which pt used before) keeps a stratified (u1,
+/* The sampling tables: each texel's weight (its 3 x 3 maximum less their mean, x sin theta of its
+ * row), the marginal CDF of the rows' weights, each row's conditional CDF, and texels[].w, the pdf
+ * per unit uv area. Inverting two CDFs (not an alias table, which pt used before) keeps a stratified (u1,
  * u2) stratified over the map: the low-discrepancy sampler's points stay spread over the texels.
  * Returns the total weight (0: the map is black). e->row_sum: h doubles of scratch. */
 static double build_tables(EnvPass *e)
@@ -162,6 +201,13 @@ static double build_tables(EnvPass *e)
     const double pi = 3.14159265358979323846;
     size_t h = e->h;
     parallel_for(h, ROWS_PER_THREAD, weight_rows, e);
+    e->mean_weight = mean_weight(e);
+    parallel_for(h, ROWS_PER_THREAD, compensate_rows, e);
+    double compensated = 0.0;
+    for (size_t j = 0; j < h; j++)
+        compensated += e->row_sum[j];
+    if (!(compensated > 0.0))
+        parallel_for(h, ROWS_PER_THREAD, weight_rows, e); /* every weight equal: keep them */
     parallel_for(h, ROWS_PER_THREAD, conditional_rows, e);
     double total = 0.0; /* row_sum becomes each row's weight: x sin theta of its centre */
     for (size_t j = 0; j < h; j++)

@@ -3,10 +3,11 @@
  * EXR image, its radiance per texel (times scale) and the piecewise-constant distribution that
  * next-event estimation samples it from (a row by the rows' CDF, then a texel by its row's: the
  * inversion keeps a stratified sample stratified over the map). The
- * radiance is evaluated bilinearly everywhere; each texel's sampling weight is the largest
- * luminance of its 3 x 3 neighbourhood x sin(theta of its row centre), so the pdf is > 0 wherever
- * the bilinear radiance is, and texels[].w is exactly the density the sampler draws from: MIS with
- * it is unbiased (cl/light/light_env.cl says why). */
+ * radiance is evaluated bilinearly everywhere; each texel's sampling weight is how far the largest
+ * luminance of its 3 x 3 neighbourhood rises above that maximum's mean over the sphere (MIS
+ * compensation) x sin(theta of its row centre), so the pdf is > 0 wherever the bilinear radiance
+ * rises above the mean, and texels[].w is exactly the density the sampler draws from: MIS with it
+ * is unbiased (cl/light/light_env.cl says why). */
 #ifndef PT_ENVIRONMENT_H
 #define PT_ENVIRONMENT_H
 
