@@ -26,7 +26,10 @@ volpath. Each row also gives Mpaths/s (width x height x spp / seconds).
 PYTHON imports mitsuba and numpy (.venv-mitsuba, or on a machine without network wheels fetched
 elsewhere with `pip download mitsuba==3.9.1 numpy -d wheels` and installed with `pip install
 --no-index --find-links wheels --target pydeps mitsuba numpy`). It runs from a checkout or from a
-pt bundle (tools/bundle.sh: bin/pt, tools/, tests/scenes/). On the GPU machine, in the bundle:
+pt bundle (tools/bundle.sh: bin/pt, tools/, tests/scenes/). Mitsuba's CPU backend, llvm_ad_rgb,
+needs a libLLVM Dr.Jit can use: Debian 12's libLLVM 15 crashes it and its LLVM 14 is refused as too
+old, so point DRJIT_LIBLLVM_PATH at a newer one (a Rust toolchain's lib/libLLVM.so.22.1-rust-*
+worked); without one, --variant scalar_rgb is Mitsuba's slower scalar CPU renderer. On the GPU machine, in the bundle:
   PYTHONPATH=pydeps python3 tools/bench_efficiency.py --device gpu --variant cuda_ad_rgb \\
       --width 320 --height 240 --spp 256 --seeds 4 --ref-spp 16384 --csv efficiency-gpu.csv
 The media scenes (issue 40 "Speed": pt against Mitsuba's cuda_ad_rgb volpath, Mpaths/s and relMSE x

@@ -297,7 +297,11 @@ inline float4 shadow_direction_pack(float3 direction, uint bounce, uint medium)
 inline uint shadow_direction_bounce(float4 direction) { return as_uint(direction.w) & 0xffffu; }
 inline uint shadow_direction_medium(float4 direction) { return as_uint(direction.w) >> 16; }
 
-/* waits: a shadow ray is queued and its contribution not yet resolved. */
+/* waits: a shadow ray is queued and its contribution not yet resolved. Between a path's bounces no
+ * slot waits: the pool starts zeroed (wavefront_state.c), and whatever queues a shadow ray resolves
+ * it before the slot is shaded again or refilled (intersect_shadow after shade_surface in every
+ * step, and the megakernels' connect after each shade), resetting waits; so only queuing writes
+ * this lane, and shading a vertex that queues nothing, or starting a path, leaves it alone. */
 inline float4 shadow_contribution_pack(float3 contribution, bool waits)
 {
     return (float4)(contribution, waits ? 1.0f : 0.0f);

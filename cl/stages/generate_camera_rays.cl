@@ -4,7 +4,8 @@
  * slots are free_slots[0 .. n_new) (from compactor_enqueue_free), or slots 0 .. n_new - 1 when
  * fresh != 0 (an empty pool: every slot is free).
  * Reads: params, free_slots. Writes: sample_id, ray_origin, ray_direction (pdf_w = 0: the camera
- * ray counts as specular for MIS), throughput = 1 (in the camera's medium), radiance[k] = 0,
+ * ray counts as specular for MIS), throughput = 1 (in the camera's medium), radiance[k] = 0
+ * (shadow_contribution not: a free slot waits for no shadow ray, render.h),
  * path_depth = 1 (the camera ray), path_time (PT_FEATURE(MOTION): the path's shutter fraction,
  * camera_time), active[n_live + j].
  * Next: intersect_closest. */
@@ -18,7 +19,6 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     ray_origin[slot] = ray_origin_pack_eta(p, origin, 1.0f);
     ray_direction[slot] = ray_direction_pack(dir, 0.0f);
     throughput[slot] = throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
-    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     sample_id[slot] = k;
     path_depth[slot] = 1u;
     /* Unread without moving instances (intersect_*, shade_surface take 0): no store. */

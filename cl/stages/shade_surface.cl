@@ -85,7 +85,6 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
                                    float3 d, float3 beta, float eta_scale, uint state, float time,
                                    RngKey key, uint bounce, uint depth)
 {
-    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (depth >= p->max_depth) {
         path_depth[slot] = 0u;
         return false;
@@ -131,7 +130,6 @@ PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint 
                                float eta_scale, uint medium, uint crossings, float distance)
 {
     float3 d = xyz(direction);
-    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (crossings >= MEDIUM_CROSSING_LIMIT) {
         path_depth[slot] = 0u;
         return;
@@ -178,7 +176,6 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
                                        origin + t_event * xyz(direction), xyz(direction), beta,
                                        eta_scale, state, time, key, bounce, depth);
         if (event == MEDIUM_EVENT_ABSORB) {
-            shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
             path_depth[slot] = 0u;
             return false;
         }
@@ -206,7 +203,6 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
 
     bool path_continues = depth < p->max_depth;
     bool queued = false;
-    shadow_contribution[slot] = shadow_contribution_pack((float3)(0.0f), false);
     if (path_continues) {
         RngKey key = path_rng_key(p, active_pixels, k);
         uint leaf_index = resolve_leaf(scene, m, &sp.surf, key, bounce);

@@ -169,9 +169,12 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
 #undef SAMPLE_STATE_ALLOC
     if (error_is_set(err))
         return false;
-    /* Every slot starts free: compaction reads the flags of the whole pool. */
+    /* Every slot starts free: compaction reads the flags of the whole pool. And no slot waits for
+     * a shadow ray (render.h shadow_contribution_pack: only queuing writes that lane). */
     uint32_t zero = 0;
+    cl_float4 none = {{0.0f, 0.0f, 0.0f, 0.0f}};
     device_fill(dev, w->path_depth, &zero, sizeof zero, 0, pool * sizeof(uint32_t), NULL);
+    device_fill(dev, w->shadow_contribution, &none, sizeof none, 0, pool * sizeof none, NULL);
     w->compactor = compactor_create(dev, pool, err);
     if (!w->compactor)
         return false;
