@@ -37,7 +37,7 @@ typedef struct {
     float scale;
     double *row_sum;        /* per row: luminance sum (convert) or weight sum (weights) */
     size_t *row_clamped;    /* per row: texel values clamped to 0 */
-    float mean_weight;      /* compensate_rows: the weights' mean over the sphere */
+    double mean_weight;     /* compensate_rows: the weights' mean over the sphere */
 } EnvPass;
 
 /* texels = clamp(rgb) x scale, w = luminance. */
@@ -104,7 +104,8 @@ static void compensate_rows(void *ctx, size_t begin, size_t end)
         double row = 0.0;
         for (size_t i = 0; i < e->w; i++) {
             float *wt = &e->weight[j * e->w + i];
-            *wt = *wt > e->mean_weight ? *wt - e->mean_weight : 0.0f;
+            double above = (double)*wt - e->mean_weight; /* in double: a float mean could round up */
+            *wt = above > 0.0 ? (float)above : 0.0f;
             row += (double)*wt;
         }
         e->row_sum[j] = row;
@@ -113,7 +114,7 @@ static void compensate_rows(void *ctx, size_t begin, size_t end)
 
 /* The mean over the sphere of the texels' weights (before the rows' sin theta): their sum per row
  * (row_sum) x sin theta of the row, over W x the sum of the rows' sin theta. */
-static float mean_weight(const EnvPass *e)
+static double mean_weight(const EnvPass *e)
 {
     const double pi = 3.14159265358979323846;
     double sum = 0.0, area = 0.0;
@@ -122,7 +123,7 @@ static float mean_weight(const EnvPass *e)
         sum += e->row_sum[j] * s;
         area += (double)e->w * s;
     }
-    return (float)(sum / area);
+    return sum / area;
 }
 
 /* Fixed point of the cumulative sum `below` of a total `total`: round(2^32 below / total), at most
