@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "render/wavefront_internal.h"
 #include "support.h"
 
 /* Render b (by `name`) against the wavefront's a: the same rays, the same bits. */
@@ -212,4 +213,60 @@ Test(megakernel, chosen_on_cpus_unless_overridden_or_an_ablation)
     /* Sorting only orders the wavefront's launches: a CPU still gets the megakernel (auto). */
     cr_expect_eq(auto_choice(&f, (RenderSettings){.sort_materials = true}), cpu);
     render_fixture_close(&f);
+}
+
+/* A slot's shadow_contribution is stored only where a shadow ray is queued (render.h
+ * shadow_contribution_pack), so no slot may still wait for one once its path has been shaded and
+ * connected: a later path in that slot would add the stale contribution to its own sample. After a
+ * window in each flow (the wavefront with its shadow queue or its flags, its tail, without
+ * compaction, the megakernel with packets and one path per work item, and through media), every
+ * slot's waits lane reads 0. */
+static void expect_no_slot_waits(const char *scene, bool one_level, RenderSettings s, const char *name)
+{
+    RenderFixture f;
+    if (one_level)
+        render_fixture_open_one_level(&f, scene, 16, 16);
+    else
+        render_fixture_open(&f, scene, 16, 16);
+    Error err = {0};
+    Wavefront *w = wavefront_create(f.dev, &f.scene, &f.buffers, &s, &err);
+    cr_assert(w, "%s: %s: %s", scene, name, err.message);
+    wavefront_advance(w, 1, s.spp);
+    uint32_t pool = w->stats->config.pool_size, waiting = 0;
+    cl_float4 *c = malloc(pool * sizeof *c);
+    cr_assert(c);
+    device_read(w->dev, w->shadow_contribution, 0, pool * sizeof *c, c);
+    for (uint32_t i = 0; i < pool; i++)
+        waiting += c[i].s[3] != 0.0f;
+    cr_expect_eq(waiting, 0, "%s: %s: %u of %u slots still wait for a shadow ray after a window",
+                 scene, name, waiting, pool);
+    free(c);
+    wavefront_destroy(w);
+    render_fixture_close(&f);
+}
+
+Test(megakernel, no_slot_waits_for_a_shadow_ray_after_a_window, .timeout = 300)
+{
+    const char *scenes[] = {"scenes/cornell-box/scene.json", "tests/scenes/fog-room/scene.json"};
+    for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+        RenderSettings s = {.spp = 4, .max_depth = 8, .seed = 3, .pool_size = 128,
+                            .path_kernel = PATH_KERNEL_WAVEFRONT, .tail_paths = -1};
+        expect_no_slot_waits(scenes[i], false, s, "wavefront");
+        RenderSettings flags = s;
+        flags.shadow_flags = true;
+        expect_no_slot_waits(scenes[i], false, flags, "wavefront with shadow flags");
+        RenderSettings tail = s;
+        tail.tail_paths = 1 << 30;
+        expect_no_slot_waits(scenes[i], false, tail, "the wavefront's tail");
+        RenderSettings whole = s;
+        whole.no_compaction = true;
+        whole.pool_size = 0;
+        expect_no_slot_waits(scenes[i], false, whole, "no compaction");
+        RenderSettings single = s;
+        single.path_kernel = PATH_KERNEL_MEGAKERNEL_SINGLE;
+        expect_no_slot_waits(scenes[i], false, single, "megakernel, one path per work item");
+    }
+    RenderSettings packets = {.spp = 4, .max_depth = 8, .seed = 3, .pool_size = 128,
+                              .path_kernel = PATH_KERNEL_MEGAKERNEL};
+    expect_no_slot_waits("scenes/cornell-box/scene.json", true, packets, "megakernel");
 }
