@@ -24,16 +24,25 @@ static double neighbourhood_max(const float *rgb, int w, int h, int i, int j)
  * neighbourhood maximum less its mean over the sphere (MIS compensation: each texel's maximum x
  * sin theta of its row over W x the rows' sin theta), clamped at 0, x sin theta of the row; the
  * uncompensated maximum x sin theta where no texel rises above the mean. */
-static double *texel_weights(const float *rgb, int w, int h)
+static double neighbourhood_mean(const float *rgb, int w, int h)
 {
-    double *weight = malloc((size_t)w * h * sizeof *weight), sum = 0.0, area = 0.0, above = 0.0;
+    double sum = 0.0, area = 0.0;
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             double s = sin(ENV_PI * (j + 0.5) / h);
-            sum += (weight[j * w + i] = neighbourhood_max(rgb, w, h, i, j)) * s;
+            sum += neighbourhood_max(rgb, w, h, i, j) * s;
             area += s;
         }
-    double mean = sum / area;
+    return sum / area;
+}
+
+static double *texel_weights(const float *rgb, int w, int h)
+{
+    double *weight = malloc((size_t)w * h * sizeof *weight), above = 0.0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            weight[j * w + i] = neighbourhood_max(rgb, w, h, i, j);
+    double mean = neighbourhood_mean(rgb, w, h);
     for (int t = 0; t < w * h; t++)
         above += fmax(weight[t] - mean, 0.0);
     for (int j = 0; j < h; j++)
@@ -342,18 +351,26 @@ Test(environment_sampling, pdf_integrates_to_one, .timeout = 120)
 /* Wherever an escaped ray sees light above the map's mean, next-event estimation can sample it
  * (below it, the BSDF's samples alone cover the light, with MIS weight 1): for random directions
  * and a grid around a single bright texel (bilinear filtering spreads it over the cells around it,
- * across the u seam and at the top row), radiance > 0 implies pdf > 0. A sampler weighting each
- * texel by its own luminance only (not its neighbourhood's) leaves a pdf of 0 in the half-cells
- * around the bright one and fails. */
+ * across the u seam and at the top row), radiance > 0 implies pdf > 0 on a black map, and radiance
+ * above the mean implies pdf > 0 on a grey ramp in u (texels from well below to well above the
+ * mean). A sampler weighting each texel by its own luminance only (not its neighbourhood's) leaves
+ * a pdf of 0 in the half-cells around the bright one and fails; so does one taking twice the mean
+ * off (the ramp's texels just above the mean). */
 Test(environment_sampling, pdf_is_positive_wherever_radiance_is, .timeout = 120)
 {
     static const int bright[][2] = {{0, 5}, {13, 0}, {20, 9}};
     int w = 32, h = 16;
-    for (size_t m = 0; m < sizeof bright / sizeof bright[0]; m++) {
-        float *rgb = one_texel_map(w, h, bright[m][0], bright[m][1]);
+    for (size_t m = 0; m < 2 * sizeof bright / sizeof bright[0]; m++) {
+        bool ramp = m >= sizeof bright / sizeof bright[0];
+        const int *b = bright[m % (sizeof bright / sizeof bright[0])];
+        float *rgb = one_texel_map(w, h, b[0], b[1]);
+        for (int t = 0; ramp && t < w * h; t++)
+            for (int c = 0; c < 3; c++)
+                rgb[3 * t + c] += 0.5f + 10.0f * (float)(t % w) / (float)w;
+        float threshold = ramp ? (float)neighbourhood_mean(rgb, w, h) : 0.0f;
         Environment env;
         Error err = {0};
-        cr_assert(environment_build(&env, rgb, w, h, 1.0f, 0.0f, "one texel", &err), "%s", err.message);
+        cr_assert(environment_build(&env, rgb, w, h, 1.0f, 0.0f, ramp ? "one texel on a ramp" : "one texel", &err), "%s", err.message);
         enum { RANDOM = 1 << 16, GRID = 64 };
         cl_uint n = RANDOM + GRID * GRID;
         float4 *dirs = malloc(n * sizeof *dirs);
@@ -366,7 +383,7 @@ Test(environment_sampling, pdf_is_positive_wherever_radiance_is, .timeout = 120)
         /* A grid over the 3 x 3 texels around the bright one, through texel_direction's mapping. */
         for (int gj = 0; gj < GRID; gj++)
             for (int gi = 0; gi < GRID; gi++) {
-                double fi = bright[m][0] - 1.5 + 3.0 * (gi + 0.5) / GRID, fj = bright[m][1] - 1.5 + 3.0 * (gj + 0.5) / GRID;
+                double fi = b[0] - 1.5 + 3.0 * (gi + 0.5) / GRID, fj = b[1] - 1.5 + 3.0 * (gj + 0.5) / GRID;
                 double phi = 2.0 * ENV_PI * (fi / w - 0.5), theta = ENV_PI * fj / h;
                 if (theta < 0.0)
                     theta = -theta, phi += ENV_PI;
@@ -377,18 +394,18 @@ Test(environment_sampling, pdf_is_positive_wherever_radiance_is, .timeout = 120)
         cl_uint lit = 0, unsampled = 0;
         for (cl_uint i = 0; i < n; i++) {
             float lum = 0.2126f * out[i].s[0] + 0.7152f * out[i].s[1] + 0.0722f * out[i].s[2];
-            if (lum > 0.0f && fabsf(dirs[i].s[1]) < 0.99999f) { /* the poles have sin theta = 0 */
+            if (lum > threshold && fabsf(dirs[i].s[1]) < 0.99999f) { /* the poles have sin theta = 0 */
                 lit++;
                 if (!(out[i].s[3] > 0.0f) && unsampled++ < 3)
                     cr_log_error("bright texel (%d, %d): direction (%g, %g, %g) sees %g but has pdf %g",
-                                 bright[m][0], bright[m][1], dirs[i].s[0], dirs[i].s[1], dirs[i].s[2], lum,
+                                 b[0], b[1], dirs[i].s[0], dirs[i].s[1], dirs[i].s[2], lum,
                                  out[i].s[3]);
             }
         }
-        cr_expect(lit > GRID * GRID / 4, "bright texel (%d, %d): only %u lit directions", bright[m][0],
-                  bright[m][1], lit);
+        cr_expect(lit > GRID * GRID / 4, "bright texel (%d, %d): only %u lit directions", b[0],
+                  b[1], lit);
         cr_expect_eq(unsampled, 0, "bright texel (%d, %d): %u of %u lit directions have pdf 0",
-                     bright[m][0], bright[m][1], unsampled, lit);
+                     b[0], b[1], unsampled, lit);
         environment_free(&env);
         free(rgb), free(dirs), free(out);
     }
