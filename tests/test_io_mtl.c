@@ -349,8 +349,9 @@ Test(mtl_mapping, unused_statements_and_options_are_named_once_per_file)
     cr_expect_eq(count(printed, "-s (map_Kd)"), 1, "%s", printed);
     cr_expect_eq(count(printed, "-o (map_Kd)"), 1, "%s", printed);
     cr_expect_eq(count(printed, "-clamp (map_Kd)"), 1, "%s", printed);
-    cr_expect(!strstr(printed, "-bm"), "-bm on norm is used: %s", printed);
-    cr_expect(!strstr(printed, "-0.5"), "a negative value is not an option: %s", printed);
+    /* "option -bm", not "-bm": the temporary folder's random name may hold "-bm" too. */
+    cr_expect(!strstr(printed, "option -bm"), "-bm on norm is used: %s", printed);
+    cr_expect(!strstr(printed, "option -0.5"), "a negative value is not an option: %s", printed);
     cr_expect(strstr(printed, "u.mtl"), "names the file: %s", printed);
     free(printed);
 }
