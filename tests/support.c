@@ -151,27 +151,27 @@ void render_fixture_open_with(RenderFixture *f, const char *scene_path, int widt
     render_fixture_load(f, test_device(), scene_path, width, height, instancing, PT_TESTS_TWO_LEVEL);
 }
 
+/* The program pt builds for a one-level scene without cut-outs or media (the packet megakernel's). */
+#define ONE_LEVEL_FEATURES \
+    (PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT | FEATURE_MEDIA | FEATURE_GRID_MEDIA))
+
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
 {
-    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT |
-                                                           FEATURE_MEDIA | FEATURE_GRID_MEDIA);
-    render_fixture_load(f, test_device_built_for(one_level), scene_path, width, height,
+    render_fixture_load(f, test_device_built_for(ONE_LEVEL_FEATURES), scene_path, width, height,
                         INSTANCING_AUTO, false);
-    cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
+    cr_assert(!f->scene.data.two_level, "%s must have one BVH level", scene_path);
 }
 
 void render_fixture_open_in_parts(RenderFixture *f, const char *scene_path, int width, int height)
 {
-    ProgramFeatures one_level = PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT |
-                                                           FEATURE_MEDIA | FEATURE_GRID_MEDIA);
     Device *dev = calloc(1, sizeof *dev);
     Error err = {0};
     const char *spec = getenv("PT_TEST_DEVICE");
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
     dev->use_cache = false;
-    cr_assert(device_build(dev, one_level, NULL, NULL, &err), "device_build: %s", err.message);
+    cr_assert(device_build(dev, ONE_LEVEL_FEATURES, NULL, NULL, &err), "device_build: %s", err.message);
     render_fixture_load(f, dev, scene_path, width, height, INSTANCING_AUTO, false);
-    cr_assert(!f->scene.data.two_level, "%s needs two BVH levels", scene_path);
+    cr_assert(!f->scene.data.two_level, "%s must have one BVH level", scene_path);
 }
 
 void render_fixture_close(RenderFixture *f)

@@ -84,8 +84,8 @@ static void take_background_build(Device *dev, bool wait)
     for (int i = 0; i < MAX_BACKGROUND_BUILDS; i++)
         if (background_builds[i] == b)
             background_builds[i] = NULL;
-    pthread_join(b->thread, NULL);
     pthread_mutex_unlock(&background_lock);
+    pthread_join(b->thread, NULL); /* outside the lock: another device's build may go on */
     dev->background = NULL;
     if (b->ok) {
         dev->programs[b->part] = b->program;

@@ -100,13 +100,14 @@ static void render_window(Wavefront *w, uint32_t window_start, uint32_t window_s
             trace_step(w, window_size, step);
         /* Passing an `interface` surface takes a step but is no bounce: with media a path may need
          * more steps than max_depth. Go on until a step extends no path. */
-        for (uint32_t before = extension_rays(w); w->dev->features & FEATURE_MEDIA; step++) {
-            trace_step(w, window_size, step);
-            uint32_t now = extension_rays(w);
-            if (now == before)
-                break;
-            before = now;
-        }
+        if (w->dev->features & FEATURE_MEDIA) /* without media: no read-back at all */
+            for (uint32_t before = extension_rays(w);; step++) {
+                trace_step(w, window_size, step);
+                uint32_t now = extension_rays(w);
+                if (now == before)
+                    break;
+                before = now;
+            }
     } else {
         uint32_t n_live = 0, next = 0;
         for (uint32_t step = 0;; step++) {
