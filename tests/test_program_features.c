@@ -2,7 +2,9 @@
 /* pt builds its kernels for the features the scene uses (cl/shared/features.h; render/session.c:
  * no FEATURE_ENV nor FEATURE_ANALYTIC for a scene with neither); the tests' program keeps every
  * feature. Both must render a scene without those lights to the same bits: the options only remove
- * branches that such a scene never takes. */
+ * branches that such a scene never takes. Without media the specialised program also stores no
+ * camera ray's origin and throughput (path_state.cl camera_state_implied) where the full one, with
+ * media, does: the same bits check that what it implies is what was stored. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>

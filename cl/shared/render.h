@@ -194,7 +194,9 @@ typedef struct {
  * whose path ends is refilled with the window's next sample (generate_camera_rays), so the pool
  * stays full until the window runs dry. PATH_STATE_FIELDS are per slot, SAMPLE_STATE_FIELDS per
  * window sample. The host's buffers, the clSetKernelArg loop and the kernels' parameter lists all
- * expand from these lists. */
+ * expand from these lists. A path on its pinhole camera ray has no ray_origin or throughput stored
+ * (path_state.cl camera_state_implied): read those two through path_ray_origin and
+ * path_throughput. */
 #define PATH_STATE_FIELDS(X)                                                                       \
     X(float4, ray_origin)          /* xyz; w: travelled or eta scale (ray_origin_pack) */          \
     X(float4, ray_direction)       /* xyz; w: pdf_w (ray_direction_pack) */                        \

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_closest: extends every live path by one segment.
- * Reads: active[0..n_active), ray_origin, ray_direction. Writes: hit (t, u, v, triangle or
+ * Reads: active[0..n_active), ray_origin (path_ray_origin), ray_direction. Writes: hit (t, u, v, triangle or
  * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped.
  * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays, path_state.cl).
  * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
@@ -18,10 +18,12 @@
 PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView *scene,
                                       PATH_STATE_PARAMS uint slot, bool brute_force)
 {
-    if (!path_depth[slot])
+    uint depth = path_depth[slot];
+    if (!depth)
         return false;
     uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
-    float3 o = xyz(ray_origin[slot]), d = xyz(ray_direction[slot]);
+    float4 origin = path_ray_origin(p, ray_origin, slot, depth);
+    float3 o = xyz(origin), d = xyz(ray_direction[slot]);
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
     Hit h;
     if (PT_FEATURE(CUTOUT)) {
@@ -29,7 +31,7 @@ PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView 
          * is bounce path_depth - 1, whose DIM_OPACITY stream decides. */
         RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
         h = trace_closest_through(scene, brute_count, o, d, 0.0f, INFINITY, time, brute_force,
-                                  rng_bounce_bits(key, path_depth[slot] - 1u, DIM_OPACITY));
+                                  rng_bounce_bits(key, depth - 1u, DIM_OPACITY));
     } else {
         h = brute_force ? scene_brute_force(scene, brute_count, o, d, 0.0f, INFINITY, false, time)
                         : scene_closest(scene, brute_count, o, d, 0.0f, INFINITY, time);
@@ -37,7 +39,7 @@ PT_INLINE bool intersect_closest_path(constant RenderParams *p, const SceneView 
     /* A ray bent by black holes starts partway along its segment (integrate_geodesic.cl):
      * the curve's length so far is ray_origin's travelled lane (0 for every straight ray). */
     if (ray_origin_bent(p))
-        h.t += ray_origin_travelled(ray_origin[slot]);
+        h.t += ray_origin_travelled(origin);
     hit[slot] = hit_pack(h.t, h.u, h.v, h.prim);
     if (PT_FEATURE(INSTANCES))
         hit_instance[slot] = h.instance;

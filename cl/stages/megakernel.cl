@@ -36,7 +36,7 @@ kernel void trace_paths(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
     uint slot = get_global_id(0);
     uint extension = 0, shadow = 0;
     if (slot < n) {
-        start_path(p, PATH_STATE_ARGS slot, first_sample + slot);
+        start_path(p, PATH_STATE_ARGS slot, first_sample + slot, true);
         run_path(p, &scene, PATH_STATE_ARGS slot, &extension, &shadow);
     }
     /* Every work item gets here: no early return above. */
@@ -154,7 +154,7 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
     if (first < n) {
         uint end = min(first + PACKET_RAYS, n);
         for (uint slot = first; slot < end; slot++)
-            start_path(p, PATH_STATE_ARGS slot, first_sample + slot);
+            start_path(p, PATH_STATE_ARGS slot, first_sample + slot, true);
         for (bool live = true; live;) {
             extend_packet(p, &scene, PATH_STATE_ARGS first, n);
             for (uint slot = first; slot < end; slot++)

@@ -48,6 +48,37 @@ inline RngKey path_rng_key(constant RenderParams *p, const global uint *active_p
     return render_rng_key(p, window_pixel(p, active_pixels, k), window_sample(p, k));
 }
 
+/* The state of a path still on its camera ray (path_depth 1) that need not be stored: a pinhole's
+ * rays all start at the eye, with throughput 1 in the camera's medium. generate_camera_rays writes
+ * neither lane then, which spares it two of its five scattered 16-byte stores a path (the stage
+ * writes into free slots, wherever the paths that ended left them). Stored where a path at depth 1
+ * may have moved on from its camera ray or a lens draws the origin: with media (crossing an
+ * interface keeps the depth and moves the origin) and bent rays (integrate_geodesic moves both).
+ * Readers take the lanes through path_ray_origin and path_throughput, which give the stored value
+ * bit for bit where both exist (the megakernels, whose packets read the lanes directly, store them). */
+inline bool camera_state_implied(constant RenderParams *p)
+{
+    return !PT_FEATURE(MEDIA) && !ray_origin_bent(p) && !(p->camera.eye.w > 0.0f);
+}
+
+/* ray_origin[slot] of the path at `depth`, the camera's eye where camera_state_implied. */
+inline float4 path_ray_origin(constant RenderParams *p, const global float4 *ray_origin, uint slot,
+                              uint depth)
+{
+    if (depth == 1u && camera_state_implied(p))
+        return ray_origin_pack_eta(p, xyz(p->camera.eye), 1.0f);
+    return ray_origin[slot];
+}
+
+/* throughput[slot] of the path at `depth`, 1 in the camera's medium where camera_state_implied. */
+inline float4 path_throughput(constant RenderParams *p, const global float4 *throughput, uint slot,
+                              uint depth)
+{
+    if (depth == 1u && camera_state_implied(p))
+        return throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
+    return throughput[slot];
+}
+
 /* The hit lane (hit_pack) and the slot's hit_instance as the Hit that surface_at takes. */
 inline Hit path_hit(float4 hit, uint instance)
 {

@@ -149,7 +149,8 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     if (depth == 0u)
         return false;
     uint k = sample_id[slot];
-    float4 hit4 = hit[slot], direction = ray_direction[slot], throughput4 = throughput[slot];
+    float4 hit4 = hit[slot], direction = ray_direction[slot];
+    float4 throughput4 = path_throughput(p, throughput, slot, depth);
     uint state = throughput_medium(throughput4);
     uint medium = medium_state_slot(state), crossings = medium_state_crossings(state);
     /* The vertex's numbers (crossings: medium_state). */
@@ -164,7 +165,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         /* The segment just traced runs through a medium that scatters or emits: it may end in
          * the medium before the surface (or the sky). */
         RngKey key = path_rng_key(p, active_pixels, k);
-        float3 origin = xyz(ray_origin[slot]), emitted = (float3)(0.0f);
+        float3 origin = xyz(path_ray_origin(p, ray_origin, slot, depth)), emitted = (float3)(0.0f);
         float t_event;
         MediumRng rng = medium_rng(rng_bounce_bits(key, bounce, DIM_MEDIUM), 0x6d2b79f5u);
         float tmax = hit_prim(hit4) == HIT_NONE ? INFINITY : hit_t(hit4);
