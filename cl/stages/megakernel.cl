@@ -106,7 +106,9 @@ PT_INLINE HitPacket trace_slots(const SceneView *scene, const global float4 *ori
                         any_hit);
 }
 
-/* intersect_closest_path for the live paths of slots first .. first + 7 (those < n), as one packet. */
+/* intersect_closest_path for the live paths of slots first .. first + 7 (those < n), as one packet.
+ * It reads ray_origin directly, not through path_ray_origin: trace_paths_packets' start_path
+ * stores the camera rays' origins (store_implied), so this is for its slots only. */
 PT_INLINE void extend_packet(constant RenderParams *p, const SceneView *scene,
                              PATH_STATE_PARAMS uint first, uint n)
 {
