@@ -20,29 +20,44 @@ static double neighbourhood_max(const float *rgb, int w, int h, int i, int j)
     return best;
 }
 
-/* Every texel's sampling weight, computed here from the map and not from the host's tables: the
- * neighbourhood maximum less its mean over the sphere (MIS compensation: each texel's maximum x
- * sin theta of its row over W x the rows' sin theta), clamped at 0, x sin theta of the row; the
- * uncompensated maximum x sin theta where no texel rises above the mean. */
-static double neighbourhood_mean(const float *rgb, int w, int h)
+/* Every texel's neighbourhood maximum (row-major). */
+static double *neighbourhood_maxima(const float *rgb, int w, int h)
+{
+    double *m = malloc((size_t)w * h * sizeof *m);
+    cr_assert(m);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            m[j * w + i] = neighbourhood_max(rgb, w, h, i, j);
+    return m;
+}
+
+/* The mean over the sphere of per-texel values: each x sin theta of its row, over W x the rows'
+ * sin theta. */
+static double sphere_mean(const double *v, int w, int h)
 {
     double sum = 0.0, area = 0.0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double s = sin(ENV_PI * (j + 0.5) / h);
-            sum += neighbourhood_max(rgb, w, h, i, j) * s;
-            area += s;
-        }
+    for (int j = 0; j < h; j++) {
+        double s = sin(ENV_PI * (j + 0.5) / h);
+        for (int i = 0; i < w; i++)
+            sum += v[j * w + i] * s, area += s;
+    }
     return sum / area;
 }
 
+/* The neighbourhood maxima's mean over the sphere: what MIS compensation takes off. */
+static double neighbourhood_mean(const float *rgb, int w, int h)
+{
+    double *m = neighbourhood_maxima(rgb, w, h), mean = sphere_mean(m, w, h);
+    free(m);
+    return mean;
+}
+
+/* Every texel's sampling weight, computed here from the map and not from the host's tables: the
+ * neighbourhood maximum less its mean over the sphere (MIS compensation), clamped at 0, x sin theta
+ * of the row; the uncompensated maximum x sin theta where no texel rises above the mean. */
 static double *texel_weights(const float *rgb, int w, int h)
 {
-    double *weight = malloc((size_t)w * h * sizeof *weight), above = 0.0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++)
-            weight[j * w + i] = neighbourhood_max(rgb, w, h, i, j);
-    double mean = neighbourhood_mean(rgb, w, h);
+    double *weight = neighbourhood_maxima(rgb, w, h), mean = sphere_mean(weight, w, h), above = 0.0;
     for (int t = 0; t < w * h; t++)
         above += fmax(weight[t] - mean, 0.0);
     for (int j = 0; j < h; j++)

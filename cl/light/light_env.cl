@@ -116,8 +116,8 @@ inline uint cdf_invert(const global uint *cdf, const global uint *guide, uint n,
 
 /* A direction in proportion to each texel's weight (how far the 3 x 3 neighbourhood's largest
  * luminance rises above its mean, x sin(theta) of the row): the row from the rows' CDF by the 32
- * bits v_bits, the texel from that row's CDF by u_bits, the point in its uv cell from what is left of each (texels[].w is the
- * probability of each texel x W x H, from the same integers). */
+ * bits v_bits, the texel from that row's CDF by u_bits, the point in its uv cell from what is
+ * left of each (texels[].w is the probability of each texel x W x H, from the same integers). */
 inline EnvSample env_sample(const EnvMap *env, uint u_bits, uint v_bits)
 {
     float u1, u2;

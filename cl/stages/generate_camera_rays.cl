@@ -22,7 +22,7 @@ PT_INLINE void start_path(constant RenderParams *p, PATH_STATE_PARAMS uint slot,
     ray_direction[slot] = ray_direction_pack(dir, 0.0f);
     if (store_implied || !camera_state_implied(p)) {
         ray_origin[slot] = ray_origin_pack_eta(p, origin, 1.0f);
-        throughput[slot] = throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
+        throughput[slot] = camera_throughput(p);
     }
     sample_id[slot] = k;
     path_depth[slot] = 1u;

@@ -1,12 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_closest: extends every live path by one segment.
- * Reads: active[0..n_active), ray_origin (path_ray_origin), ray_direction. Writes: hit (t, u, v, triangle or
- * HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and skipped.
- * counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays, path_state.cl).
- * intersect_closest_brute_force is the same stage without the BVH (pt bench's ablation row and
- * the test that it renders the same image): a kernel of its own, so that the production kernel
- * carries no brute-force branch. With PT_FEATURE(CUTOUT), hits on cut-out materials may be passed
- * through (trace_closest_through): a pass-through is not a bounce, path_depth stays. */
+ * Reads: active[0..n_active), ray_origin (path_ray_origin), ray_direction. Writes: hit (t, u, v,
+ * triangle or HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and
+ * skipped. counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays,
+ * path_state.cl). intersect_closest_brute_force is the same stage without the BVH (pt bench's
+ * ablation row and the test that it renders the same image): a kernel of its own, so that the
+ * production kernel carries no brute-force branch. With PT_FEATURE(CUTOUT), hits on cut-out
+ * materials may be passed through (trace_closest_through): a pass-through is not a bounce,
+ * path_depth stays. */
 
 #define INTERSECT_CLOSEST_PARAMS                                                                   \
     constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS const global uint *active,            \

@@ -55,10 +55,17 @@ inline RngKey path_rng_key(constant RenderParams *p, const global uint *active_p
  * may have moved on from its camera ray or a lens draws the origin: with media (crossing an
  * interface keeps the depth and moves the origin) and bent rays (integrate_geodesic moves both).
  * Readers take the lanes through path_ray_origin and path_throughput, which give the stored value
- * bit for bit where both exist (the megakernels, whose packets read the lanes directly, store them). */
+ * bit for bit where both exist (the megakernels, whose packets read the lanes directly, store
+ * them). */
 inline bool camera_state_implied(constant RenderParams *p)
 {
     return !PT_FEATURE(MEDIA) && !ray_origin_bent(p) && !(p->camera.eye.w > 0.0f);
+}
+
+/* The throughput lane every camera path starts with: 1, in the camera's medium. */
+inline float4 camera_throughput(constant RenderParams *p)
+{
+    return throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
 }
 
 /* ray_origin[slot] of the path at `depth`, the camera's eye where camera_state_implied. */
@@ -75,7 +82,7 @@ inline float4 path_throughput(constant RenderParams *p, const global float4 *thr
                               uint depth)
 {
     if (depth == 1u && camera_state_implied(p))
-        return throughput_pack((float3)(1.0f), medium_state(p->scene.camera_medium, 0u));
+        return camera_throughput(p);
     return throughput[slot];
 }
 

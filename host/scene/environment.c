@@ -87,9 +87,9 @@ static void weight_rows(void *ctx, size_t begin, size_t end)
     }
 }
 
-/* MIS compensation (Karlik, Sik, Vevoda, Skrivan and Krivanek 2019, "MIS compensation:
- * optimizing sampling techniques in multiple importance sampling"; pbrt-v4's image light):
- * next-event estimation draws texels in proportion to how far their weight rises above the map's mean, not to
+/* MIS compensation (Karlik, Sik, Vevoda, Skrivan and Krivanek 2019, "MIS compensation: optimizing
+ * sampling techniques in multiple importance sampling"; pbrt-v4's image light): next-event
+ * estimation draws texels in proportion to how far their weight rises above the map's mean, not to
  * the weight itself. Every escaped BSDF ray is weighed against light sampling by MIS, and the BSDF
  * already samples the even part of the sky well, so light samples spent there were wasted: they go
  * to the sun and the bright windows instead. A texel at or below the mean gets weight 0 (its
@@ -195,7 +195,8 @@ static void finish_rows(void *ctx, size_t begin, size_t end)
 /* The sampling tables: each texel's weight (its 3 x 3 maximum less their mean, x sin theta of its
  * row), the marginal CDF of the rows' weights, each row's conditional CDF, and texels[].w, the pdf
  * per unit uv area. Inverting two CDFs (not an alias table, which pt used before) keeps a
- * stratified (u1, u2) stratified over the map: the low-discrepancy sampler's points stay spread over the texels.
+ * stratified (u1, u2) stratified over the map: the low-discrepancy sampler's points stay spread
+ * over the texels.
  * Returns the total weight (0: the map is black). e->row_sum: h doubles of scratch. */
 static double build_tables(EnvPass *e)
 {
