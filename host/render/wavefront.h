@@ -12,6 +12,7 @@
 #include "device/device.h"
 #include "scene/scene.h"
 #include "render/film.h"
+#include "render/pool_size.h"
 #include "render/scene_upload.h"
 
 typedef struct {
@@ -58,15 +59,6 @@ typedef struct {
  * ablations (no_compaction, brute_force) and scenes with black holes use the wavefront;
  * sort_materials applies to the wavefront only. */
 enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KERNEL_MEGAKERNEL_SINGLE };
-
-/* Default window: long enough that the pool stays full for most of it (the tail, where the last
- * paths of the window run with no refills, is about a pool's worth of work). On GPUs, whose tails
- * leave most of the device idle however they are run (finish_paths, megakernel.h), a window of
- * WINDOW_PER_POOL_GPU pools pays for one tail over four times the samples; on CPUs, which run the
- * megakernel, the window is only the unit of progress and of the film's updates. PT_WINDOW_POOLS
- * overrides both. */
-#define WINDOW_PER_POOL 4
-#define WINDOW_PER_POOL_GPU 16
 
 /* The frame loop's stages, one line each, in the order of the --profile table:
  * X(ID, kernel, launch, made, variant). STAGE_<ID> indexes the per-stage tables (the kernels,

@@ -8,6 +8,7 @@
 
 #include "base/env.h"
 #include "render/megakernel.h"
+#include "render/pool_size.h"
 #include "render/wavefront_internal.h"
 #include "scene/sampler.h"
 
@@ -32,41 +33,6 @@ static const struct {
     STAGES(STAGE_KIND)
 #undef STAGE_KIND
 };
-
-/* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
- * bits per slot aside). */
-#define FIELD_BYTES(type, name) +sizeof(type)
-static const uint64_t bytes_per_slot = 2 * sizeof(uint32_t) /* active, free_slots */ PATH_STATE_FIELDS(FIELD_BYTES);
-static const uint64_t bytes_per_sample = 0 SAMPLE_STATE_FIELDS(FIELD_BYTES);
-#undef FIELD_BYTES
-
-/* Path slots and window: enough paths in flight to fill a GPU, modest on a CPU; both shrink until
- * every buffer fits the device's max allocation and all of them half its memory. */
-static void choose_pool_size(const Device *dev, const RenderSettings *s, uint64_t total_samples,
-                             uint32_t window_pools, uint32_t *pool_out, uint32_t *window_out)
-{
-    uint64_t pool = s->pool_size ? s->pool_size : (dev->type & CL_DEVICE_TYPE_GPU) ? 1u << 21 : 1u << 16;
-    uint64_t window = s->window_size ? s->window_size : window_pools * pool;
-    if (window > UINT32_MAX)
-        window = UINT32_MAX; /* the count a window's launches take */
-    if (s->no_compaction || window < pool)
-        window = pool; /* without compaction there are no free slots to refill */
-    /* A long default window gives way first, down to WINDOW_PER_POOL pools, before the pool. */
-    while (pool > 1024 && (window * sizeof(float4) > dev->max_alloc ||
-                           pool * bytes_per_slot + window * bytes_per_sample > dev->global_mem / 2)) {
-        if (!s->window_size && window > WINDOW_PER_POOL * pool)
-            window /= 2;
-        else
-            pool /= 2, window /= 2;
-    }
-    if (window > total_samples)
-        window = total_samples;
-    if (pool > window)
-        pool = window;
-    *pool_out = (uint32_t)pool;
-    *window_out = (uint32_t)window;
-}
-
 
 static void set_all_args(Wavefront *w);
 
@@ -130,17 +96,20 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         return false;
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
-    uint32_t pool, window;
-    long window_pools;
-    if (!env_int("PT_WINDOW_POOLS", 1, 4096,
-                 (dev->type & CL_DEVICE_TYPE_GPU) ? WINDOW_PER_POOL_GPU : WINDOW_PER_POOL,
-                 &window_pools, err))
+    bool gpu = (dev->type & CL_DEVICE_TYPE_GPU) != 0;
+    long window_pools, pool_given = s->pool_size;
+    if (!env_int("PT_WINDOW_POOLS", 1, 4096, gpu ? WINDOW_PER_POOL_GPU : WINDOW_PER_POOL,
+                 &window_pools, err) ||
+        (!pool_given && !env_int("PT_POOL_SIZE", 1024, 1L << 28, 0, &pool_given, err)))
         return false;
-    choose_pool_size(dev, s, (uint64_t)w->num_pixels * (uint64_t)s->spp, (uint32_t)window_pools,
-                     &pool, &window);
+    PoolChoice chosen = pool_choose(
+        (PoolDevice){dev->global_mem, dev->max_alloc, gpu},
+        (PoolRequest){(uint64_t)pool_given, s->window_size, (uint32_t)window_pools,
+                      s->no_compaction, (uint64_t)w->num_pixels * (uint64_t)s->spp});
+    uint32_t pool = chosen.pool, window = chosen.window;
     stats->config.pool_size = pool;
     stats->config.window_size = window;
-    stats->config.device_bytes = pool * bytes_per_slot + window * bytes_per_sample +
+    stats->config.device_bytes = pool * pool_bytes_per_slot + window * pool_bytes_per_sample +
                           (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
     w->params = render_params_for_scene(desc, buffers);
