@@ -16,14 +16,13 @@
 #define POOL_SIZE_CPU (1u << 16)
 #define DEFAULT_POOL_MEMORY_SHARE 8
 
-/* Default window: long enough that the pool stays full for most of it (the tail, where the last
- * paths of the window run with no refills, is about a pool's worth of work). On GPUs, whose tails
- * leave most of the device idle however they are run (finish_paths, megakernel.h), a window of
- * WINDOW_PER_POOL_GPU pools pays for one tail over four times the samples; on CPUs, which run the
- * megakernel, the window is only the unit of progress and of the film's updates. A long default
- * window shrinks to WINDOW_PER_POOL pools before the pool shrinks. PT_WINDOW_POOLS overrides both. */
+/* Default window: WINDOW_PER_POOL pools, long enough that the pool stays full for most of it (the
+ * tail, where the last paths of the window run with no refills, is about a pool's worth of work,
+ * and finish_paths (megakernel.h) takes its last paths in one launch). A window is also the unit of
+ * progress and of the film's updates. With the large GPU pool, windows of 8 or 16 pools measured
+ * 1-3% slower than 4 on long renders (bench/README.md "The path pool"). PT_WINDOW_POOLS overrides
+ * it; a longer window shrinks back to WINDOW_PER_POOL pools before the pool shrinks. */
 #define WINDOW_PER_POOL 4
-#define WINDOW_PER_POOL_GPU 16
 
 /* Device bytes per path slot and per window sample (the film, the scene and the compactor's few
  * bits per slot aside). */
@@ -37,7 +36,7 @@ typedef struct {
 typedef struct {
     uint64_t pool;          /* the user's pool (RenderSettings.pool_size, PT_POOL_SIZE); 0: the default */
     uint64_t window;        /* the user's window (RenderSettings.window_size); 0: window_pools pools */
-    uint32_t window_pools;  /* PT_WINDOW_POOLS, else WINDOW_PER_POOL(_GPU) */
+    uint32_t window_pools;  /* PT_WINDOW_POOLS, else WINDOW_PER_POOL */
     bool no_compaction;     /* no free slots to refill: the window is the pool */
     uint64_t total_samples; /* the render's samples: neither exceeds them */
 } PoolRequest;

@@ -98,8 +98,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     bool gpu = (dev->type & CL_DEVICE_TYPE_GPU) != 0;
     long window_pools, pool_given = s->pool_size;
-    if (!env_int("PT_WINDOW_POOLS", 1, 4096, gpu ? WINDOW_PER_POOL_GPU : WINDOW_PER_POOL,
-                 &window_pools, err) ||
+    if (!env_int("PT_WINDOW_POOLS", 1, 4096, WINDOW_PER_POOL, &window_pools, err) ||
         (!pool_given && !env_int("PT_POOL_SIZE", 1024, 1L << 28, 0, &pool_given, err)))
         return false;
     PoolChoice chosen = pool_choose(
