@@ -11,6 +11,7 @@
 
 #define KEYS_PER_ITEM 16   /* SORT_KEYS_PER_ITEM in cl/parallel/sort_materials.cl */
 #define MAX_GROUP_SIZE 256 /* a tile position must fit SORT_INDEX_BITS = 12 bits */
+_Static_assert(MAX_GROUP_SIZE * KEYS_PER_ITEM == MATERIAL_SORT_TILE, "material_sort.h's tile");
 #define LOCAL_HISTOGRAM_MAX_KEYS 8192 /* 32 KiB of local memory; larger tables count globally */
 
 struct MaterialSorter {

@@ -26,6 +26,9 @@
 
 /* Keys are 20 bits in the tile sort: num_materials may be up to 2^20 - 1. */
 #define MATERIAL_SORT_MAX_MATERIALS ((1u << 20) - 1u)
+/* Entries a tile sorts at the default work-group size (256 work items x 16 keys; a device with
+ * little local memory takes smaller tiles): the counts are (num_materials + 1) per tile. */
+#define MATERIAL_SORT_TILE 4096u
 
 typedef struct MaterialSorter MaterialSorter;
 

@@ -42,7 +42,7 @@ typedef struct {
                            * turns it on itself) */
     uint32_t pool_size;  /* path slots in flight; 0 = chosen from the device */
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
-                           * steps); 0 = WINDOW_PER_POOL(_GPU) pools; at least the pool */
+                           * steps); 0 = the default (render/pool_size.h); at least the pool */
     int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
     int tail_paths;       /* the wavefront takes a window's last paths to their ends in one launch
                            * (finish_paths, megakernel.h) once no samples are left to start and at

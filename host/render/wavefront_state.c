@@ -98,18 +98,20 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     bool gpu = (dev->type & CL_DEVICE_TYPE_GPU) != 0;
     long window_pools, pool_given = s->pool_size;
-    if (!env_int("PT_WINDOW_POOLS", 1, 4096, WINDOW_PER_POOL, &window_pools, err) ||
+    if (!env_int("PT_WINDOW_POOLS", 1, 4096, 0, &window_pools, err) ||
         (!pool_given && !env_int("PT_POOL_SIZE", 1024, 1L << 28, 0, &pool_given, err)))
         return false;
+    /* Sorting's keys, whether or not the megakernel (decided below) leaves it out. */
+    uint32_t sort_keys = s->sort_materials ? scene->data.num_materials + 1u : 0u;
     PoolChoice chosen = pool_choose(
         (PoolDevice){dev->global_mem, dev->max_alloc, gpu},
         (PoolRequest){(uint64_t)pool_given, s->window_size, (uint32_t)window_pools,
-                      s->no_compaction, (uint64_t)w->num_pixels * (uint64_t)s->spp});
+                      s->no_compaction, (uint64_t)w->num_pixels * (uint64_t)s->spp, sort_keys});
     uint32_t pool = chosen.pool, window = chosen.window;
     stats->config.pool_size = pool;
     stats->config.window_size = window;
-    stats->config.device_bytes = pool * pool_bytes_per_slot + window * pool_bytes_per_sample +
-                          (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
+    stats->config.device_bytes =
+        pool_device_bytes(pool, window, 0) + (uint64_t)w->num_pixels * FILM_BYTES_PER_PIXEL;
 
     w->params = render_params_for_scene(desc, buffers);
     w->params.seed = s->seed;
@@ -166,7 +168,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         w->sorter = w->sorted_active ? material_sorter_create(dev, pool, scene->data.num_materials, err) : NULL;
         if (!w->sorter)
             return false;
-        stats->config.device_bytes += (uint64_t)pool * sizeof(uint32_t); /* the sorted list */
+        stats->config.device_bytes += pool_sort_bytes(pool, sort_keys);
     }
     set_all_args(w);
     wavefront_reset(w);

@@ -73,6 +73,7 @@ def env_cases():
                 ("PT_PACKETS", ["0", "1", "2", "off", ""]),
                 ("PT_LOCAL_SIZE", ["0", "-1", "abc", "1", "3", "100000", "99999999999"]),
                 ("PT_WINDOW_POOLS", ["0", "-1", "abc", "1", "4097", "99999999999", ""]),
+                ("PT_POOL_SIZE", ["0", "-1", "abc", "1023", "1024", "268435457", "99999999999", ""]),
                 ("PT_CL_OPTIONS", ["-this-is-not-an-option", "-D"]),
                 ("OCL_ICD_VENDORS", ["/nonexistent"])]
     for var, values in settings:
