@@ -52,9 +52,11 @@ pt_rows = [r for r in csv.DictReader(open(f"{out}/pt.csv")) if r["mode"] == "def
 print(f"{'scene':45s} {'renderer':10s} median   best  (runs)   Mpaths/s")
 for scene in scenes:
     mi = [float(r["mpaths_per_s"]) for r in mi_rows if r["scene"] == scene]
-    # pt bench names the scene as given, or its scene.json inside a folder
+    # pt bench names the scene as given, or its scene.json inside a folder (a prefix would also
+    # take tests/scenes/cornell-sphere's rows for tests/scenes/cornell)
+    given = os.path.normpath(scene)
     pt = [float(r["mpaths_per_s"]) for r in pt_rows
-          if os.path.normpath(r.get("scene", scene)).startswith(os.path.normpath(scene))]
+          if os.path.normpath(r.get("scene", scene)) in (given, os.path.join(given, "scene.json"))]
     if not pt:  # an older pt.csv without a recognisable scene column: one scene per run only
         pt = [float(r["mpaths_per_s"]) for r in pt_rows] if len(scenes) == 1 else []
     for name, v in (("mitsuba", mi), ("pt", pt)):
