@@ -240,3 +240,32 @@ Test(film, the_variance_of_constant_and_two_valued_pixels, .timeout = 120)
     wavefront_destroy(w);
     render_fixture_close(&f);
 }
+
+/* Where the pool comes from (render/pool_size.h): RenderSettings.pool_size, else PT_POOL_SIZE,
+ * else the device's default (clamped to the render's samples); the default window is
+ * WINDOW_PER_POOL pools, and PT_WINDOW_POOLS changes it. tests/test_pool_size.c checks the choice
+ * itself; this checks that the wavefront passes it what the user set. */
+Test(film, the_pool_comes_from_the_settings_then_the_environment, .timeout = 300)
+{
+    RenderFixture f;
+    render_fixture_open(&f, "scenes/cornell-box/scene.json", SIZE, SIZE);
+    RenderSettings s = cornell; /* 32 spp of 64 x 64: 131072 samples */
+    RenderStats stats;
+    free(render_fixture_render(&f, s, &stats));
+    cr_expect_eq(stats.config.pool_size, POOL_SIZE_CPU, "the CPU's default pool");
+    cr_expect_eq(stats.config.window_size, WINDOW_PER_POOL * POOL_SIZE_CPU > 32u * PIXELS
+                                               ? 32u * PIXELS : WINDOW_PER_POOL * POOL_SIZE_CPU);
+    setenv("PT_POOL_SIZE", "2048", 1);
+    free(render_fixture_render(&f, s, &stats));
+    cr_expect_eq(stats.config.pool_size, 2048u, "PT_POOL_SIZE");
+    cr_expect_eq(stats.config.window_size, WINDOW_PER_POOL * 2048u);
+    setenv("PT_WINDOW_POOLS", "3", 1);
+    free(render_fixture_render(&f, s, &stats));
+    cr_expect_eq(stats.config.window_size, 3u * 2048u, "PT_WINDOW_POOLS");
+    unsetenv("PT_WINDOW_POOLS");
+    s.pool_size = 1024;
+    free(render_fixture_render(&f, s, &stats));
+    cr_expect_eq(stats.config.pool_size, 1024u, "the settings' pool wins over PT_POOL_SIZE");
+    unsetenv("PT_POOL_SIZE");
+    render_fixture_close(&f);
+}

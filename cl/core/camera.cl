@@ -2,6 +2,9 @@
 /* camera.cl: primary rays. Pinhole, or thin lens when the lens radius is positive; uniformly
  * jittered sub-pixel position (box filter). Image x goes right, y goes down. */
 
+/* A thin lens (lens radius eye.w > 0): the camera draws its rays' origins on the aperture. */
+inline bool camera_has_lens(constant RenderParams *p) { return p->camera.eye.w > 0.0f; }
+
 /* jitter: sub-pixel position in [0,1)^2; lens: two uniforms for the aperture. */
 inline void camera_ray(constant RenderParams *p, uint x, uint y, float2 jitter, float2 lens,
                        float3 *origin, float3 *dir)
@@ -31,7 +34,7 @@ inline void camera_sample(constant RenderParams *p, uint pixel, uint sample, flo
 {
     RngKey key = render_rng_key(p, pixel, sample);
     float2 jitter = rng_pair(key, DIM_CAMERA_JITTER_X);
-    float2 lens = p->camera.eye.w > 0.0f ? rng_pair(key, DIM_LENS_U) : (float2)(0.0f);
+    float2 lens = camera_has_lens(p) ? rng_pair(key, DIM_LENS_U) : (float2)(0.0f);
     camera_ray(p, pixel % p->width, pixel / p->width, jitter, lens, origin, dir);
 }
 

@@ -59,7 +59,7 @@ inline RngKey path_rng_key(constant RenderParams *p, const global uint *active_p
  * them). */
 inline bool camera_state_implied(constant RenderParams *p)
 {
-    return !PT_FEATURE(MEDIA) && !ray_origin_bent(p) && !(p->camera.eye.w > 0.0f);
+    return !PT_FEATURE(MEDIA) && !ray_origin_bent(p) && !camera_has_lens(p);
 }
 
 /* The throughput lane every camera path starts with: 1, in the camera's medium. */

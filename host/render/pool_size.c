@@ -36,18 +36,25 @@ static bool fits(PoolDevice dev, uint64_t pool, uint64_t window, uint32_t sort_k
            pool_device_bytes(pool, window, sort_keys) <= budget;
 }
 
+/* The window a pool starts from: the user's, else window_pools pools; at most 2^32 - 1 samples
+ * (the count a window's launches take), at least the pool, and the pool without compaction (no
+ * free slots to refill). */
+static uint64_t first_window(PoolRequest req, uint64_t pool, uint32_t window_pools)
+{
+    uint64_t window = req.window ? req.window : (uint64_t)window_pools * pool;
+    if (window > UINT32_MAX)
+        window = UINT32_MAX;
+    return req.no_compaction || window < pool ? pool : window;
+}
+
 /* The largest power of two in (POOL_SIZE_GPU, POOL_SIZE_GPU_LARGE] that fits the default's share
  * with the user's window or WINDOW_PER_POOL pools (a longer default window gives way to that), or
  * 0. */
 static uint64_t large_gpu_pool(PoolDevice dev, PoolRequest req, uint64_t share)
 {
-    for (uint64_t pool = POOL_SIZE_GPU_LARGE; pool > POOL_SIZE_GPU; pool /= 2) {
-        uint64_t window = req.window ? req.window : WINDOW_PER_POOL * pool;
-        if (window > UINT32_MAX)
-            window = UINT32_MAX;
-        if (fits(dev, pool, window > pool ? window : pool, req.sort_keys, share))
+    for (uint64_t pool = POOL_SIZE_GPU_LARGE; pool > POOL_SIZE_GPU; pool /= 2)
+        if (fits(dev, pool, first_window(req, pool, WINDOW_PER_POOL), req.sort_keys, share))
             return pool;
-    }
     return 0;
 }
 
@@ -68,11 +75,7 @@ PoolChoice pool_choose(PoolDevice dev, PoolRequest req)
     } else if (!pool) {
         pool = POOL_SIZE_CPU;
     }
-    uint64_t window = req.window ? req.window : (uint64_t)window_pools * pool;
-    if (window > UINT32_MAX)
-        window = UINT32_MAX; /* the count a window's launches take */
-    if (req.no_compaction || window < pool)
-        window = pool; /* without compaction there are no free slots to refill */
+    uint64_t window = first_window(req, pool, window_pools);
     while (pool > 1024 && !fits(dev, pool, window, req.sort_keys, budget)) {
         if (!req.window && window > WINDOW_PER_POOL * pool)
             window /= 2;
