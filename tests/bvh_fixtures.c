@@ -11,7 +11,6 @@
 typedef struct {
     const Bvh *bvh;
     const TestMesh *mesh;
-    LeafRefs refs;        /* each leaf reference's triangle and box, for the coverage check */
     uint32_t *leaf_hits;  /* per leaf-order triangle: how many leaves hold it */
     uint8_t *node_seen;
     int max_depth;        /* deepest inner node, root = 0 */
@@ -32,71 +31,6 @@ static double half_area(const float lo[3], const float hi[3])
 {
     double d[3] = {(double)hi[0] - lo[0], (double)hi[1] - lo[1], (double)hi[2] - lo[2]};
     return d[0] >= 0.0 ? d[0] * d[1] + d[1] * d[2] + d[2] * d[0] : 0.0;
-}
-
-void leaf_refs_add(LeafRefs *r, uint32_t original, const float lo[3], const float hi[3])
-{
-    if (r->count == r->capacity) {
-        r->capacity = r->capacity ? 2 * r->capacity : 1024;
-        r->refs = realloc(r->refs, r->capacity * sizeof *r->refs);
-        cr_assert_not_null(r->refs);
-    }
-    LeafRef *ref = &r->refs[r->count++];
-    ref->original = original;
-    memcpy(ref->lo, lo, sizeof ref->lo);
-    memcpy(ref->hi, hi, sizeof ref->hi);
-}
-
-static int by_original(const void *a, const void *b)
-{
-    uint32_t x = ((const LeafRef *)a)->original, y = ((const LeafRef *)b)->original;
-    return (x > y) - (x < y);
-}
-
-/* Barycentric points of a triangle: corners, edge midpoints, centroid and points near each edge
- * and corner, where a clipped box is most likely to fall short. */
-static const double COVER_POINTS[][2] = {
-    {0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0, 0.5}, {0.5, 0.5}, {1.0 / 3, 1.0 / 3},
-    {0.999, 0.0005}, {0.0005, 0.999}, {0.0005, 0.0005}, {0.25, 0.7499}, {0.7499, 0.25},
-    {0.1, 0.0001}, {0.0001, 0.1}, {0.6, 0.2}, {0.2, 0.6}};
-
-uint32_t leaf_refs_check_coverage(LeafRefs *r, const TestMesh *mesh, const char *name)
-{
-    qsort(r->refs, r->count, sizeof *r->refs, by_original);
-    uint32_t failures = 0, i = 0;
-    for (uint32_t t = 0; t < mesh->num_triangles; t++) {
-        uint32_t first = i;
-        while (i < r->count && r->refs[i].original == t)
-            i++;
-        const uint4 v = mesh->triangles[t].v;
-        const float *c[3] = {mesh->positions[v.s[0]].s, mesh->positions[v.s[1]].s,
-                             mesh->positions[v.s[2]].s};
-        for (size_t p = 0; p < sizeof COVER_POINTS / sizeof COVER_POINTS[0]; p++) {
-            double u = COVER_POINTS[p][0], w = COVER_POINTS[p][1], point[3];
-            /* In double, within the corners' range (a coordinate the corners share stays
-             * exact), so that rounding here cannot leave a box that holds the exact point. */
-            for (int k = 0; k < 3; k++) {
-                double x = c[0][k] + u * ((double)c[1][k] - c[0][k]) + w * ((double)c[2][k] - c[0][k]);
-                double lo = fmin(c[0][k], fmin(c[1][k], c[2][k])), hi = fmax(c[0][k], fmax(c[1][k], c[2][k]));
-                point[k] = fmin(fmax(x, lo), hi);
-            }
-            if (p < 3) /* a corner exactly */
-                for (int k = 0; k < 3; k++)
-                    point[k] = c[p][k];
-            bool covered = false;
-            for (uint32_t j = first; j < i && !covered; j++) {
-                covered = true;
-                for (int k = 0; k < 3; k++)
-                    covered = covered && point[k] >= r->refs[j].lo[k] && point[k] <= r->refs[j].hi[k];
-            }
-            if (!covered && failures++ < 5)
-                cr_log_error("%s: triangle %u (%u references): point %zu in none of their leaf boxes",
-                             name, t, i - first, p);
-        }
-    }
-    if (i != r->count && failures++ < 5)
-        cr_log_error("%s: references to triangles the mesh does not have", name);
-    return failures;
 }
 
 static void check_error(TreeCheck *check, const char *what, uint32_t node)
@@ -137,14 +71,10 @@ static void check_child(TreeCheck *check, uint32_t parent, const float4 *lo4, co
         check->cost_sum += check->costs.intersect * (double)count * half_area(lo, hi);
         for (uint32_t i = first; i < first + count; i++) {
             check->leaf_hits[i]++;
-            uint32_t original, other;
-            memcpy(&original, &bvh->tris[i].v0.s[3], sizeof original);
-            leaf_refs_add(&check->refs, original, lo, hi);
-            for (uint32_t j = first; j < i; j++) {
-                memcpy(&other, &bvh->tris[j].v0.s[3], sizeof other);
-                if (other == original)
-                    check_error(check, "a triangle twice in one leaf", parent);
-            }
+            const BvhTriangle *t = &bvh->tris[i];
+            if (!box_contains(lo, hi, &t->v0) || !box_contains(lo, hi, &t->v1) ||
+                !box_contains(lo, hi, &t->v2))
+                check_error(check, "leaf box misses a triangle corner", parent);
         }
         return;
     }
@@ -177,13 +107,8 @@ static void check_node(TreeCheck *check, uint32_t index, const float lo[3], cons
 
 int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name, BvhCosts costs)
 {
-    TreeCheck check = {bvh, mesh, {0}, calloc(bvh->num_tris + 1, 4), calloc(bvh->num_nodes, 1), 0, 0, 0, costs};
-    /* Spatial splits add references, within the build's budget. */
-    cr_assert_geq(bvh->num_tris, mesh->num_triangles, "%s: triangle count", name);
-    cr_assert_leq(bvh->num_tris,
-                  mesh->num_triangles + mesh->num_triangles / BVH_SPATIAL_BUDGET_DIVISOR +
-                      BVH_SPATIAL_BUDGET_MIN,
-                  "%s: %u references to %u triangles", name, bvh->num_tris, mesh->num_triangles);
+    TreeCheck check = {bvh, mesh, calloc(bvh->num_tris + 1, 4), calloc(bvh->num_nodes, 1), 0, 0, 0, costs};
+    cr_assert_eq(bvh->num_tris, mesh->num_triangles, "%s: triangle count", name);
     cr_assert_geq(bvh->num_nodes, 1u);
     /* The root is checked as the child of a virtual parent whose box is the mesh bounds. */
     float lo[3], hi[3];
@@ -193,13 +118,13 @@ int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name
     for (uint32_t i = 0; i < bvh->num_nodes; i++)
         if (check.node_seen[i] != 1)
             check_error(&check, "node unreachable or shared", i);
-    /* Every reference in exactly one leaf, naming a triangle of the mesh with its corners; every
-     * triangle covered by its references' leaf boxes. */
+    /* Every triangle in exactly one leaf, and the leaf order is a permutation of the mesh. */
+    uint8_t *original_seen = calloc(mesh->num_triangles + 1, 1);
     for (uint32_t i = 0; i < bvh->num_tris; i++) {
         uint32_t original;
         memcpy(&original, &bvh->tris[i].v0.s[3], sizeof original);
-        if (check.leaf_hits[i] != 1 || original >= mesh->num_triangles)
-            check_error(&check, "reference not in exactly one leaf", i);
+        if (check.leaf_hits[i] != 1 || original >= mesh->num_triangles || original_seen[original]++)
+            check_error(&check, "triangle not in exactly one leaf", i);
         else {
             const uint4 v = mesh->triangles[original].v;
             if (memcmp(bvh->tris[i].v1.s, mesh->positions[v.s[1]].s, 12) != 0 ||
@@ -207,7 +132,6 @@ int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name
                 check_error(&check, "triangle corners differ from the mesh", i);
         }
     }
-    check.errors += leaf_refs_check_coverage(&check.refs, mesh, name);
     cr_expect_eq(check.errors, 0, "%s: %u invariant violations", name, check.errors);
     cr_expect_lt(check.max_depth + 1, BVH_STACK_SIZE + 1, "%s: depth %d overflows the stack", name,
                  check.max_depth);
@@ -219,7 +143,7 @@ int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name
     }
     free(check.leaf_hits);
     free(check.node_seen);
-    free(check.refs.refs);
+    free(original_seen);
     return check.max_depth;
 }
 

@@ -18,24 +18,9 @@
 
 /* ---- Host-side invariants (bvh_fixtures.c) ------------------------------------------------- */
 
-/* Leaf references as the checks collect them: a triangle, and the box of a leaf that holds it. */
-typedef struct {
-    uint32_t original;
-    float lo[3], hi[3];
-} LeafRef;
-typedef struct {
-    LeafRef *refs;
-    uint32_t count, capacity;
-} LeafRefs;
-void leaf_refs_add(LeafRefs *r, uint32_t original, const float lo[3], const float hi[3]);
-/* Every triangle of mesh lies in the union of its references' boxes (checked at 16 points of
- * it; a spatial split leaves each reference the box of a part only), and no reference names a
- * triangle the mesh lacks. Sorts r; returns the failures (the first few logged). */
-uint32_t leaf_refs_check_coverage(LeafRefs *r, const TestMesh *mesh, const char *name);
-
-/* Every invariant of a built tree (boxes contain what is below them, every triangle covered by
- * the boxes of the leaves that hold it, pre-order layout, bounded depth, stored SAH cost in the
- * given costs); returns the deepest inner node's depth. */
+/* Every invariant of a built tree (boxes contain what is below them, every triangle in exactly
+ * one leaf, pre-order layout, bounded depth, stored SAH cost in the given costs); returns the
+ * deepest inner node's depth. */
 int check_tree_with_costs(const Bvh *bvh, const TestMesh *mesh, const char *name, BvhCosts costs);
 
 /* Three chains of unit triangles along the axes, the i-th at distance (16/15)^i (up to 1e36).

@@ -1,12 +1,10 @@
 // SPDX-License-Identifier: MIT
 /* BVH build on the host: the tree's invariants (boxes contain what is below them, every triangle
- * covered by the boxes of the leaves that hold it, pre-order layout, bounded depth, stored SAH
- * cost) on procedural meshes and the builder's awkward cases; spatial splits cut long triangles
- * and lower the SAH cost; the depth limit acts where SAH alone would overflow the traversal
+ * in exactly one leaf, pre-order layout, bounded depth, stored SAH cost) on procedural meshes and
+ * the builder's awkward cases; the depth limit acts where SAH alone would overflow the traversal
  * stack; binned SAH stays within 3% of a full-sweep build. */
 #include <criterion/criterion.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "accel/bvh.h"
 #include "bvh_fixtures.h"
@@ -39,42 +37,6 @@ Test(bvh, build_invariants_hold_on_procedural_meshes)
         build_and_check(&cases[i].mesh, cases[i].name);
         test_mesh_free(&cases[i].mesh);
     }
-}
-
-/* Long thin triangles across a box's diagonal, side by side: every triangle's box is nearly the
- * whole box, so no object split separates them, while a plane across the diagonal cuts each into
- * parts with boxes an eighth the size (the case of spatial splits: walls, roads, wires). */
-static TestMesh diagonal_slivers(uint32_t n)
-{
-    TestMesh mesh = mesh_alloc(3 * n, n);
-    for (uint32_t i = 0; i < n; i++) {
-        float s = 0.5f * (float)i / (float)n, base = (float)mesh.num_positions;
-        mesh.positions[mesh.num_positions++] = mesh_point(s, 0.0f, 0.0f);
-        mesh.positions[mesh.num_positions++] = mesh_point(s + 1.0f, 1.0f, 1.0f);
-        mesh.positions[mesh.num_positions++] = mesh_point(s + 1.0f, 1.01f, 1.0f);
-        mesh_add_triangle(&mesh, (uint32_t)base, (uint32_t)base + 1, (uint32_t)base + 2);
-    }
-    return mesh;
-}
-
-Test(bvh, spatial_splits_cut_long_triangles)
-{
-    TestMesh mesh = diagonal_slivers(256);
-    Bvh spatial, objects;
-    bvh_build(&spatial, mesh.positions, mesh.triangles, mesh.num_triangles);
-    check_tree(&spatial, &mesh, "diagonal slivers, spatial splits");
-    setenv("PT_BVH_SPATIAL", "0", 1); /* criterion runs each test in a process of its own */
-    bvh_build(&objects, mesh.positions, mesh.triangles, mesh.num_triangles);
-    check_tree(&objects, &mesh, "diagonal slivers, object splits");
-    cr_log_info("SAH %.3f with spatial splits (%u references), %.3f without", spatial.sah_cost,
-                spatial.num_tris, objects.sah_cost);
-    cr_expect_eq(objects.num_tris, mesh.num_triangles, "object splits add no references");
-    cr_expect_gt(spatial.num_tris, mesh.num_triangles, "no spatial split was made");
-    cr_expect_lt(spatial.sah_cost, 0.9 * objects.sah_cost, "SAH %g with spatial splits, %g without",
-                 spatial.sah_cost, objects.sah_cost);
-    bvh_free(&spatial);
-    bvh_free(&objects);
-    test_mesh_free(&mesh);
 }
 
 Test(bvh, depth_stays_within_the_traversal_stack)

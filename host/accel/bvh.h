@@ -24,13 +24,6 @@
 #define BVH_COST_INTERSECT 1.0f
 #endif
 
-/* Spatial splits (bvh_spatial.c; PT_BVH_SPATIAL=0 turns them off): a node tries one where its
- * object split's sides overlap by more than this share of the root's half area (Stich et al.'s
- * alpha), and the build may add up to n / DIVISOR + MIN references to a tree over n triangles. */
-#define BVH_SPATIAL_MIN_OVERLAP 1e-5
-#define BVH_SPATIAL_BUDGET_DIVISOR 2u
-#define BVH_SPATIAL_BUDGET_MIN 64u
-
 /* SAH costs; bvh_build uses BVH_COSTS_DEFAULT, the 2-wide layout's (bvh_wide.h has the others). */
 typedef struct {
     float traversal, intersect;
@@ -40,9 +33,8 @@ typedef struct {
 typedef struct {
     BvhNode *nodes;     /* nodes[0] is the root */
     uint32_t num_nodes;
-    BvhTriangle *tris;  /* triangles in leaf order, one per leaf reference (a triangle that a spatial
-                           split cut is in several leaves); v0.w holds the original index */
-    uint32_t num_tris;  /* references */
+    BvhTriangle *tris;  /* triangles in leaf order; v0.w holds the original index */
+    uint32_t num_tris;
     double sah_cost;    /* SAH cost: (C_t sum of inner areas + C_i sum of leaf areas x counts) / root area */
 } Bvh;
 

@@ -21,7 +21,6 @@
 #endif
 
 #include "accel/bvh_internal.h"
-#include "base/env.h"
 #include "base/error.h"
 
 typedef struct {
@@ -37,44 +36,9 @@ static int ceil_log2(uint32_t n)
     return bits;
 }
 
-/* The half area of the part two boxes share (0 where they do not meet). */
-static double overlap_half_area(const Box *a, const Box *b)
-{
-    Box both = {lanes_max(a->lo, b->lo), lanes_min(a->hi, b->hi)};
-    float lo[4], hi[4];
-    box_corners(&both, lo, hi);
-    if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]))
-        return 0.0;
-    return box_half_area(&both);
-}
-
-/* After an object split of SAH cost `cost` into part: a spatial split instead (bvh_spatial.c)
- * where the object split's sides overlap by more than b->spatial_min_overlap and the spatial one
- * costs less, within limit. */
-static void consider_spatial_split(Builder *b, uint32_t begin, uint32_t end, uint32_t limit,
-                                   const Box *box, double cost, Partition *part)
-{
-    part->end = end;
-    if (!(b->spatial_min_overlap > 0.0) ||
-        !(overlap_half_area(&part->left_box, &part->right_box) > b->spatial_min_overlap))
-        return;
-    SpatialSplit split = bvh_find_spatial_split(b, begin, end, box);
-    if (split.axis < 0 || !(split.cost < cost))
-        return;
-    uint32_t mid = part->mid;
-    Partition spatial;
-    if (bvh_partition_spatial(b, begin, end, limit, split, &spatial)) {
-        *part = spatial;
-        return;
-    }
-    /* Records may have been clipped to their parts (the same count): the sides' bounds again. */
-    *part = bvh_partition_at(b, begin, mid, end);
-    part->end = end;
-}
-
-/* Splits prims[begin, end) for an inner node (reordering it, filling part; a spatial split may
- * make the sides longer, up to limit), or returns false when the range should be a leaf. */
-static bool choose_split(Builder *b, uint32_t begin, uint32_t end, uint32_t limit, const Box *box,
+/* Splits prims[begin, end) for an inner node (reordering it, filling part), or returns false
+ * when the range should be a leaf. */
+static bool choose_split(Builder *b, uint32_t begin, uint32_t end, const Box *box,
                          const Box *centroids, int depth, Partition *part)
 {
     const bool leaf = false;
@@ -86,13 +50,8 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, uint32_t limi
     if (n == 1 || (n <= b->max_leaf && must_balance))
         return leaf;
     if (!must_balance) {
-        if (!b->full_sweep && n <= BVH_SMALL_NODE) {
-            double cost;
-            if (!bvh_split_small_node(b, begin, end, box, part, &cost))
-                return leaf;
-            consider_spatial_split(b, begin, end, limit, box, cost, part);
-            return true;
-        }
+        if (!b->full_sweep && n <= BVH_SMALL_NODE)
+            return bvh_split_small_node(b, begin, end, box, part);
         Split split = b->full_sweep ? bvh_find_full_sweep_split(b, begin, end, box)
                                     : bvh_find_binned_split(b, begin, end, box, centroids);
         if (split.axis >= 0) {
@@ -100,17 +59,14 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, uint32_t limi
                 return leaf;
             if (b->full_sweep) {
                 *part = bvh_partition_at(b, begin, split.mid, end);
-                part->end = end;
                 return true;
             }
             float lo[4], hi[4];
             box_corners(centroids, lo, hi);
             float plane = lo[split.axis] + (float)split.bin / split.scale;
             *part = bvh_partition_at_plane(b, begin, end, split.axis, plane);
-            if (part->mid != begin && part->mid != end) {
-                consider_spatial_split(b, begin, end, limit, box, split.cost, part);
+            if (part->mid != begin && part->mid != end)
                 return true;
-            }
         }
     }
     if (n <= b->max_leaf)
@@ -125,7 +81,6 @@ static bool choose_split(Builder *b, uint32_t begin, uint32_t end, uint32_t limi
     if (hi[axis] > lo[axis])
         bvh_sort_by_centroid(b, begin, end, axis);
     *part = bvh_partition_at(b, begin, begin + n / 2, end);
-    part->end = end;
     return true;
 }
 
@@ -137,28 +92,19 @@ static void set_child(float4 *lo, float4 *hi, const Box *box, ChildRef ref)
     memcpy(&hi->s[3], &ref.count, sizeof ref.count);
 }
 
-/* Builds the subtree over prims[begin, end), whose box and centroid box are given; prims[end,
- * limit) is room for the references that its spatial splits add. */
-static ChildRef build_subtree(Builder *b, uint32_t begin, uint32_t end, uint32_t limit,
-                              const Box *box, const Box *centroids, int depth)
+/* Builds the subtree over prims[begin, end), whose box and centroid box are given. */
+static ChildRef build_subtree(Builder *b, uint32_t begin, uint32_t end, const Box *box,
+                              const Box *centroids, int depth)
 {
     Partition part;
-    if (!choose_split(b, begin, end, limit, box, centroids, depth, &part)) {
+    if (!choose_split(b, begin, end, box, centroids, depth, &part)) {
         b->cost_sum += b->costs.intersect * (end - begin) * box_half_area(box);
         return (ChildRef){~begin, end - begin};
     }
     b->cost_sum += b->costs.traversal * box_half_area(box);
     uint32_t index = b->num_nodes++; /* pre-order: the left subtree follows */
-    /* The room left goes to the sides by their sizes: the right side moves up past the left's. */
-    uint32_t num_left = part.mid - begin, num_right = part.end - part.mid;
-    uint32_t left_limit =
-        part.mid + (uint32_t)((uint64_t)(limit - part.end) * num_left / (num_left + num_right));
-    if (left_limit != part.mid)
-        memmove(&b->prims[left_limit], &b->prims[part.mid], num_right * sizeof *b->prims);
-    ChildRef left = build_subtree(b, begin, part.mid, left_limit, &part.left_box,
-                                  &part.left_centroids, depth + 1);
-    ChildRef right = build_subtree(b, left_limit, left_limit + num_right, limit, &part.right_box,
-                                   &part.right_centroids, depth + 1);
+    ChildRef left = build_subtree(b, begin, part.mid, &part.left_box, &part.left_centroids, depth + 1);
+    ChildRef right = build_subtree(b, part.mid, end, &part.right_box, &part.right_centroids, depth + 1);
     BvhNode *node = &b->nodes[index];
     set_child(&node->lmin, &node->lmax, &part.left_box, left);
     set_child(&node->rmin, &node->rmax, &part.right_box, right);
@@ -208,10 +154,9 @@ static void *alloc_array(uint32_t count, size_t size)
 
 /* The tree over b->prims[0, n) (whose bounds are given) into b->nodes, with bvh's SAH cost;
  * leaves refer to ranges of b->prims as the build left it. */
-static void build_tree(Bvh *bvh, Builder *b, uint32_t n, uint32_t capacity, const Box *box,
-                       const Box *centroids)
+static void build_tree(Bvh *bvh, Builder *b, uint32_t n, const Box *box, const Box *centroids)
 {
-    ChildRef root = n ? build_subtree(b, 0, n, capacity, box, centroids, 0) : (ChildRef){~0u, 0};
+    ChildRef root = n ? build_subtree(b, 0, n, box, centroids, 0) : (ChildRef){~0u, 0};
     if (b->num_nodes == 0) {
         /* The whole tree is one leaf: give it a root node with an empty right child, whose
          * inverted infinite box every ray misses. */
@@ -228,99 +173,42 @@ static void build_tree(Bvh *bvh, Builder *b, uint32_t n, uint32_t capacity, cons
     bvh->num_nodes = b->num_nodes;
 }
 
-/* Writes the triangles of the leaves under `ref` into bvh->tris from *next on, in the walk's
- * order (a subtree's leaves stay contiguous), and points the leaves at their new ranges. */
-static void gather_leaves(Bvh *bvh, const Builder *b, const Triangle *triangles,
-                          const float4 *positions, float4 *ref_lane, const float4 *count_lane,
-                          uint32_t *next)
-{
-    uint32_t ref, count;
-    memcpy(&ref, &ref_lane->s[3], sizeof ref);
-    memcpy(&count, &count_lane->s[3], sizeof count);
-    if ((int32_t)ref >= 0) {
-        BvhNode *node = &b->nodes[ref];
-        gather_leaves(bvh, b, triangles, positions, &node->lmin, &node->lmax, next);
-        gather_leaves(bvh, b, triangles, positions, &node->rmin, &node->rmax, next);
-        return;
-    }
-    uint32_t first = ~ref, out = *next;
-    for (uint32_t i = 0; i < count; i++) {
-        uint32_t index = prim_index(&b->prims[first + i]);
-        const uint4 v = triangles[index].v;
-        BvhTriangle *t = &bvh->tris[out + i];
-        t->v0 = positions[v.s[0]];
-        t->v1 = positions[v.s[1]];
-        t->v2 = positions[v.s[2]];
-        memcpy(&t->v0.s[3], &index, sizeof index);
-        t->v1.s[3] = 0.0f;
-        t->v2.s[3] = 0.0f;
-    }
-    ref = ~out;
-    memcpy(&ref_lane->s[3], &ref, sizeof ref);
-    *next = out + count;
-}
-
 static void build(Bvh *bvh, const float4 *positions, const Triangle *triangles, uint32_t n,
                   bool full_sweep, BvhCosts costs)
 {
     memset(bvh, 0, sizeof *bvh);
+    /* Leaves hold ~first in an int lane, and build records a biased index: both fit. */
+    if (n > PRIM_INDEX_LIMIT)
+        die("BVH: %u triangles is more than the %u a BVH can index", n, PRIM_INDEX_LIMIT);
     Builder b = {0};
     b.full_sweep = full_sweep;
     b.costs = costs;
     b.max_leaf = BVH_MAX_LEAF_SIZE;
-    bool spatial = !full_sweep;
-    Error err = {0};
-    if (!env_flag("PT_BVH_SPATIAL", spatial, &spatial, &err))
-        die("%s", err.message);
-    spatial = spatial && !full_sweep;
-    /* Room for the references that spatial splits add. */
-    uint64_t capacity = n;
-    if (spatial)
-        capacity += n / BVH_SPATIAL_BUDGET_DIVISOR + BVH_SPATIAL_BUDGET_MIN;
-    /* Leaves hold ~first in an int lane, and build records a biased index: both fit. */
-    if (n > PRIM_INDEX_LIMIT)
-        die("BVH: %u triangles is more than the %u a BVH can index", n, PRIM_INDEX_LIMIT);
-    if (capacity > PRIM_INDEX_LIMIT)
-        capacity = PRIM_INDEX_LIMIT;
-    b.positions = positions;
-    b.triangles = triangles;
-    b.prims = alloc_array((uint32_t)capacity, sizeof *b.prims);
+    b.prims = alloc_array(n, sizeof *b.prims);
     b.scratch = full_sweep ? malloc((n ? n : 1) * sizeof *b.scratch) : NULL;
-    /* A binary tree over m >= 1 leaves has m - 1 inner nodes; one more when the root is a leaf. */
-    b.nodes = alloc_array((uint32_t)capacity, sizeof *b.nodes);
-    if (!b.prims || !b.nodes || (full_sweep && !b.scratch))
+    /* A binary tree over n >= 1 leaves has n - 1 inner nodes; one more when the root is a leaf. */
+    b.nodes = alloc_array(n, sizeof *b.nodes);
+    bvh->tris = alloc_array(n, sizeof *bvh->tris);
+    if (!b.prims || !b.nodes || !bvh->tris || (full_sweep && !b.scratch))
         die("out of memory building the BVH (%u triangles)", n);
 
     Box box, centroids;
     make_prims(b.prims, positions, triangles, n, &box, &centroids);
-    if (spatial)
-        b.spatial_min_overlap = BVH_SPATIAL_MIN_OVERLAP * box_half_area(&box);
-    build_tree(bvh, &b, n, (uint32_t)capacity, &box, &centroids);
+    build_tree(bvh, &b, n, &box, &centroids);
 
-    /* The leaves' references, gathered in the walk's order (with spatial splits the build left
-     * room between them, and a triangle may be in several leaves). */
-    uint32_t num_refs = 0;
-    for (uint32_t i = 0; i < bvh->num_nodes; i++)
-        for (int c = 0; c < 2; c++) {
-            const float4 *ref_lane = c ? &bvh->nodes[i].rmin : &bvh->nodes[i].lmin;
-            const float4 *count_lane = c ? &bvh->nodes[i].rmax : &bvh->nodes[i].lmax;
-            int32_t ref;
-            uint32_t count;
-            memcpy(&ref, &ref_lane->s[3], sizeof ref);
-            memcpy(&count, &count_lane->s[3], sizeof count);
-            if (ref < 0)
-                num_refs += count;
-        }
-    bvh->tris = alloc_array(num_refs, sizeof *bvh->tris);
-    if (!bvh->tris)
-        die("out of memory building the BVH (%u triangles)", n);
-    b.nodes = bvh->nodes;
-    uint32_t next = 0;
-    gather_leaves(bvh, &b, triangles, positions, &bvh->nodes[0].lmin, &bvh->nodes[0].lmax, &next);
-    gather_leaves(bvh, &b, triangles, positions, &bvh->nodes[0].rmin, &bvh->nodes[0].rmax, &next);
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t index = prim_index(&b.prims[i]);
+        const uint4 v = triangles[index].v;
+        bvh->tris[i].v0 = positions[v.s[0]];
+        bvh->tris[i].v1 = positions[v.s[1]];
+        bvh->tris[i].v2 = positions[v.s[2]];
+        memcpy(&bvh->tris[i].v0.s[3], &index, sizeof index);
+        bvh->tris[i].v1.s[3] = 0.0f;
+        bvh->tris[i].v2.s[3] = 0.0f;
+    }
     free(b.prims);
     free(b.scratch);
-    bvh->num_tris = num_refs;
+    bvh->num_tris = n;
 }
 
 void bvh_build_over_boxes(Bvh *bvh, const float (*lo)[3], const float (*hi)[3], uint32_t n)
@@ -348,7 +236,7 @@ void bvh_build_over_boxes(Bvh *bvh, const float (*lo)[3], const float (*hi)[3], 
         prim_set_index(&b.prims[i], i);
         b.prims[i].hi[3] = 0.0f;
     }
-    build_tree(bvh, &b, n, n, &box, &centroids);
+    build_tree(bvh, &b, n, &box, &centroids);
     /* Leaves of one record: name the box itself, ~index, instead of its place in the records. */
     for (uint32_t i = 0; i < bvh->num_nodes; i++) {
         float4 *refs[2] = {&bvh->nodes[i].lmin, &bvh->nodes[i].rmin};

@@ -31,20 +31,11 @@ typedef struct {
     uint32_t mid;  /* exact splits: index of the first right-side record */
 } Split;
 
-/* The two sides of an inner node: prims[begin, mid) and prims[mid, end), where end is the node's
- * end but after a spatial split, whose references to triangles across the plane make it longer. */
+/* The two sides of an inner node: prims[begin, mid) and prims[mid, end). */
 typedef struct {
     uint32_t mid;
     Box left_box, left_centroids, right_box, right_centroids;
-    uint32_t end;
 } Partition;
-
-/* A spatial split (bvh_spatial.c): the plane across axis, and its SAH cost as Split's. */
-typedef struct {
-    double cost;
-    int axis; /* -1: none */
-    float plane;
-} SpatialSplit;
 
 typedef struct {
     BuildPrim *prims;
@@ -54,11 +45,6 @@ typedef struct {
     bool full_sweep;
     BvhCosts costs;
     uint32_t max_leaf; /* records per leaf at most: BVH_MAX_LEAF_SIZE, 1 over instance boxes */
-    /* Spatial splits: the triangles (for clipping; NULL over boxes), and the overlap of an object
-     * split's sides, in half area, above which a node tries one (0: never). */
-    const float4 *positions;
-    const Triangle *triangles;
-    double spatial_min_overlap;
     double cost_sum; /* SAH sum, not yet divided by the root's area */
 } Builder;
 
@@ -91,26 +77,14 @@ static ALWAYS_INLINE uint32_t prim_index(const BuildPrim *prim)
 Split bvh_find_binned_split(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
                             const Box *centroids);
 /* bvh_sah.c: exact split of a small node (n <= BVH_SMALL_NODE). Returns false when a leaf is
- * cheaper, else reorders the range and fills part and *cost (INFINITY: a halving). */
+ * cheaper, else reorders the range and fills part. */
 bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
-                          Partition *part, double *cost);
+                          Partition *part);
 
 /* bvh_partition.c: both sides' bounds, by scanning them, for the splits that do not bin. */
 Partition bvh_partition_at(const Builder *b, uint32_t begin, uint32_t mid, uint32_t end);
 /* bvh_partition.c: partitions at a plane across axis (centroids below it go left). */
 Partition bvh_partition_at_plane(Builder *b, uint32_t begin, uint32_t end, int axis, float plane);
-
-/* bvh_spatial.c: the box of triangle index's part inside [lo, hi] (within it, rounded
- * outwards); false when it has none. */
-bool bvh_clipped_box(const Builder *b, uint32_t index, const float lo[3], const float hi[3],
-                     Box *out);
-/* bvh_spatial.c: best spatial split of prims[begin, end), whose box is given (axis -1: none). */
-SpatialSplit bvh_find_spatial_split(const Builder *b, uint32_t begin, uint32_t end, const Box *box);
-/* bvh_spatial.c: partitions at the split, records across the plane going to both sides while
- * there is room below limit (then whole to their centre's side); the sides end at part->end <=
- * limit. False when a side is empty (the range keeps its count: split it by objects). */
-bool bvh_partition_spatial(Builder *b, uint32_t begin, uint32_t end, uint32_t limit,
-                           SpatialSplit split, Partition *part);
 
 /* bvh_full_sweep.c: sorts prims[begin, end) by centroid along axis (ties by triangle index). */
 void bvh_sort_by_centroid(Builder *b, uint32_t begin, uint32_t end, int axis);

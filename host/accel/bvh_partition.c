@@ -20,7 +20,7 @@ Partition bvh_partition_at(const Builder *b, uint32_t begin, uint32_t mid, uint3
         box_grow(&right, &prim_box);
         box_grow_point(&right_centroids, centroid_of(&prim_box));
     }
-    return (Partition){mid, left, left_centroids, right, right_centroids, end};
+    return (Partition){mid, left, left_centroids, right, right_centroids};
 }
 
 /* Partitions at the split's bin boundary, Hoare style: only misplaced pairs move. Collects both
@@ -65,6 +65,6 @@ Partition bvh_partition_at_plane(Builder *b, uint32_t begin, uint32_t end, int a
         box_grow_point(&right_centroids, right_centroid);
         i++;
     }
-    return (Partition){i, left, left_centroids, right, right_centroids, end};
+    return (Partition){i, left, left_centroids, right, right_centroids};
 }
 

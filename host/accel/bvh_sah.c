@@ -185,10 +185,9 @@ static void write_small_sides(BuildPrim *prims, const Box *local, const uint8_t 
 
 /* Exact split of a small node (n <= BVH_SMALL_NODE, where most nodes are): rank the records by
  * centroid along each axis and sweep every position; cheaper than binning there, and exact.
- * Returns false when a leaf is cheaper, else reorders the range and fills part and *cost (the
- * split's SAH cost; INFINITY for a halving that no cost chose). */
+ * Returns false when a leaf is cheaper, else reorders the range and fills part. */
 bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const Box *box,
-                          Partition *part, double *cost)
+                             Partition *part)
 {
     uint32_t n = end - begin;
     BuildPrim *prims = b->prims + begin;
@@ -202,8 +201,8 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
         _Alignas(16) float area[4]; /* both triangles' and the node's, in one go */
         lanes_store(area, half_areas_of_three((const Box[3]){local[0], local[1], *box},
                                               lanes_splat(unit)));
-        *cost = b->costs.traversal + b->costs.intersect * (area[0] + area[1]) / area[2];
-        if (b->max_leaf >= 2 && b->costs.intersect * 2.0 <= *cost)
+        double cost = b->costs.traversal + b->costs.intersect * (area[0] + area[1]) / area[2];
+        if (b->max_leaf >= 2 && b->costs.intersect * 2.0 <= cost)
             return false;
         part->mid = begin + 1;
         write_small_sides(prims, local, (const uint8_t[]){0, 1}, n, 1, part);
@@ -236,12 +235,12 @@ bool bvh_split_small_node(const Builder *b, uint32_t begin, uint32_t end, const 
         }
     }
     SweepResult sweep = sweep_three_axes(sorted, count, (int)n, unit);
-    *cost = b->costs.traversal + b->costs.intersect * sweep.sum / box_half_area_in(box, unit);
-    if (sweep.axis < 0 || (n <= b->max_leaf && b->costs.intersect * (double)n <= *cost)) {
+    double cost = b->costs.traversal +
+                  b->costs.intersect * sweep.sum / box_half_area_in(box, unit);
+    if (sweep.axis < 0 || (n <= b->max_leaf && b->costs.intersect * (double)n <= cost)) {
         if (n <= b->max_leaf)
             return false;
         sweep = (SweepResult){0.0f, 0, (int)n / 2}; /* no split compares: halve it */
-        *cost = INFINITY;
     }
     part->mid = begin + (uint32_t)sweep.cut;
     write_small_sides(prims, local, order[sweep.axis], n, (uint32_t)sweep.cut, part);
