@@ -8,7 +8,9 @@ dragon in rough gold on a normal-mapped floor behind rough glass; the same under
 
 With --tori DIR it writes procedural scenes instead (too large to commit; tools/bench.sh makes
 them on the fly): DIR/torus-N.json, a bumpy torus of about N triangles (N = 10^3 .. 10^6) in the
-same lit box, for the triangle-count scaling and the 1M-triangle scene of the suite."""
+same lit box, for the triangle-count scaling and the 1M-triangle scene of the suite. With
+--normal-walls DIR: DIR/normal-walls.json, a room of tiled, normal-mapped walls (6000 triangles:
+each wall a grid) under a ceiling light, issue 41's "normal-mapped walls" scene type."""
 import json
 import math
 import os
@@ -203,9 +205,68 @@ def write_materials_bench(out):
             f.write("\n")
 
 
+def write_normal_walls(out):
+    """DIR/normal-walls.json: a 4 x 3 x 4 room open at the front (floor, ceiling, back, red left
+    and green right walls), each wall a 30 x 20 grid of quads (1200 triangles, 6000 in all) with
+    bevelled tiles in its normal map (tile_normals, repeated 4 x 3 times per wall), lit by a
+    1.2 x 1.2 quad just below the ceiling. Ours (MIT)."""
+    sys.path.insert(0, HERE)
+    from make_test_scenes import write_png
+    os.makedirs(out, exist_ok=True)
+    write_png(os.path.join(out, "tiles-normal.png"), 128, 128, tile_normals())
+    lines = ["# Normal-mapped room (tools/make_bench_scenes.py --normal-walls). MIT.", "mtllib walls.mtl"]
+    verts, uvs, faces = [], [], []
+
+    def grid(material, origin, du, dv, nu=30, nv=20, repeat=(4, 3)):
+        faces.append("usemtl " + material)
+        base = len(verts) + 1
+        for j in range(nv + 1):
+            for i in range(nu + 1):
+                a, b = i / nu, j / nv
+                verts.append(tuple(origin[k] + a * du[k] + b * dv[k] for k in range(3)))
+                uvs.append((a * repeat[0], b * repeat[1]))
+        for j in range(nv):
+            for i in range(nu):
+                q = [base + j * (nu + 1) + i, base + j * (nu + 1) + i + 1,
+                     base + (j + 1) * (nu + 1) + i + 1, base + (j + 1) * (nu + 1) + i]
+                faces.append("f " + " ".join(f"{v}/{v}" for v in q))
+    # Each wall faces into the room (counter-clockwise seen from inside: du x dv points inward).
+    grid("floor", (-2, 0, 2), (4, 0, 0), (0, 0, -4))
+    grid("ceiling", (-2, 3, -2), (4, 0, 0), (0, 0, 4))
+    grid("back", (-2, 0, -2), (4, 0, 0), (0, 3, 0))
+    grid("left", (-2, 0, 2), (0, 0, -4), (0, 3, 0))
+    grid("right", (2, 0, -2), (0, 0, 4), (0, 3, 0))
+    lines += [f"v {x:.6g} {y:.6g} {z:.6g}" for x, y, z in verts]
+    lines += [f"vt {u:.6g} {v:.6g}" for u, v in uvs] + faces
+    lines += ["usemtl light", f"v -0.6 2.99 -0.6", f"v 0.6 2.99 -0.6", f"v 0.6 2.99 0.6", f"v -0.6 2.99 0.6",
+              f"f {len(verts) + 1} {len(verts) + 2} {len(verts) + 3} {len(verts) + 4}"]
+    with open(os.path.join(out, "walls.obj"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(out, "walls.mtl"), "w") as f:
+        f.write("# Normal-mapped room (tools/make_bench_scenes.py). MIT.\n" +
+                "".join(f"newmtl {m}\nKd 0.7 0.7 0.7\n" for m in ("floor", "ceiling", "back", "left", "right")) +
+                "newmtl light\nKd 0 0 0\nKe 15 13 10\n")
+    wall = lambda albedo: {"type": "diffuse", "albedo": albedo, "normal_map": "tiles"}
+    scene = {"camera": {"eye": [0, 1.5, 6.2], "target": [0, 1.4, 0], "up": [0, 1, 0], "fov_y": 40.0},
+             "film": {"width": 1280, "height": 960}, "render": {"spp": 64, "max_depth": 8},
+             "textures": {"tiles": {"file": "tiles-normal.png", "encoding": "linear"}},
+             "materials": {"floor": wall([0.7, 0.7, 0.7]), "ceiling": wall([0.7, 0.7, 0.7]),
+                           "back": wall([0.7, 0.7, 0.7]), "left": wall([0.63, 0.065, 0.05]),
+                           "right": wall([0.14, 0.45, 0.091])},
+             "objects": [{"obj": "walls.obj"}]}
+    path = os.path.join(out, "normal-walls.json")
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=2)
+        f.write("\n")
+    print(f"{path}: {len(faces) - 5} quads")
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "--tori":
         write_tori(sys.argv[2])
+        return
+    if len(sys.argv) == 3 and sys.argv[1] == "--normal-walls":
+        write_normal_walls(sys.argv[2])
         return
     write_materials_bench(os.path.join(HERE, "..", "scenes", "bench-materials"))
     os.makedirs(OUT, exist_ok=True)

@@ -18,15 +18,21 @@ extern const size_t pt_kernel_source_length;
 
 /* The program's build options for this device. Conservative maths: no fast-relaxed-math, which
  * would let the compiler drop the Inf/NaN handling that the traversal and the film guard depend
- * on. Correctly rounded division where the device offers it: NVIDIA's default division is off by
- * up to 2 ulp, enough to flip watertight edge tests against the host's (and PoCL's) results and
- * so to make images differ across devices; measured on the H100, it costs no traversal speed.
+ * on. Correctly rounded division and square root where the device offers them, but on NVIDIA
+ * only with PT_EXACT_MATHS=1: its default ones (within 2 ulp) made the H100 3.8-12% faster,
+ * mostly in shading and in the instances' ray set-up (bench/README.md, "Maths options"), and
+ * move no image's mean (the same paths, a few diverging where a rounding flips a decision). They
+ * round differently from the host's and PoCL's, so a hit on an edge may go to the other triangle:
+ * the tests, which compare GPU hits with the host's, ask for exact maths (tests/support.c).
  * PT_CL_OPTIONS replaces the maths options (for experiments; the vendor switch stays). */
 static bool choose_build_options(Device *dev, Error *err)
 {
     cl_device_fp_config fp = 0;
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
-    const char *maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
+    bool exact;
+    if (!env_flag("PT_EXACT_MATHS", false, &exact, err))
+        return false;
+    const char *maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) && (exact || !dev->is_nvidia)
                             ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
                             : "-cl-mad-enable -cl-no-signed-zeros";
     if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))

@@ -65,6 +65,7 @@ def env_cases():
     # Valid non-default layouts are left out: each would compile the kernels once more.
     settings = [("PT_BVH_WIDTH", ["0", "1", "3", "16", "abc", "", "-2", "8", "2x"]),
                 ("PT_BVH_QUANTIZED", ["2", "x", "", "0", "1"]),
+                ("PT_EXACT_MATHS", ["2", "x", "", "0", "1"]),
                 ("PT_NO_CACHE", ["1", "0", "yes", ""]),
                 ("PT_KERNEL_CACHE_MB", ["0", "-1", "abc", "1", "", "99999999999"]),
                 ("PT_CACHE_BINARIES", ["2", "x", ""]),
