@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "render/session.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <sys/resource.h>
 #include <string.h>
@@ -178,13 +179,64 @@ void session_close(Session *s)
     memset(s, 0, sizeof *s);
 }
 
+/* A material's way through shading: its type and the features it uses (materials.h). */
+static uint32_t shading_kind(const Material *m, const TextureSet *textures)
+{
+    return (uint32_t)m->type << 24 | material_features(m, 1, textures);
+}
+
+static double triangle_area(const SceneData *d, uint32_t t)
+{
+    const float *p[3];
+    for (int c = 0; c < 3; c++)
+        p[c] = d->positions[d->triangles[t].v.s[c]].s;
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++)
+        e1[k] = (double)p[1][k] - p[0][k], e2[k] = (double)p[2][k] - p[0][k];
+    double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2],
+           z = e1[0] * e2[1] - e1[1] * e2[0];
+    double area = 0.5 * sqrt(x * x + y * y + z * z);
+    return isfinite(area) ? area : 0.0;
+}
+
+/* Whether shading takes more than one way through its code on a share of the surface worth
+ * sorting for: the area outside the largest kind (shading_kind, each mesh's triangles counted
+ * once) is at least SORT_MIN_OTHER_AREA of the whole. A room of normal-mapped walls under a plain
+ * light is one kind (its light is 2% of the area): sorting would only permute its paths. */
+#define SORT_MIN_OTHER_AREA 0.05
+#define SORT_MAX_KINDS 64
+static bool shading_diverges(const SceneData *d)
+{
+    uint32_t kinds[SORT_MAX_KINDS];
+    double area[SORT_MAX_KINDS] = {0}, total = 0.0, largest = 0.0;
+    uint32_t num_kinds = 0;
+    for (uint32_t t = 0; t < d->num_triangles; t++) {
+        uint32_t kind = shading_kind(&d->materials[d->material_ids[t]], &d->textures), k = 0;
+        while (k < num_kinds && kinds[k] != kind)
+            k++;
+        if (k == num_kinds) {
+            if (num_kinds == SORT_MAX_KINDS)
+                return true; /* that many kinds: sort */
+            kinds[num_kinds++] = kind;
+        }
+        double a = triangle_area(d, t);
+        area[k] += a;
+        total += a;
+    }
+    for (uint32_t k = 0; k < num_kinds; k++)
+        largest = area[k] > largest ? area[k] : largest;
+    return total > 0.0 ? total - largest >= SORT_MIN_OTHER_AREA * total : num_kinds > 1;
+}
+
 bool session_sorts_materials(const SceneData *d, int request)
 {
     if (request != SORT_MATERIALS_AUTO)
         return request == SORT_MATERIALS_ON;
     /* Refraction alone (a smooth dielectric) branches no more than Lambert does. */
-    return (material_features(d->materials, d->num_materials, &d->textures) &
-            ~(uint32_t)MATERIAL_FEATURE_REFRACTION) != 0;
+    if (!(material_features(d->materials, d->num_materials, &d->textures) &
+          ~(uint32_t)MATERIAL_FEATURE_REFRACTION))
+        return false;
+    return shading_diverges(d);
 }
 
 void session_settle_settings(const Session *s, RenderSettings *settings, int sort_request)
