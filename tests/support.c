@@ -82,16 +82,24 @@ static char *test_kernel_source(void)
     return source;
 }
 
+/* Correctly rounded division and square root on every device the tests open, themselves or
+ * through a pt they run (unless the caller chose): they compare a GPU's hits and values with the
+ * host's, and pt's renders with their own, which NVIDIA's default rounding would move at
+ * triangle edges (host/device/program.c). PoCL has them either way. Set before main, so that no
+ * test opens a device or runs pt without it. */
+__attribute__((constructor)) static void tests_ask_for_exact_maths(void)
+{
+    const char *value = getenv("PT_EXACT_MATHS");
+    if (!value || !*value)
+        setenv("PT_EXACT_MATHS", "1", 1);
+}
+
 Device *test_device(void) { return test_device_built_for(PROGRAM_FEATURES_ALL); }
 
 Device *test_device_built_for(ProgramFeatures features)
 {
     Device *dev = calloc(1, sizeof *dev);
     Error err = {0};
-    /* Correctly rounded division and square root on every device (unless the caller chose): the
-     * tests compare a GPU's hits and values with the host's, which NVIDIA's default rounding
-     * would move at triangle edges (host/device/program.c). PoCL has them either way. */
-    setenv("PT_EXACT_MATHS", "1", 0);
     const char *spec = getenv("PT_TEST_DEVICE");
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
     char *source = test_kernel_source();

@@ -127,6 +127,38 @@ Test(device, bvh_width_comes_from_the_device_type_or_pt_bvh_width)
     unsetenv("PT_BVH_QUANTIZED");
 }
 
+/* PT_EXACT_MATHS: PoCL keeps correctly rounded division and square root either way (only NVIDIA
+ * drops them by default), and the box test widens its margin wherever the build lacks them; a bad
+ * value is refused with the variable named. */
+Test(device, exact_maths_and_the_box_margin_follow_the_build_options)
+{
+    Device dev;
+    Error err = {0};
+    const char *exact = "-cl-fp32-correctly-rounded-divide-sqrt";
+    for (int on = 0; on < 2; on++) {
+        setenv("PT_EXACT_MATHS", on ? "1" : "0", 1);
+        err = (Error){0};
+        cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+        const char *options = device_build_options(&dev);
+        cr_expect(strstr(options, exact) != NULL, "PT_EXACT_MATHS=%d on PoCL: %s", on, options);
+        cr_expect(strstr(options, "PT_INEXACT_DIVIDE") == NULL, "%s", options);
+        device_close(&dev);
+    }
+    setenv("PT_CL_OPTIONS", "-cl-mad-enable", 1);
+    err = (Error){0};
+    cr_assert(device_open(&dev, "cpu", &err), "%s", err.message);
+    cr_expect(strstr(device_build_options(&dev), "-DPT_INEXACT_DIVIDE=1") != NULL, "%s",
+              device_build_options(&dev));
+    device_close(&dev);
+    unsetenv("PT_CL_OPTIONS");
+    setenv("PT_EXACT_MATHS", "2", 1);
+    err = (Error){0};
+    cr_expect_not(device_open(&dev, "cpu", &err));
+    cr_expect_eq(err.code, ERR_SETTINGS);
+    cr_expect(strstr(err.message, "PT_EXACT_MATHS=2") != NULL, "%s", err.message);
+    setenv("PT_EXACT_MATHS", "1", 1);
+}
+
 Test(device, allocation_above_the_limit_names_the_buffer)
 {
     Device dev;

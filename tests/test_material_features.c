@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /* Which material features a scene uses (scene/materials.h material_features: what the kernels are
  * built for) and the automatic material-sorting choice it drives (render/session.h
- * session_sorts_materials: only where a second way through shading covers enough of the area). */
+ * session_sorts_materials: only where materials take more than one way through shading). */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <unistd.h>
@@ -44,32 +44,31 @@ Test(material_features, each_scene_reports_what_it_uses)
     scene_free(&s);
     uint32_t wall = features_of("tests/scenes/normalmap/scene.json", &s);
     cr_expect_eq(wall, MATERIAL_FEATURE_SURFACE_DETAIL, "normal map: %#x", wall);
-    /* Its plain light is 14% of the area: a second kind of shading worth sorting for. */
-    cr_expect(session_sorts_materials(&s.data, SORT_MATERIALS_AUTO), "normal-mapped wall, large light");
+    /* One kind of shading: the light only emits. */
+    cr_expect(!session_sorts_materials(&s.data, SORT_MATERIALS_AUTO), "normal-mapped wall, a lamp");
     scene_free(&s);
 }
 
-/* A normal-mapped floor of side `floor` and a plain quad of side 1 that emits, or that is a rough
- * metal: sorting pays only where another way through shading covers 5% of the area or more. */
-static bool sorts_floor_and_quad(float floor, bool metal_quad)
+/* A normal-mapped floor and a quad whose material is given (the MTL's lamp, or JSON): sorting
+ * pays only where materials take more than one way through shading, those that scatter nothing
+ * (lamps) aside. */
+static bool sorts_floor_and_quad(const char *quad_json)
 {
     const char *dir = test_temp_dir();
-    char obj[512], json[1024], cwd[512];
+    char json[1024], cwd[512];
     cr_assert(getcwd(cwd, sizeof cwd));
-    snprintf(obj, sizeof obj,
-             "mtllib m.mtl\nv 0 0 0\nv %g 0 0\nv %g 0 %g\nv 0 0 %g\n"
-             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\n"
-             "v 0 2 0\nv 1 2 0\nv 1 2 1\nv 0 2 1\nusemtl quad\nf 5 6 7 8\n",
-             floor, floor, floor, floor);
-    test_write_file(dir, "m.obj", obj);
-    test_write_file(dir, "m.mtl", "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl quad\nKd 0 0 0\nKe 5 5 5\n");
+    test_write_file(dir, "m.obj",
+                    "mtllib m.mtl\nv 0 0 0\nv 8 0 0\nv 8 0 8\nv 0 0 8\n"
+                    "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\n"
+                    "v 0 2 0\nv 1 2 0\nv 1 2 1\nv 0 2 1\nusemtl quad\nf 5 6 7 8\n");
+    test_write_file(dir, "m.mtl",
+                    "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl quad\nKd 0 0 0\nKe 5 5 5\n");
     snprintf(json, sizeof json,
              "{\"textures\": {\"n\": {\"file\": \"%s/tests/scenes/normalmap/normals.png\", "
-             "\"encoding\": \"linear\"}},"
-             " \"materials\": {\"floor\": {\"type\": \"diffuse\", \"albedo\": [0.5, 0.5, 0.5], "
-             "\"normal_map\": \"n\"}%s},"
-             " \"objects\": [{\"obj\": \"m.obj\"}]}",
-             cwd, metal_quad ? ", \"quad\": {\"type\": \"conductor\", \"roughness\": 0.3}" : "");
+             "\"encoding\": \"linear\"}}, \"materials\": {\"floor\": {\"type\": \"diffuse\", "
+             "\"albedo\": [0.5, 0.5, 0.5], \"normal_map\": \"n\"}%s%s}, "
+             "\"objects\": [{\"obj\": \"m.obj\"}]}",
+             cwd, quad_json ? ", \"quad\": " : "", quad_json ? quad_json : "");
     const char *path = test_write_file(dir, "scene.json", json);
     Scene scene;
     Error err = {0};
@@ -79,13 +78,16 @@ static bool sorts_floor_and_quad(float floor, bool metal_quad)
     return sorts;
 }
 
-Test(material_features, sorting_needs_a_second_kind_of_shading_on_5_percent_of_the_area)
+Test(material_features, sorting_needs_a_second_kind_of_shading)
 {
-    /* The light (1) against the floor (64, 16, 4): 1.5%, 5.9%, 20% of the area. */
-    cr_expect(!sorts_floor_and_quad(8.0f, false), "a normal-mapped room under a small light");
-    cr_expect(sorts_floor_and_quad(4.0f, false), "the light at 5.9% of the area");
-    cr_expect(sorts_floor_and_quad(2.0f, false), "the light at 20% of the area");
-    /* A rough metal quad is another kind: sorted for when it is large, not when it is small. */
-    cr_expect(!sorts_floor_and_quad(8.0f, true), "a small metal quad");
-    cr_expect(sorts_floor_and_quad(2.0f, true), "a metal quad at 20% of the area");
+    cr_expect(!sorts_floor_and_quad(NULL), "a normal-mapped floor under the MTL's lamp");
+    cr_expect(!sorts_floor_and_quad("{\"type\": \"diffuse\", \"albedo\": [0, 0, 0], "
+                                    "\"emission\": [5, 5, 5], \"normal_map\": \"n\"}"),
+              "a lamp that is normal-mapped too");
+    cr_expect(sorts_floor_and_quad("{\"type\": \"conductor\", \"roughness\": 0.3}"),
+              "a rough metal quad");
+    cr_expect(sorts_floor_and_quad("{\"type\": \"diffuse\", \"albedo\": [0.5, 0.5, 0.5]}"),
+              "a plain diffuse quad (no normal map: another way)");
+    cr_expect(!sorts_floor_and_quad("{\"type\": \"diffuse\", \"albedo\": [0, 0, 0]}"),
+              "a black quad scatters nothing either");
 }

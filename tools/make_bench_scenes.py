@@ -207,17 +207,18 @@ def write_materials_bench(out):
 
 def write_normal_walls(out):
     """DIR/normal-walls.json: a 4 x 3 x 4 room open at the front (floor, ceiling, back, red left
-    and green right walls), each wall a 30 x 20 grid of quads (1200 triangles, 6000 in all) with
-    bevelled tiles in its normal map (tile_normals, repeated 4 x 3 times per wall), lit by a
-    1.2 x 1.2 quad just below the ceiling. Ours (MIT)."""
+    and green right walls), each wall a 30 x 20 grid of quads (1200 triangles, 6000 in all, and
+    the light's 2) with bevelled tiles in its normal map (tile_normals, one repeat per unit, so
+    the tiles are square on every wall), lit by a 1.2 x 1.2 quad just below the ceiling. Ours
+    (MIT)."""
     sys.path.insert(0, HERE)
     from make_test_scenes import write_png
     os.makedirs(out, exist_ok=True)
     write_png(os.path.join(out, "tiles-normal.png"), 128, 128, tile_normals())
-    lines = ["# Normal-mapped room (tools/make_bench_scenes.py --normal-walls). MIT.", "mtllib walls.mtl"]
     verts, uvs, faces = [], [], []
 
-    def grid(material, origin, du, dv, nu=30, nv=20, repeat=(4, 3)):
+    def grid(material, origin, du, dv, nu=30, nv=20):
+        repeat = [math.sqrt(sum(c * c for c in d)) for d in (du, dv)]  # one tile set per unit
         faces.append("usemtl " + material)
         base = len(verts) + 1
         for j in range(nv + 1):
@@ -236,23 +237,30 @@ def write_normal_walls(out):
     grid("back", (-2, 0, -2), (4, 0, 0), (0, 3, 0))
     grid("left", (-2, 0, 2), (0, 0, -4), (0, 3, 0))
     grid("right", (2, 0, -2), (0, 0, 4), (0, 3, 0))
+    n = len(verts)
+    lines = ["# Normal-mapped room (tools/make_bench_scenes.py --normal-walls). MIT.",
+             "mtllib walls.mtl"]
     lines += [f"v {x:.6g} {y:.6g} {z:.6g}" for x, y, z in verts]
     lines += [f"vt {u:.6g} {v:.6g}" for u, v in uvs] + faces
-    lines += ["usemtl light", f"v -0.6 2.99 -0.6", f"v 0.6 2.99 -0.6", f"v 0.6 2.99 0.6", f"v -0.6 2.99 0.6",
-              f"f {len(verts) + 1} {len(verts) + 2} {len(verts) + 3} {len(verts) + 4}"]
+    lines += ["usemtl light", "v -0.6 2.99 -0.6", "v 0.6 2.99 -0.6", "v 0.6 2.99 0.6",
+              "v -0.6 2.99 0.6", f"f {n + 1} {n + 2} {n + 3} {n + 4}"]
     with open(os.path.join(out, "walls.obj"), "w") as f:
         f.write("\n".join(lines) + "\n")
     with open(os.path.join(out, "walls.mtl"), "w") as f:
         f.write("# Normal-mapped room (tools/make_bench_scenes.py). MIT.\n" +
-                "".join(f"newmtl {m}\nKd 0.7 0.7 0.7\n" for m in ("floor", "ceiling", "back", "left", "right")) +
+                "".join(f"newmtl {m}\nKd 0.7 0.7 0.7\n"
+                        for m in ("floor", "ceiling", "back", "left", "right")) +
                 "newmtl light\nKd 0 0 0\nKe 15 13 10\n")
-    wall = lambda albedo: {"type": "diffuse", "albedo": albedo, "normal_map": "tiles"}
-    scene = {"camera": {"eye": [0, 1.5, 6.2], "target": [0, 1.4, 0], "up": [0, 1, 0], "fov_y": 40.0},
+
+    def wall(albedo):
+        return {"type": "diffuse", "albedo": albedo, "normal_map": "tiles"}
+    white = [0.7, 0.7, 0.7]
+    camera = {"eye": [0, 1.5, 6.2], "target": [0, 1.4, 0], "up": [0, 1, 0], "fov_y": 40.0}
+    scene = {"camera": camera,
              "film": {"width": 1280, "height": 960}, "render": {"spp": 64, "max_depth": 8},
              "textures": {"tiles": {"file": "tiles-normal.png", "encoding": "linear"}},
-             "materials": {"floor": wall([0.7, 0.7, 0.7]), "ceiling": wall([0.7, 0.7, 0.7]),
-                           "back": wall([0.7, 0.7, 0.7]), "left": wall([0.63, 0.065, 0.05]),
-                           "right": wall([0.14, 0.45, 0.091])},
+             "materials": {"floor": wall(white), "ceiling": wall(white), "back": wall(white),
+                           "left": wall([0.63, 0.065, 0.05]), "right": wall([0.14, 0.45, 0.091])},
              "objects": [{"obj": "walls.obj"}]}
     path = os.path.join(out, "normal-walls.json")
     with open(path, "w") as f:

@@ -20,10 +20,18 @@ typedef struct {
  * is not relative to the distance (from the frame's origin to the plane) is at most 2^-14 of a
  * step, and host/accel/bvh_quantized.c rounds planes outwards by 2^-10 of a step to cover it. */
 #if BVH_QUANTIZED
-#define BOX_EXIT_SCALE 1.0000012f
+#define BOX_EXIT_SCALE_EXACT 1.0000012f
 #else
-#define BOX_EXIT_SCALE 1.00000036f
+#define BOX_EXIT_SCALE_EXACT 1.00000036f
 #endif
+/* Where division is not correctly rounded (NVIDIA without PT_EXACT_MATHS: host/device/program.c
+ * passes PT_INEXACT_DIVIDE), the inverse direction may be 2.5 ulp off (OpenCL 1.2's bound)
+ * instead of half an ulp: four more roundings' worth, 1 + 2 gamma(4) more. Only a wider box,
+ * so the same hits. */
+#ifndef PT_INEXACT_DIVIDE
+#define PT_INEXACT_DIVIDE 0
+#endif
+#define BOX_EXIT_SCALE (BOX_EXIT_SCALE_EXACT * (PT_INEXACT_DIVIDE ? 1.00000048f : 1.0f))
 
 inline BoxRay box_ray(float3 origin, float3 dir)
 {

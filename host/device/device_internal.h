@@ -15,7 +15,7 @@
 
 /* Sets dev->bvh_width, dev->bvh_quantized and dev->build_options for the device device_open
  * found (its type and vendor are known); false with ERR_SETTINGS on a bad PT_BVH_WIDTH,
- * PT_BVH_QUANTIZED or PT_CL_OPTIONS. */
+ * PT_BVH_QUANTIZED, PT_EXACT_MATHS or PT_CL_OPTIONS. */
 bool device_choose_program_options(Device *dev, Error *err);
 
 /* ---- The program's parts (program.c), their builds (program_build.c) and the builds on a thread

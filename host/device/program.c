@@ -37,9 +37,14 @@ static bool choose_build_options(Device *dev, Error *err)
                             : "-cl-mad-enable -cl-no-signed-zeros";
     if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))
         return false;
-    snprintf(dev->build_options, sizeof dev->build_options, "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s",
-             maths, dev->bvh_width, dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",
-             dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "");
+    /* Without correctly rounded division the box test widens its margin (bvh_traverse.cl). */
+    bool inexact = !(fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) ||
+                   !strstr(maths, "-cl-fp32-correctly-rounded-divide-sqrt");
+    snprintf(dev->build_options, sizeof dev->build_options,
+             "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s%s", maths, dev->bvh_width,
+             dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",
+             dev->is_nvidia ? " -DPT_VENDOR_NVIDIA=1" : "",
+             inexact ? " -DPT_INEXACT_DIVIDE=1" : "");
     return true;
 }
 

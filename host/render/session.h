@@ -48,9 +48,10 @@ bool session_device_open(SessionDevice *d, const Scene *scene, const char *spec,
 void session_device_close(SessionDevice *d);
 /* Material sorting (RenderSettings.sort_materials) for a request: SORT_MATERIALS_ON / _OFF as
  * asked, SORT_MATERIALS_AUTO when the scene uses any material feature beyond Lambert, smooth
- * mirrors and glass (scene/materials.h material_features): on the H200 sorting made such scenes
- * 11% (env-lit rough gold) to 63% (rough gold, rough glass, normal maps) faster and v1's plain
- * Cornell box about a quarter slower (the textured scene about a tenth). */
+ * mirrors and glass (scene/materials.h material_features) and its materials take more than one
+ * way through shading (type and features; lights that only emit left out): on the H200 sorting
+ * made such scenes 11% (env-lit rough gold) to 63% (rough gold, rough glass, normal maps) faster
+ * and v1's plain Cornell box about a quarter slower (the textured scene about a tenth). */
 enum { SORT_MATERIALS_AUTO = 0, SORT_MATERIALS_ON = 1, SORT_MATERIALS_OFF = 2 };
 bool session_sorts_materials(const SceneData *data, int request);
 /* The scene's part of settings asked for on the command line: spp 0 becomes the scene's (with
