@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "device/device.h"
+#include "device/device_internal.h"
 #include "base/shared_types.h"
 #include "support.h"
 
@@ -125,6 +126,22 @@ Test(device, bvh_width_comes_from_the_device_type_or_pt_bvh_width)
     cr_expect_not(device_open(&dev, "cpu", &err));
     cr_expect(strstr(err.message, "PT_BVH_QUANTIZED=yes") != NULL, "%s", err.message);
     unsetenv("PT_BVH_QUANTIZED");
+}
+
+/* The maths options for every kind of device: NVIDIA drops correctly rounded division and square
+ * root unless exact maths is asked for, every other device that offers them keeps them, and none
+ * asks for them where they are not offered (PoCL, the CI's device, sees only the second case). */
+Test(device, maths_options_drop_exact_division_on_nvidia_only)
+{
+    const char *flag = "-cl-fp32-correctly-rounded-divide-sqrt";
+    cr_expect(strstr(device_maths_options(true, true, false), flag) == NULL, "NVIDIA, default");
+    cr_expect(strstr(device_maths_options(true, true, true), flag) != NULL, "NVIDIA, exact");
+    cr_expect(strstr(device_maths_options(true, false, false), flag) != NULL, "others, default");
+    cr_expect(strstr(device_maths_options(true, false, true), flag) != NULL, "others, exact");
+    for (int nvidia = 0; nvidia < 2; nvidia++)
+        for (int exact = 0; exact < 2; exact++)
+            cr_expect(strstr(device_maths_options(false, nvidia, exact), flag) == NULL,
+                      "not offered (nvidia %d, exact %d)", nvidia, exact);
 }
 
 /* PT_EXACT_MATHS: PoCL keeps correctly rounded division and square root either way (only NVIDIA

@@ -10,11 +10,11 @@
 # OUT/plain and OUT/forest.
 #   tools/bench-throughput-41.sh [OUT]   default bench/results/throughput-41/vs-mitsuba
 # Environment as tools/bench-vs-mitsuba.sh (DEVICE, WIDTH, HEIGHT, SPP, DEPTH, ROUNDS, PT, PYTHON,
-# VARIANT); the defaults here are the issue's: DEVICE=gpu, 1280x960, 16 spp, max depth 8, 2 rounds.
+# VARIANT); the defaults here are the issue's: DEVICE=gpu, 1280x960, 256 spp, max depth 8, 2 rounds.
 set -eu
 cd "$(dirname "$0")/.."
 out=${1:-bench/results/throughput-41/vs-mitsuba}
-export DEVICE=${DEVICE:-gpu} WIDTH=${WIDTH:-1280} HEIGHT=${HEIGHT:-960} SPP=${SPP:-16} DEPTH=${DEPTH:-8}
+export DEVICE=${DEVICE:-gpu} WIDTH=${WIDTH:-1280} HEIGHT=${HEIGHT:-960} SPP=${SPP:-256} DEPTH=${DEPTH:-8}
 export ROUNDS=${ROUNDS:-2}
 gen=$(mktemp -d)
 trap 'rm -rf "$gen"' EXIT

@@ -17,6 +17,9 @@
  * found (its type and vendor are known); false with ERR_SETTINGS on a bad PT_BVH_WIDTH,
  * PT_BVH_QUANTIZED, PT_EXACT_MATHS or PT_CL_OPTIONS. */
 bool device_choose_program_options(Device *dev, Error *err);
+/* The maths build options of a device that offers correctly rounded division and square root or
+ * not, from NVIDIA or not, with PT_EXACT_MATHS or not (program.c says why they differ). */
+const char *device_maths_options(bool correctly_rounded, bool nvidia, bool exact);
 
 /* ---- The program's parts (program.c), their builds (program_build.c) and the builds on a thread
  * of their own (program_background.c) ---- */

@@ -16,30 +16,38 @@ extern const size_t pt_kernel_source_length;
 /* Room in Device.build_options for PT_CL_OPTIONS next to the options pt always adds. */
 #define MAX_CL_OPTIONS_LENGTH 160
 
-/* The program's build options for this device. Conservative maths: no fast-relaxed-math, which
+#define CORRECTLY_ROUNDED_OPTION "-cl-fp32-correctly-rounded-divide-sqrt"
+
+/* The maths options. Conservative maths: no fast-relaxed-math, which
  * would let the compiler drop the Inf/NaN handling that the traversal and the film guard depend
  * on. Correctly rounded division and square root where the device offers them, but on NVIDIA
- * only with PT_EXACT_MATHS=1: its default ones (within 2 ulp) made the H100 3.8-12% faster,
+ * only with PT_EXACT_MATHS=1: its default ones (within 2.5 ulp) made the H100 3.8-12% faster,
  * mostly in shading and in the instances' ray set-up (bench/README.md, "Maths options"), and
  * move no image's mean (the same paths, a few diverging where a rounding flips a decision). They
  * round differently from the host's and PoCL's, so a hit on an edge may go to the other triangle:
  * the tests, which compare GPU hits with the host's, ask for exact maths (tests/support.c).
  * PT_CL_OPTIONS replaces the maths options (for experiments; the vendor switch stays). */
+const char *device_maths_options(bool correctly_rounded, bool nvidia, bool exact)
+{
+    return correctly_rounded && (exact || !nvidia)
+               ? "-cl-mad-enable -cl-no-signed-zeros " CORRECTLY_ROUNDED_OPTION
+               : "-cl-mad-enable -cl-no-signed-zeros";
+}
+
+/* The program's build options for this device: the maths options (PT_CL_OPTIONS replaces them),
+ * the BVH layout, the vendor, and whether division is exact. */
 static bool choose_build_options(Device *dev, Error *err)
 {
     cl_device_fp_config fp = 0;
     CL_CHECK(clGetDeviceInfo(dev->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
-    bool exact;
+    bool correctly_rounded = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0, exact;
     if (!env_flag("PT_EXACT_MATHS", false, &exact, err))
         return false;
-    const char *maths = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) && (exact || !dev->is_nvidia)
-                            ? "-cl-mad-enable -cl-no-signed-zeros -cl-fp32-correctly-rounded-divide-sqrt"
-                            : "-cl-mad-enable -cl-no-signed-zeros";
+    const char *maths = device_maths_options(correctly_rounded, dev->is_nvidia, exact);
     if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))
         return false;
     /* Without correctly rounded division the box test widens its margin (bvh_traverse.cl). */
-    bool inexact = !(fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) ||
-                   !strstr(maths, "-cl-fp32-correctly-rounded-divide-sqrt");
+    bool inexact = !correctly_rounded || !strstr(maths, CORRECTLY_ROUNDED_OPTION);
     snprintf(dev->build_options, sizeof dev->build_options,
              "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s%s", maths, dev->bvh_width,
              dev->bvh_quantized ? " -DBVH_QUANTIZED=1" : "",

@@ -178,10 +178,13 @@ void session_close(Session *s)
     memset(s, 0, sizeof *s);
 }
 
-/* A material's way through shading: its type and the features it uses (materials.h). */
-static uint32_t shading_kind(const Material *m, const TextureSet *textures)
+/* A material's way through shading: its type and the features it uses (materials.h). The scene's
+ * textures add only a bit that every material would share (a procedural texture in the set), so
+ * they are left out: each material costs a constant. */
+static uint32_t shading_kind(const Material *m)
 {
-    return (uint32_t)m->type << 24 | material_features(m, 1, textures);
+    static const TextureSet no_textures;
+    return (uint32_t)m->type << 24 | material_features(m, 1, &no_textures);
 }
 
 /* A diffuse material that scatters nothing (an OBJ lamp's Kd 0 beside its Ke): a path that
@@ -204,7 +207,7 @@ static bool shading_diverges(const SceneData *d)
         const Material *m = &d->materials[i];
         if (scatters_nothing(m))
             continue;
-        uint32_t kind = shading_kind(m, &d->textures);
+        uint32_t kind = shading_kind(m);
         if (found && kind != first)
             return true;
         found = true;

@@ -49,7 +49,7 @@ void session_device_close(SessionDevice *d);
 /* Material sorting (RenderSettings.sort_materials) for a request: SORT_MATERIALS_ON / _OFF as
  * asked, SORT_MATERIALS_AUTO when the scene uses any material feature beyond Lambert, smooth
  * mirrors and glass (scene/materials.h material_features) and its materials take more than one
- * way through shading (type and features; lights that only emit left out): on the H200 sorting
+ * way through shading (type and features; materials that scatter nothing, lamps, left out): on the H200 sorting
  * made such scenes 11% (env-lit rough gold) to 63% (rough gold, rough glass, normal maps) faster
  * and v1's plain Cornell box about a quarter slower (the textured scene about a tenth). */
 enum { SORT_MATERIALS_AUTO = 0, SORT_MATERIALS_ON = 1, SORT_MATERIALS_OFF = 2 };
