@@ -80,11 +80,14 @@ static void stop_render(const RenderPath *p, const Stop *s, bool quiet)
     cr_assert(mkdtemp(dir));
     snprintf(what, sizeof what, "%s, stopped by %s%s", p->name, s->name, quiet ? ", --quiet" : "");
     fprintf(stderr, "test_stop_matrix: %s\n", what);
+    /* OpenMPI's session folder in the run's own (test_mpi.c says why): Criterion runs these tests
+     * side by side, and two mpiruns that create the shared /tmp/ompi.<host>.<uid> at once can
+     * fail with "File exists" (seen in CI: mpi_time_limit). Other paths ignore it. */
     if (s->signal)
-        snprintf(env, sizeof env, "%s PT_TEST_RAISE=%s@%s %s", p->env, s->signal, p->point,
-                 p->launch);
+        snprintf(env, sizeof env, "%s OMPI_MCA_orte_tmpdir_base=%s PT_TEST_RAISE=%s@%s %s", p->env,
+                 dir, s->signal, p->point, p->launch);
     else
-        snprintf(env, sizeof env, "%s %s", p->env, p->launch);
+        snprintf(env, sizeof env, "%s OMPI_MCA_orte_tmpdir_base=%s %s", p->env, dir, p->launch);
     snprintf(args, sizeof args, RENDER " %s%s%s -o %s/out.exr", p->args,
              s->signal ? "" : " --time-limit 0.01", quiet ? " --quiet" : "", dir);
     Run r = run_pt_env(NULL, env, args);
