@@ -141,9 +141,9 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
     render_fixture_open_with(f, scene_path, width, height, INSTANCING_AUTO);
 }
 
-/* The fixture on dev, with the BVH two_level or not (as dev's program walks it). */
+/* The fixture on dev, with the BVH's levels as dev's program walks them. */
 static void render_fixture_load(RenderFixture *f, Device *dev, const char *scene_path, int width,
-                                int height, InstancingMode instancing, bool two_level)
+                                int height, InstancingMode instancing, BvhLevels levels)
 {
     Error err = {0};
     f->dev = dev;
@@ -153,14 +153,22 @@ static void render_fixture_load(RenderFixture *f, Device *dev, const char *scene
         f->scene.desc.width = width;
     if (height)
         f->scene.desc.height = height;
-    scene_accel_build(&f->bvh, &f->scene.data, f->dev, two_level);
+    scene_accel_build(&f->bvh, &f->scene.data, f->dev, levels);
     cr_assert(scene_buffers_upload(f->dev, &f->scene.data, &f->bvh, &f->buffers, &err), "%s", err.message);
 }
 
 void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
                               InstancingMode instancing)
 {
-    render_fixture_load(f, test_device(), scene_path, width, height, instancing, PT_TESTS_TWO_LEVEL);
+    render_fixture_load(f, test_device(), scene_path, width, height, instancing,
+                        PT_TESTS_TWO_LEVEL ? BVH_TWO_LEVEL : BVH_ONE_LEVEL);
+}
+
+void render_fixture_open_flat(RenderFixture *f, const char *scene_path, int width, int height)
+{
+    render_fixture_load(f, test_device_built_for(PROGRAM_FEATURES_ALL & ~(ProgramFeatures)FEATURE_TLAS),
+                        scene_path, width, height, INSTANCING_AUTO, BVH_FLAT);
+    cr_assert(f->scene.data.two_level, "%s must have instances", scene_path);
 }
 
 /* The program pt builds for a one-level scene without cut-outs or media (the packet megakernel's). */
@@ -170,7 +178,7 @@ void render_fixture_open_with(RenderFixture *f, const char *scene_path, int widt
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
 {
     render_fixture_load(f, test_device_built_for(ONE_LEVEL_FEATURES), scene_path, width, height,
-                        INSTANCING_AUTO, false);
+                        INSTANCING_AUTO, BVH_ONE_LEVEL);
     cr_assert(!f->scene.data.two_level, "%s must have one BVH level", scene_path);
 }
 
@@ -182,7 +190,7 @@ void render_fixture_open_in_parts(RenderFixture *f, const char *scene_path, int 
     cr_assert(device_open(dev, spec ? spec : "cpu", &err), "device_open: %s", err.message);
     dev->use_cache = false;
     cr_assert(device_build(dev, ONE_LEVEL_FEATURES, NULL, NULL, &err), "device_build: %s", err.message);
-    render_fixture_load(f, dev, scene_path, width, height, INSTANCING_AUTO, false);
+    render_fixture_load(f, dev, scene_path, width, height, INSTANCING_AUTO, BVH_ONE_LEVEL);
     cr_assert(!f->scene.data.two_level, "%s must have one BVH level", scene_path);
 }
 

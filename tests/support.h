@@ -61,6 +61,10 @@ void render_fixture_open(RenderFixture *f, const char *scene_path, int width, in
 /* The same with a choice of instancing (scene/scene.h). */
 void render_fixture_open_with(RenderFixture *f, const char *scene_path, int width, int height,
                               InstancingMode instancing);
+/* The same with the instances baked into one flat BVH (host/accel/scene_bvh.h BVH_FLAT), on a
+ * program built as pt builds it for those (every feature but FEATURE_TLAS); the scene must have
+ * instances (data.two_level), in INSTANCING_AUTO's layout. */
+void render_fixture_open_flat(RenderFixture *f, const char *scene_path, int width, int height);
 /* The same on a program built as pt builds it for scenes of one mesh level without cut-out
  * materials nor media (every feature but FEATURE_INSTANCES, FEATURE_CUTOUT and the media ones, the
  * one-level BVH): the

@@ -16,9 +16,10 @@
 #include "bvh_fixtures_instances.h"
 #include "support.h"
 
-/* The SceneBvh and the device's Instance / InstanceMotion records. */
+/* The SceneBvh with the given levels (BVH_FLAT: static instances only) and the device's
+ * Instance / InstanceMotion records. */
 static void build_scene_bvh(InstancedScene *s, SceneBvh *bvh, int width, bool quantized,
-                            Instance *instances, InstanceMotion *motions)
+                            BvhLevels levels, Instance *instances, InstanceMotion *motions)
 {
     BvhInstance boxes[MAX_INSTANCES];
     for (int k = 0; k < 3; k++)
@@ -27,6 +28,7 @@ static void build_scene_bvh(InstancedScene *s, SceneBvh *bvh, int width, bool qu
     for (uint32_t i = 0; i < s->num_instances; i++) {
         const TestInstance *in = &s->inst[i];
         boxes[i].mesh = in->mesh;
+        memcpy(boxes[i].to_world, in->to_world.m, sizeof boxes[i].to_world);
         world_box(s, in, boxes[i].lo, boxes[i].hi);
         for (int k = 0; k < 3; k++)
             s->lo[k] = fminf(s->lo[k], boxes[i].lo[k]), s->hi[k] = fmaxf(s->hi[k], boxes[i].hi[k]);
@@ -51,7 +53,7 @@ static void build_scene_bvh(InstancedScene *s, SceneBvh *bvh, int width, bool qu
         }
     }
     scene_bvh_build(bvh, s->all.positions, s->all.triangles, s->meshes, s->num_meshes, boxes,
-                    s->num_instances, width, quantized, true);
+                    s->num_instances, width, quantized, levels);
     for (uint32_t i = 0; i < s->num_instances; i++) {
         instances[i].blas_root = bvh->blas_root[s->inst[i].mesh];
         instances[i].first_prim = bvh->first_prim[s->inst[i].mesh];
@@ -64,20 +66,26 @@ typedef struct {
     uint32_t *instance; /* per mode and ray */
 } Traces;
 
-/* Every ray in the four modes of bvh_test_scene_trace (closest, any, brute closest, brute any). */
-static Traces trace_all(InstancedScene *s, const float4 *rays, const float *times, uint32_t n)
+/* Every ray in the four modes of bvh_test_scene_trace, or bvh_test_flat_trace for a flat BVH
+ * (closest, any, brute closest, brute any). */
+static Traces trace_all(InstancedScene *s, const float4 *rays, const float *times, uint32_t n,
+                        BvhLevels levels)
 {
     Device *dev = test_device();
     SceneBvh bvh;
     Instance instances[MAX_INSTANCES + 1];
     InstanceMotion motions[MAX_INSTANCES];
     memset(instances, 0, sizeof instances);
-    build_scene_bvh(s, &bvh, dev->bvh_width, dev->bvh_quantized, instances, motions);
+    build_scene_bvh(s, &bvh, dev->bvh_width, dev->bvh_quantized, levels, instances, motions);
+    bool flat = levels == BVH_FLAT;
+    cr_assert(!flat || bvh.num_flat_prims > 0, "a flat BVH without its (instance, triangle) pairs");
     Error err = {0};
     cl_mem nodes = device_buffer(dev, "nodes", CL_MEM_READ_ONLY, bvh.num_nodes * bvh.node_size, bvh.nodes, &err);
     cl_mem prims = device_buffer(dev, "prims", CL_MEM_READ_ONLY, bvh.num_prims * bvh.prim_size, bvh.prims, &err);
-    cl_mem inst = device_buffer(dev, "instances", CL_MEM_READ_ONLY, (s->num_instances + 1) * sizeof(Instance),
-                                instances, &err);
+    cl_mem inst = flat ? device_buffer(dev, "flat prims", CL_MEM_READ_ONLY,
+                                       bvh.num_flat_prims * 2 * sizeof(cl_uint), bvh.flat_prims, &err)
+                       : device_buffer(dev, "instances", CL_MEM_READ_ONLY,
+                                       (s->num_instances + 1) * sizeof(Instance), instances, &err);
     cl_mem mot = device_buffer(dev, "motions", CL_MEM_READ_ONLY, sizeof motions, motions, &err);
     cl_mem ray_buf = device_buffer(dev, "rays", CL_MEM_READ_ONLY, 2 * n * sizeof(float4), rays, &err);
     cl_mem time_buf = device_buffer(dev, "times", CL_MEM_READ_ONLY, n * sizeof(float), times, &err);
@@ -85,16 +93,21 @@ static Traces trace_all(InstancedScene *s, const float4 *rays, const float *time
     cl_mem inst_buf = device_buffer(dev, "hit instances", CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &err);
     cr_assert(!error_is_set(&err), "%s", err.message);
     Traces out = {malloc(4 * n * sizeof(float4)), malloc(4 * n * sizeof(uint32_t))};
-    cl_kernel kernel = device_kernel(dev, "bvh_test_scene_trace");
+    cl_kernel kernel = device_kernel(dev, flat ? "bvh_test_flat_trace" : "bvh_test_scene_trace");
     for (cl_uint mode = 0; mode < 4; mode++) {
-        cl_uint arg = 0, num_instances = s->num_instances, num_rays = n;
+        cl_uint arg = 0, num_instances = s->num_instances, num_rays = n, num_prims = bvh.num_prims;
         KERNEL_ARG(kernel, arg++, nodes);
         KERNEL_ARG(kernel, arg++, prims);
         KERNEL_ARG(kernel, arg++, inst);
-        KERNEL_ARG(kernel, arg++, mot);
-        KERNEL_ARG(kernel, arg++, num_instances);
+        if (flat) {
+            KERNEL_ARG(kernel, arg++, num_prims);
+        } else {
+            KERNEL_ARG(kernel, arg++, mot);
+            KERNEL_ARG(kernel, arg++, num_instances);
+        }
         KERNEL_ARG(kernel, arg++, ray_buf);
-        KERNEL_ARG(kernel, arg++, time_buf);
+        if (!flat)
+            KERNEL_ARG(kernel, arg++, time_buf);
         KERNEL_ARG(kernel, arg++, num_rays);
         KERNEL_ARG(kernel, arg++, mode);
         KERNEL_ARG(kernel, arg++, hit_buf);
@@ -217,17 +230,22 @@ static bool matches_world(const InstancedScene *s, const float4 ray[2], float ti
     return true;
 }
 
-/* Closest and any hits of the two-level walk equal the brute force's, and the world's. */
-static void check_scene(InstancedScene *s, uint32_t n, uint64_t seed, const char *name)
+/* Closest and any hits of the walk (two levels, or flat) equal the brute force's, and the
+ * world's. */
+static void check_scene_levels(InstancedScene *s, uint32_t n, uint64_t seed, const char *name,
+                               BvhLevels levels)
 {
     SceneBvh probe;
     Instance inst[MAX_INSTANCES];
     InstanceMotion mot[MAX_INSTANCES];
-    build_scene_bvh(s, &probe, 2, false, inst, mot); /* s->lo, s->hi for the rays */
+    build_scene_bvh(s, &probe, 2, false, BVH_TWO_LEVEL, inst, mot); /* s->lo, s->hi for the rays */
     scene_bvh_free(&probe);
     float *times = malloc(n * sizeof *times);
     float4 *rays = random_rays(s, n, seed, times);
-    Traces tr = trace_all(s, rays, times, n);
+    if (levels == BVH_FLAT) /* a flat BVH has the instances where they stand */
+        for (uint32_t i = 0; i < n; i++)
+            times[i] = 0.0f;
+    Traces tr = trace_all(s, rays, times, n, levels);
     uint32_t hits = 0, bad_brute = 0, bad_any = 0, bad_world = 0, world_checks = 0;
     for (uint32_t i = 0; i < n; i++) {
         float4 bvh = tr.hits[i], brute = tr.hits[2 * n + i];
@@ -258,6 +276,11 @@ static void check_scene(InstancedScene *s, uint32_t n, uint64_t seed, const char
     free(tr.instance);
     free(rays);
     free(times);
+}
+
+static void check_scene(InstancedScene *s, uint32_t n, uint64_t seed, const char *name)
+{
+    check_scene_levels(s, n, seed, name, BVH_TWO_LEVEL);
     test_mesh_free(&s->all);
 }
 
@@ -273,6 +296,7 @@ Test(instances_bvh, overlapping_mirrored_and_composed_instances_match_brute_forc
         Affine turned = affine_mul(&s.inst[i].to_world, &r);
         add_instance(&s, s.inst[i].mesh, affine_mul(&nudge, &turned), NULL);
     }
+    check_scene_levels(&s, 4000, 21, "static, flat", BVH_FLAT);
     check_scene(&s, 4000, 21, "static");
 }
 
@@ -311,22 +335,27 @@ Test(instances_bvh, identical_instances_tie_to_the_lower_index, .timeout = 600)
     SceneBvh probe;
     Instance inst[MAX_INSTANCES];
     InstanceMotion mot[MAX_INSTANCES];
-    build_scene_bvh(&s, &probe, 2, false, inst, mot);
+    build_scene_bvh(&s, &probe, 2, false, BVH_TWO_LEVEL, inst, mot);
     scene_bvh_free(&probe);
-    uint32_t n = 3000, on_pair[5] = {0};
-    float *times = malloc(n * sizeof *times);
+    uint32_t n = 3000;
+    float *times = calloc(n, sizeof *times); /* static instances: the time changes nothing */
     float4 *rays = random_rays(&s, n, 23, times);
-    Traces tr = trace_all(&s, rays, times, n);
-    for (uint32_t mode = 0; mode < 3; mode += 2)
-        for (uint32_t i = 0; i < n; i++)
-            if (prim_of(tr.hits[mode * n + i]) != HIT_NONE)
-                on_pair[tr.instance[mode * n + i] < 5 ? tr.instance[mode * n + i] : 0]++;
-    cr_expect(on_pair[1] > 50 && on_pair[3] > 50, "too few hits on the pairs (%u, %u)", on_pair[1],
-              on_pair[3]);
-    cr_expect_eq(on_pair[2] + on_pair[4], 0, "%u hits named the higher instance of a pair",
-                 on_pair[2] + on_pair[4]);
-    free(tr.hits);
-    free(tr.instance);
+    BvhLevels levels[2] = {BVH_TWO_LEVEL, BVH_FLAT};
+    for (int l = 0; l < 2; l++) {
+        uint32_t on_pair[5] = {0};
+        Traces tr = trace_all(&s, rays, times, n, levels[l]);
+        for (uint32_t mode = 0; mode < 3; mode += 2)
+            for (uint32_t i = 0; i < n; i++)
+                if (prim_of(tr.hits[mode * n + i]) != HIT_NONE)
+                    on_pair[tr.instance[mode * n + i] < 5 ? tr.instance[mode * n + i] : 0]++;
+        const char *name = l ? "flat" : "two levels";
+        cr_expect(on_pair[1] > 50 && on_pair[3] > 50, "%s: too few hits on the pairs (%u, %u)", name,
+                  on_pair[1], on_pair[3]);
+        cr_expect_eq(on_pair[2] + on_pair[4], 0, "%s: %u hits named the higher instance of a pair",
+                     name, on_pair[2] + on_pair[4]);
+        free(tr.hits);
+        free(tr.instance);
+    }
     free(rays);
     free(times);
     test_mesh_free(&s.all);
@@ -346,7 +375,7 @@ Test(instances_bvh, empty_scene_misses_everything, .timeout = 600)
         rays[2 * i] = (float4){{0.0f, 0.0f, 0.0f, 0.0f}};
         rays[2 * i + 1] = (float4){{d[0], d[1], d[2], INFINITY}};
     }
-    Traces tr = trace_all(&s, rays, times, n);
+    Traces tr = trace_all(&s, rays, times, n, BVH_TWO_LEVEL);
     uint32_t hits = 0;
     for (uint32_t i = 0; i < 4 * n; i++)
         hits += prim_of(tr.hits[i]) != HIT_NONE;

@@ -134,7 +134,7 @@ static void check_layout(int width, bool quantized)
     }
     SceneBvh bvh;
     scene_bvh_build(&bvh, mesh.positions, mesh.triangles, meshes, 1, instances, NUM_INSTANCES, width,
-                    quantized, true);
+                    quantized, BVH_TWO_LEVEL);
     TlasCheck c = {&bvh, instances, calloc(NUM_INSTANCES, sizeof(uint32_t)), 0};
     double ulo[3] = {INFINITY, INFINITY, INFINITY}, uhi[3] = {-INFINITY, -INFINITY, -INFINITY};
     check_node(&c, 0, ulo, uhi);

@@ -75,7 +75,7 @@ static void fixture_open(InstanceFixture *f)
     instance_scene_build(&f->data, l, 3);
     f->dev = instance_device();
     /* The kernels here read the scene's arrays, never the BVH: one level is enough. */
-    scene_accel_build(&f->bvh, &f->data, f->dev, false);
+    scene_accel_build(&f->bvh, &f->data, f->dev, BVH_ONE_LEVEL);
     Error err = {0};
     cr_assert(scene_buffers_upload(f->dev, &f->data, &f->bvh, &f->buffers, &err), "%s", err.message);
 }

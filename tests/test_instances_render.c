@@ -14,6 +14,7 @@
 
 #include "base/transform.h"
 #include "render/aov.h"
+#include "render/scene_upload.h"
 #include "support.h"
 
 /* A 2 x 2 quad in the plane z = `z`, counter-clockwise seen from +z (its front). */
@@ -143,18 +144,93 @@ Test(instances_render, instances_render_their_baked_copies, .timeout = 300)
 /* The two-level BVH (its TLAS boxes: the exact boxes of turned instances, render/scene_upload.c)
  * finds the hits that testing every instance's every triangle finds: the same bits. A TLAS box
  * that cut off part of an instance would lose hits there. */
+static void expect_brute_force_bits(RenderFixture *f, const char *what)
+{
+    RenderSettings s = {.spp = 4, .max_depth = 4, .seed = 5};
+    float *bvh = render_fixture_render(f, s, NULL);
+    s.brute_force = true;
+    float *brute = render_fixture_render(f, s, NULL);
+    cr_expect(memcmp(bvh, brute, 48 * 48 * 3 * sizeof(float)) == 0, "%s missed hits", what);
+    free(bvh), free(brute);
+    render_fixture_close(f);
+}
+
 Test(instances_render, turned_instances_render_the_brute_force_bits, .timeout = 300)
 {
     RenderFixture f;
     render_fixture_open_with(&f, turned_instances_scene(), 48, 48, INSTANCING_AUTO);
     cr_assert(f.scene.data.two_level);
+    expect_brute_force_bits(&f, "the two-level BVH");
+}
+
+/* ---- Flat BVHs: the instances baked into one tree (host/accel/scene_bvh.h BVH_FLAT) ---------- */
+
+/* The flat BVH's hits are the two levels' up to rounding (world-space triangles against rays in
+ * object space), and its unbaked (instance, triangle) place them where the two levels do: the
+ * same random numbers draw the same image but for the few paths whose hits round differently.
+ * An instance or triangle mapped wrongly moves, turns or mirrors a tetrahedron's shading. */
+Test(instances_render, a_flat_bvh_renders_the_two_levels_image, .timeout = 300)
+{
+    const char *scene = turned_instances_scene();
     RenderSettings s = {.spp = 4, .max_depth = 4, .seed = 5};
-    float *bvh = render_fixture_render(&f, s, NULL);
-    s.brute_force = true;
-    float *brute = render_fixture_render(&f, s, NULL);
-    cr_expect(memcmp(bvh, brute, 48 * 48 * 3 * sizeof(float)) == 0, "the BVH missed hits");
-    free(bvh), free(brute);
-    render_fixture_close(&f);
+    RenderFixture two, flat;
+    render_fixture_open_with(&two, scene, 48, 48, INSTANCING_AUTO);
+    float *a = render_fixture_render(&two, s, NULL);
+    render_fixture_close(&two);
+    render_fixture_open_flat(&flat, scene, 48, 48);
+    cr_assert_eq(flat.bvh.levels, BVH_FLAT);
+    const SceneData *d = &flat.scene.data;
+    uint32_t baked = 0;
+    for (uint32_t i = 0; i < d->num_instances; i++)
+        baked += d->meshes[d->instances[i].mesh].num_triangles;
+    cr_assert_eq(flat.bvh.num_flat_prims, baked, "one pair per instance's triangle");
+    float *b = render_fixture_render(&flat, s, NULL);
+    render_fixture_close(&flat);
+    int n = 48 * 48 * 3, apart = 0;
+    double sum_a = 0.0, sum_b = 0.0;
+    for (int i = 0; i < n; i++) {
+        sum_a += a[i], sum_b += b[i];
+        apart += fabsf(a[i] - b[i]) > 1e-3f * fmaxf(1.0f, fabsf(a[i]));
+    }
+    cr_expect(apart <= n / 100, "%d of %d values differ between the flat and two-level BVHs", apart,
+              n);
+    cr_expect(fabs(sum_a - sum_b) <= 2e-3 * sum_a, "image sums %.6g (two levels) vs %.6g (flat)",
+              sum_a, sum_b);
+    free(a), free(b);
+}
+
+/* The flat BVH finds the hits that testing every baked triangle finds: the same bits. */
+Test(instances_render, a_flat_bvh_renders_the_brute_force_bits, .timeout = 300)
+{
+    RenderFixture f;
+    render_fixture_open_flat(&f, turned_instances_scene(), 48, 48);
+    expect_brute_force_bits(&f, "the flat BVH");
+}
+
+/* Which levels pt builds: flat for static instances up to the budget of baked triangles; two
+ * levels above it, with a moving instance, or when --instancing always asks; one without
+ * instances. */
+Test(instances_render, flat_bvh_only_for_few_static_triangles)
+{
+    SceneMesh meshes[2] = {{.num_triangles = 1}, {.num_triangles = FLAT_BVH_TRIANGLE_BUDGET / 2}};
+    SceneInstance instances[3] = {{.mesh = 1}, {.mesh = 1}, {.mesh = 0}};
+    SceneData d = {.meshes = meshes, .num_meshes = 2, .instances = instances, .num_instances = 2,
+                   .two_level = true};
+    cr_expect_eq(scene_accel_levels(&d), BVH_FLAT, "exactly the budget");
+    d.num_instances = 3;
+    cr_expect_eq(scene_accel_levels(&d), BVH_TWO_LEVEL, "one triangle over the budget");
+    d.num_instances = 2;
+    d.num_moving = 1;
+    cr_expect_eq(scene_accel_levels(&d), BVH_TWO_LEVEL, "a moving instance");
+    d.num_moving = 0;
+    d.keep_two_levels = true;
+    cr_expect_eq(scene_accel_levels(&d), BVH_TWO_LEVEL, "--instancing always");
+    d.keep_two_levels = false;
+    d.two_level = false;
+    cr_expect_eq(scene_accel_levels(&d), BVH_ONE_LEVEL, "one mesh in world space");
+    cr_expect_eq(BVH_LEVELS_FEATURES(BVH_FLAT), FEATURE_INSTANCES);
+    cr_expect_eq(BVH_LEVELS_FEATURES(BVH_TWO_LEVEL), FEATURE_INSTANCES | FEATURE_TLAS);
+    cr_expect_eq(BVH_LEVELS_FEATURES(BVH_ONE_LEVEL), 0u);
 }
 
 /* ---- Order, rotation sense, matrix layout: depths by hand ------------------------------------ */

@@ -71,7 +71,7 @@ static double best_scene_ms(const TestMesh *mesh, const BvhInstance *instances, 
         SceneBvh bvh;
         double t0 = seconds_now();
         scene_bvh_build(&bvh, mesh->positions, mesh->triangles, meshes, 1, instances, n, width,
-                        quantized, true);
+                        quantized, BVH_TWO_LEVEL);
         double ms = 1e3 * (seconds_now() - t0);
         best = ms < best ? ms : best;
         *tlas_ms = fmin(*tlas_ms, 1e3 * bvh.tlas_seconds);

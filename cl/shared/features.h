@@ -27,13 +27,18 @@
     X(NOISE_TEXTURE, "noise-texture")       /* a procedural texture (fBm, inlined at lookups) */   \
     X(EMISSION_TEXTURE, "emission-texture")                                                        \
     X(REFRACTION, "refraction") /* a dielectric: roulette follows radiance's eta^2 (shade_surface) */
-/* Scene features. INSTANCES is not only an optimisation: it must match the layout that
- * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
+/* Scene features. INSTANCES and TLAS are not only optimisations: they must match the layout that
+ * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays).
+ * INSTANCES: hits name an instance, which shading and lights place through its transform. With
+ * TLAS too, the BVH has two levels; without it, the instances' triangles are baked into one
+ * world-space BVH whose hits scene_trace maps back to (instance, triangle) (host/accel/scene_bvh.h
+ * BVH_FLAT). TLAS without INSTANCES changes nothing. */
 #define SCENE_FEATURES(X)                                                                          \
     X(ENV, "env")                 /* an environment map (cl/light/light_env.cl) */                 \
     X(ANALYTIC, "analytic")       /* analytic lights (cl/light/light_analytic.cl) */               \
     X(CUTOUT, "cutout")           /* cut-out materials: a material read per hit in traversal */    \
-    X(INSTANCES, "instances")     /* the two-level BVH (shared/geometry.h "Instances") */          \
+    X(INSTANCES, "instances")     /* instances (shared/geometry.h "Instances") */                  \
+    X(TLAS, "tlas")               /* with INSTANCES: the two-level walk (top-level BVH, BLASes) */ \
     X(MOTION, "motion")           /* moving instances (path_time) */                               \
     X(BLACK_HOLES, "black-holes") /* the integrate_geodesic stage */                               \
     X(MEDIA, "media")             /* media that scatter or emit: tracking (cl/medium/) */          \

@@ -164,6 +164,7 @@ typedef struct {
     X(uint, env_cdf)           /* its sampling CDFs and guides, 2 (H + W H) (environment.h) */\
     X(Instance, instances)                                                                          \
     X(InstanceMotion, instance_motion) /* one per moving instance (at least one entry) */         \
+    X(uint2, flat_prims)       /* a flat BVH's (instance, triangle) per baked triangle (else one) */ \
     X(Medium, media)           /* medium slot k is media[k - 1] (shared/medium.h) */              \
     X(uint, grid_bricks)       /* the grid media's brick tables */                                 \
     X(float, grid_values)      /* their bricks' voxel values */                                    \

@@ -20,14 +20,13 @@ static void *copy_of(const void *data, size_t bytes)
     return copy;
 }
 
-/* One level: the mesh's tree in the device layout, as v1 built it. */
+/* One level: n triangles in world space, as v1 built them. */
 static void build_one_level(SceneBvh *out, const float4 *positions, const Triangle *triangles,
-                            const BvhMesh *mesh)
+                            uint32_t n)
 {
     double t0 = seconds_now();
     Bvh bvh;
-    bvh_build_for_width(&bvh, positions, triangles + mesh->first_triangle, mesh->num_triangles,
-                        out->width);
+    bvh_build_for_width(&bvh, positions, triangles, n, out->width);
     BvhLayout layout;
     bvh_layout(&layout, &bvh, out->width, out->quantized);
     out->nodes = copy_of(layout.nodes, (size_t)layout.num_nodes * layout.node_size);
@@ -39,43 +38,95 @@ static void build_one_level(SceneBvh *out, const float4 *positions, const Triang
     out->sah_cost = bvh.sah_cost;
     bvh_layout_free(&layout);
     bvh_free(&bvh);
-    out->blas_root[0] = 0;
-    out->first_prim[0] = 0;
-    out->num_mesh_prims[0] = out->num_prims;
     out->blas_seconds = seconds_now() - t0;
+}
+
+static float4 transformed_point(const double m[3][4], float4 p)
+{
+    float4 q = {{0}};
+    for (int r = 0; r < 3; r++)
+        q.s[r] = (float)(m[r][0] * p.s[0] + m[r][1] * p.s[1] + m[r][2] * p.s[2] + m[r][3]);
+    return q;
+}
+
+/* Flat: each instance's triangles in world space, three corners of their own each (the mesh's
+ * vertex sharing would save memory only where the budget that chose this layout already keeps it
+ * small), instance by instance, so that a flat index orders hits as (instance, triangle) does. */
+static void build_flat(SceneBvh *out, const float4 *positions, const Triangle *triangles,
+                       const BvhMesh *meshes, const BvhInstance *instances, uint32_t num_instances)
+{
+    uint64_t total = 0;
+    for (uint32_t i = 0; i < num_instances; i++)
+        total += meshes[instances[i].mesh].num_triangles;
+    if (total >= BVH_QUANTIZED_MAX_TRIANGLES)
+        die("BVH: %llu baked triangles; a flat BVH holds fewer than %u", (unsigned long long)total,
+            BVH_QUANTIZED_MAX_TRIANGLES);
+    uint32_t n = (uint32_t)total;
+    float4 *world = malloc((n ? n : 1) * 3 * sizeof *world);
+    Triangle *flat = malloc((n ? n : 1) * sizeof *flat);
+    out->flat_prims = malloc((n ? n : 1) * 2 * sizeof *out->flat_prims);
+    if (!world || !flat || !out->flat_prims)
+        die("out of memory for a flat BVH of %u triangles", n);
+    uint32_t f = 0;
+    for (uint32_t i = 0; i < num_instances; i++) {
+        const BvhMesh *mesh = &meshes[instances[i].mesh];
+        for (uint32_t t = mesh->first_triangle; t < mesh->first_triangle + mesh->num_triangles;
+             t++, f++) {
+            for (int k = 0; k < 3; k++)
+                world[3 * f + k] = transformed_point(instances[i].to_world,
+                                                     positions[triangles[t].v.s[k]]);
+            flat[f].v = (uint4){{3 * f, 3 * f + 1, 3 * f + 2, triangles[t].v.s[3]}};
+            out->flat_prims[2 * f] = i;
+            out->flat_prims[2 * f + 1] = t;
+        }
+    }
+    out->num_flat_prims = n;
+    build_one_level(out, world, flat, n);
+    free(world);
+    free(flat);
 }
 
 void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *triangles,
                      const BvhMesh *meshes, uint32_t num_meshes, const BvhInstance *instances,
-                     uint32_t num_instances, int width, bool quantized, bool two_level)
+                     uint32_t num_instances, int width, bool quantized, BvhLevels levels)
 {
     memset(out, 0, sizeof *out);
     out->width = width;
     out->quantized = quantized;
-    out->two_level = two_level;
+    out->levels = levels;
     out->num_meshes = num_meshes;
     out->blas_root = calloc(num_meshes ? num_meshes : 1, sizeof *out->blas_root);
     out->first_prim = calloc(num_meshes ? num_meshes : 1, sizeof *out->first_prim);
     out->num_mesh_prims = calloc(num_meshes ? num_meshes : 1, sizeof *out->num_mesh_prims);
     if (!out->blas_root || !out->first_prim || !out->num_mesh_prims)
         die("out of memory for the BVH (%u meshes)", num_meshes);
-    if (two_level) {
+    switch (levels) {
+    case BVH_TWO_LEVEL:
         if (quantized && num_instances >= BVH_QUANTIZED_MAX_TRIANGLES)
             die("BVH: %u instances; the quantised nodes address fewer than %u", num_instances,
                 BVH_QUANTIZED_MAX_TRIANGLES);
         scene_bvh_build_two_level(out, positions, triangles, meshes, num_meshes, instances,
                                   num_instances);
         return;
+    case BVH_FLAT:
+        /* Every mesh's "BLAS" is the whole tree: only the brute-force ablation of two levels
+         * reads these, and a flat BVH's ablation walks its own triangles. */
+        build_flat(out, positions, triangles, meshes, instances, num_instances);
+        return;
+    case BVH_ONE_LEVEL:
+        break;
     }
     if (num_meshes != 1 || meshes[0].first_triangle != 0)
         die("scene_bvh_build: one level takes exactly one mesh (got %u)", num_meshes);
-    build_one_level(out, positions, triangles, &meshes[0]);
+    build_one_level(out, positions, triangles + meshes[0].first_triangle, meshes[0].num_triangles);
+    out->num_mesh_prims[0] = out->num_prims;
 }
 
 void scene_bvh_free(SceneBvh *bvh)
 {
     free(bvh->nodes);
     free(bvh->prims);
+    free(bvh->flat_prims);
     free(bvh->blas_root);
     free(bvh->first_prim);
     free(bvh->num_mesh_prims);

@@ -316,9 +316,10 @@ const CliOption cli_options[] = {
      "--instancing auto|always|never",
      "how objects become instances (same image): auto\n"
      "                     merges objects without a transform whose file is used once into\n"
-     "                     one mesh and instances the rest (two-level BVH); always instances\n"
-     "                     every object; never bakes every static object's transform into\n"
-     "                     its vertices (memory grows with the objects)"},
+     "                     one mesh and instances the rest (two-level BVH, or one flat BVH\n"
+     "                     over static instances of at most 2^20 triangles); always instances\n"
+     "                     every object, with two levels; never bakes every static object's\n"
+     "                     transform into its vertices (memory grows with the objects)"},
     {"profile", 0, FLAG(profile), RENDER, HELP_OPTIONS, "--profile", "per-kernel timing table"},
     {"no-cache", 0, FLAG(no_cache), SCENE_COMMANDS, HELP_OPTIONS, "--no-cache",
      "compile the kernels even if the kernel cache ($XDG_CACHE_HOME/pt,\n"

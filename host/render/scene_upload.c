@@ -45,7 +45,19 @@ static void instance_tlas_box(const SceneData *data, const SceneInstance *si, ui
         lo[k] = fmaxf(lo[k], elo[k]), hi[k] = fminf(hi[k], ehi[k]);
 }
 
-void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, bool two_level)
+BvhLevels scene_accel_levels(const SceneData *data)
+{
+    if (!data->two_level)
+        return BVH_ONE_LEVEL;
+    if (data->keep_two_levels || data->num_moving > 0)
+        return BVH_TWO_LEVEL;
+    uint64_t baked = 0;
+    for (uint32_t i = 0; i < data->num_instances; i++)
+        baked += data->meshes[data->instances[i].mesh].num_triangles;
+    return baked > 0 && baked <= FLAT_BVH_TRIANGLE_BUDGET ? BVH_FLAT : BVH_TWO_LEVEL;
+}
+
+void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, BvhLevels levels)
 {
     uint32_t nm = data->num_meshes, ni = data->num_instances;
     BvhMesh *meshes = malloc((nm ? nm : 1) * sizeof *meshes);
@@ -58,16 +70,18 @@ void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, 
     for (uint32_t i = 0; i < ni; i++) {
         const SceneInstance *si = &data->instances[i];
         instances[i].mesh = si->mesh;
-        instance_tlas_box(data, si, &budget, instances[i].lo, instances[i].hi);
+        memcpy(instances[i].to_world, si->to_world.m, sizeof instances[i].to_world);
+        if (levels == BVH_TWO_LEVEL)
+            instance_tlas_box(data, si, &budget, instances[i].lo, instances[i].hi);
     }
     /* One level: the whole triangle array is one world-space mesh. */
     BvhMesh all = {0, data->num_triangles};
-    if (two_level)
-        scene_bvh_build(out, data->positions, data->triangles, meshes, nm, instances, ni,
-                        dev->bvh_width, dev->bvh_quantized, true);
-    else
+    if (levels == BVH_ONE_LEVEL)
         scene_bvh_build(out, data->positions, data->triangles, &all, 1, NULL, 0, dev->bvh_width,
-                        dev->bvh_quantized, false);
+                        dev->bvh_quantized, BVH_ONE_LEVEL);
+    else
+        scene_bvh_build(out, data->positions, data->triangles, meshes, nm, instances, ni,
+                        dev->bvh_width, dev->bvh_quantized, levels);
     free(meshes);
     free(instances);
 }
@@ -89,7 +103,7 @@ void scene_instances_for_device(const SceneData *data, const SceneBvh *bvh, Inst
             die("instance %u: singular transform (the scene loader refuses these)", i);
         affine_to_rows(&si->to_world, inst->to_world);
         affine_to_rows(&inverse, inst->to_object);
-        uint32_t mesh = bvh->two_level ? si->mesh : 0;
+        uint32_t mesh = bvh->levels == BVH_TWO_LEVEL ? si->mesh : 0;
         inst->blas_root = bvh->blas_root[mesh];
         inst->first_prim = bvh->first_prim[mesh];
         inst->num_prims = bvh->num_mesh_prims[mesh];
@@ -132,6 +146,10 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     src.instance_motion = source(data->num_moving ? data->num_moving : 1, sizeof(InstanceMotion),
                                  motions);
     out->params.num_instances = data->num_instances;
+    static const uint32_t no_flat_prim[2] = {0, 0};
+    src.flat_prims = bvh->num_flat_prims
+                         ? source(bvh->num_flat_prims, 2 * sizeof(uint32_t), bvh->flat_prims)
+                         : source(1, sizeof no_flat_prim, no_flat_prim);
     src.positions = source(nv, sizeof(float4), data->positions);
     src.normals = source(nv, sizeof(float4), data->normals);
     src.uvs = source(nv, sizeof(float2), data->uvs);

@@ -24,10 +24,22 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
  * description, and the buffers' SceneParams. The wavefront and the AOV pass add their own
  * (seed, depth, flags, ...). */
 RenderParams render_params_for_scene(const SceneDesc *desc, const SceneBuffers *buffers);
-/* The scene's BVH for the device's layout (dev->bvh_width, bvh_quantized): two levels when asked,
- * which a program built with PT_FEATURE(INSTANCES) needs (session.c asks for data->two_level and
- * builds the program to match; the tests' program has every feature), else one. */
-void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, bool two_level);
+/* The BVH's levels for the scene: one for one mesh in world space; else flat when every instance
+ * is static and their triangles add up to at most FLAT_BVH_TRIANGLE_BUDGET (unless
+ * data->keep_two_levels), two otherwise. Flat costs memory per instanced triangle (the BVH and
+ * 56 bytes a triangle) and saves the two-level walk's set-up per instance entered and the
+ * overlap of instance boxes (bench/README.md "Flat BVHs for instances"). */
+#define FLAT_BVH_TRIANGLE_BUDGET (1u << 20)
+BvhLevels scene_accel_levels(const SceneData *data);
+/* The program features those levels need (cl/shared/features.h: INSTANCES, TLAS). */
+#define BVH_LEVELS_FEATURES(levels)                                                               \
+    ((levels) == BVH_TWO_LEVEL ? (ProgramFeatures)(FEATURE_INSTANCES | FEATURE_TLAS)              \
+     : (levels) == BVH_FLAT    ? (ProgramFeatures)FEATURE_INSTANCES                               \
+                               : 0u)
+/* The scene's BVH for the device's layout (dev->bvh_width, bvh_quantized) with the given levels,
+ * which the program's features must match (session.c builds both from scene_accel_levels; the
+ * tests' program has every feature, so two levels, unless a test builds it otherwise). */
+void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, BvhLevels levels);
 /* The kernels' instances and motions (cl/shared.h) from the scene's and the BVH's: *instances has
  * data->num_instances entries, *motions max(1, data->num_moving); free() both. */
 void scene_instances_for_device(const SceneData *data, const SceneBvh *bvh, Instance **instances,

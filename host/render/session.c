@@ -40,8 +40,8 @@ static bool apply_overrides(const RenderDesc *o, Scene *scene, Error *err)
 
 /* The features the scene uses (cl/shared/features.h): the program is built for exactly these, so
  * the code of the others leaves the kernels. The kernel cache keys on them, so each combination is
- * its own entry. FEATURE_INSTANCES is not optional: it must match the layout that
- * scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
+ * its own entry. FEATURE_INSTANCES and FEATURE_TLAS are not optional: they must match the levels
+ * that scene_accel_build builds (a two-level walk over a one-level tree reads past its arrays). */
 static ProgramFeatures scene_program_features(const SceneData *data, bool black_holes)
 {
     /* Cut-out materials (cl/material/surface_detail.cl) add a material read per hit to both
@@ -53,7 +53,7 @@ static ProgramFeatures scene_program_features(const SceneData *data, bool black_
     f |= data->environment.width > 0 ? FEATURE_ENV : 0u;
     f |= data->num_analytic > 0 ? FEATURE_ANALYTIC : 0u;
     f |= cutout ? FEATURE_CUTOUT : 0u;
-    f |= data->two_level ? FEATURE_INSTANCES : 0u;
+    f |= BVH_LEVELS_FEATURES(scene_accel_levels(data));
     f |= data->num_moving > 0 ? FEATURE_MOTION : 0u;
     f |= black_holes ? FEATURE_BLACK_HOLES : 0u;
     /* Pure absorbers (and dielectrics' absorption) need only Beer-Lambert; tracking is for media
@@ -81,7 +81,7 @@ static bool open_on_device(Device *dev, SceneBvh *bvh, SceneBuffers *buffers, co
         return false;
     }
     double t1 = seconds_now();
-    scene_accel_build(bvh, &scene->data, dev, scene->data.two_level);
+    scene_accel_build(bvh, &scene->data, dev, scene_accel_levels(&scene->data));
     *bvh_seconds = seconds_now() - t1;
     if (!scene_buffers_upload(dev, &scene->data, bvh, buffers, err)) {
         scene_buffers_release(buffers);
@@ -157,12 +157,17 @@ void session_print_summary(const Session *s)
             s->scene.desc.path, d->num_triangles, d->num_materials, d->textures.count,
             d->num_emissive, s->load_seconds, s->bvh_seconds, s->dev.build_seconds,
             s->dev.cache_hit ? "from the kernel cache" : "compiled", features);
-    if (d->two_level)
+    if (s->bvh.levels == BVH_TWO_LEVEL)
         fprintf(stderr,
                 "pt: %u meshes, %u instances (%u moving): %.4g triangles rendered; two-level BVH "
                 "(BLAS %.3f s, TLAS %.3f s)\n",
                 d->num_meshes, d->num_instances, d->num_moving, instanced_triangles(d),
                 s->bvh.blas_seconds, s->bvh.tlas_seconds);
+    else if (s->bvh.levels == BVH_FLAT)
+        fprintf(stderr,
+                "pt: %u meshes, %u instances: %.4g triangles rendered; one flat BVH over them "
+                "(%.3f s; --instancing always keeps two levels)\n",
+                d->num_meshes, d->num_instances, instanced_triangles(d), s->bvh.blas_seconds);
     fprintf(stderr, "pt: device %s (%s, driver %s), %.1f MiB of scene buffers; host peak %.0f MiB\n",
             s->dev.name, s->dev.platform_name, s->dev.driver_version,
             (double)s->buffers.bytes / (1 << 20), peak_rss_mib());

@@ -204,6 +204,7 @@ bool scene_load_objects(SceneData *data, const SceneDesc *d, InstancingMode mode
         error_set(err, ERR_TOO_LARGE, d->path, 0, "%s: out of memory for %d objects", d->path,
                   d->num_objects);
     DerivedMaterials derived = {0};
+    data->keep_two_levels = mode == INSTANCING_ALWAYS;
     ok = ok && group_meshes(d, keys, canonical, owned, first_use, uses, err) &&
          load_all(data, d, mode, named, first_use, uses, merged, mesh_of, &derived, err);
     derived_materials_free(&derived);

@@ -56,6 +56,9 @@ typedef struct {
     /* Whether the kernels must traverse two levels: any instance other than one identity instance
      * of mesh 0 (scene_data_finish). */
     bool two_level;
+    /* Keep two BVH levels where a flat BVH would do (render/scene_upload.h scene_accel_levels):
+     * INSTANCING_ALWAYS, which measures their cost. */
+    bool keep_two_levels;
     float bounds_min[3], bounds_max[3]; /* world bounds over every instance */
     AnalyticLight *analytic_lights; /* the scene's "lights" (scene_load copies them in) */
     uint32_t num_analytic;

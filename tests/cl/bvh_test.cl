@@ -246,4 +246,24 @@ kernel void bvh_test_scene_trace(const global TraversalNode *restrict nodes,
     hits[i] = bvh_test_hit_record(h);
     instances_hit[i] = h.instance;
 }
+
+/* The same queries of a flat BVH (host/accel/scene_bvh.h BVH_FLAT): the one-level walk, or every
+ * baked triangle (num_prims entries of tris), with hits unbaked as scene_trace unbakes them. */
+kernel void bvh_test_flat_trace(const global TraversalNode *restrict nodes,
+                                const global TraversalPrim *restrict tris,
+                                const global uint2 *restrict flat_prims, uint num_prims,
+                                const global float4 *restrict rays, uint num_rays, uint mode,
+                                global float4 *restrict hits, global uint *restrict instances_hit)
+{
+    uint i = get_global_id(0);
+    if (i >= num_rays)
+        return;
+    float3 o = xyz(rays[2 * i]), d = xyz(rays[2 * i + 1]);
+    float tmin = rays[2 * i].w, tmax = rays[2 * i + 1].w;
+    Hit h = mode < 2u ? trace_bvh(nodes, tris, o, d, tmin, tmax, mode == 1u)
+                      : trace_brute_force(tris, num_prims, o, d, tmin, tmax, mode == 3u);
+    h = flat_hit_unbaked(flat_prims, h);
+    hits[i] = bvh_test_hit_record(h);
+    instances_hit[i] = h.instance;
+}
 #endif
