@@ -173,7 +173,8 @@ void render_fixture_open_flat(RenderFixture *f, const char *scene_path, int widt
 
 /* The program pt builds for a one-level scene without cut-outs or media (the packet megakernel's). */
 #define ONE_LEVEL_FEATURES \
-    (PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_CUTOUT | FEATURE_MEDIA | FEATURE_GRID_MEDIA))
+    (PROGRAM_FEATURES_ALL & ~(ProgramFeatures)(FEATURE_INSTANCES | FEATURE_TLAS | FEATURE_CUTOUT | \
+                                                FEATURE_MEDIA | FEATURE_GRID_MEDIA))
 
 void render_fixture_open_one_level(RenderFixture *f, const char *scene_path, int width, int height)
 {

@@ -11,10 +11,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include "base/transform.h"
 #include "render/aov.h"
+#include "io/image_io.h"
 #include "render/scene_upload.h"
+#include "scene/scene_hash.h"
 #include "support.h"
 
 /* A 2 x 2 quad in the plane z = `z`, counter-clockwise seen from +z (its front). */
@@ -205,6 +208,78 @@ Test(instances_render, a_flat_bvh_renders_the_brute_force_bits, .timeout = 300)
     RenderFixture f;
     render_fixture_open_flat(&f, turned_instances_scene(), 48, 48);
     expect_brute_force_bits(&f, "the flat BVH");
+}
+
+/* pt itself (session.c pairs the program's features with the levels it builds; a mismatch reads
+ * past the BVH): exit status, the summary's levels and the image, for the scene as it is (flat),
+ * with --instancing always (two levels) and with a moving tetrahedron (two levels); the first two
+ * render the same image but for rounding. */
+static float *pt_render_instances(const char *scene, const char *flags, const char *summary)
+{
+    const char *dir = test_temp_dir();
+    char cmd[4096], exr[512], log[512];
+    snprintf(exr, sizeof exr, "%s/out.exr", dir);
+    snprintf(log, sizeof log, "%s/stderr.txt", dir);
+    snprintf(cmd, sizeof cmd, "'%s' render '%s' --spp 8 --max-depth 4 --width 24 --height 24 -o '%s' %s 2>'%s'",
+             test_pt_bin(), scene, exr, flags, log);
+    int status = system(cmd);
+    char *text = test_read_file(log, NULL);
+    cr_assert(WIFEXITED(status) && WEXITSTATUS(status) == 0, "pt %s: %s", flags, text);
+    cr_expect(strstr(text, summary), "pt %s: no \"%s\" in: %s", flags, summary, text);
+    free(text);
+    float *rgb;
+    int w, h;
+    Error err = {0};
+    cr_assert(image_read_exr(exr, &rgb, &w, &h, &err), "%s", err.message);
+    return rgb;
+}
+
+Test(instances_render, pt_builds_the_walk_of_the_levels_it_chose, .timeout = 300)
+{
+    const char *scene = turned_instances_scene();
+    float *flat = pt_render_instances(scene, "", "one flat BVH over them");
+    float *two = pt_render_instances(scene, "--instancing always", "two-level BVH");
+    int n = 24 * 24 * 3, apart = 0;
+    for (int i = 0; i < n; i++)
+        apart += fabsf(flat[i] - two[i]) > 1e-3f * fmaxf(1.0f, fabsf(two[i]));
+    cr_expect(apart <= n / 50, "%d of %d values differ between pt's flat and two-level renders",
+              apart, n);
+    free(flat), free(two);
+    /* One tetrahedron moving over the shutter: two levels. */
+    char *json = test_read_file(scene, NULL);
+    const char *from = "{\"translate\": [0.45, 0.6, -0.3]}]}";
+    char *at = strstr(json, from);
+    cr_assert(at);
+    char moving[8192];
+    snprintf(moving, sizeof moving,
+             "%.*s{\"translate\": [0.45, 0.6, -0.3]}], \"transform_end\": [{\"translate\": [0.45, 0.8, "
+             "-0.3]}]}%s",
+             (int)(at - json), json, at + strlen(from));
+    free(json);
+    const char *with_shutter = strstr(moving, "\"fov_y\": 39.3}");
+    cr_assert(with_shutter);
+    char timed[8192];
+    snprintf(timed, sizeof timed, "%.*s\"fov_y\": 39.3, \"shutter\": [0, 1]}%s",
+             (int)(with_shutter - moving), moving, with_shutter + strlen("\"fov_y\": 39.3}"));
+    char dir[512]; /* beside scene.json, whose objects are relative to it */
+    snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(scene, '/') - scene), scene);
+    free(pt_render_instances(test_write_file(dir, "moving.json", timed), "", "(1 moving)"));
+}
+
+/* --instancing always reaches the levels (SceneData.keep_two_levels), and the checkpoints' scene
+ * hash tells the two apart (their hits round differently). */
+Test(instances_render, instancing_always_keeps_two_levels_and_its_own_hash)
+{
+    const char *scene = turned_instances_scene();
+    Scene a, b;
+    Error err = {0};
+    cr_assert(scene_load_with(scene, INSTANCING_AUTO, &a, &err), "%s", err.message);
+    cr_assert(scene_load_with(scene, INSTANCING_ALWAYS, &b, &err), "%s", err.message);
+    cr_expect_eq(scene_accel_levels(&a.data), BVH_FLAT);
+    cr_expect_eq(scene_accel_levels(&b.data), BVH_TWO_LEVEL);
+    cr_expect_neq(scene_hash(&a), scene_hash(&b));
+    scene_free(&a);
+    scene_free(&b);
 }
 
 /* Which levels pt builds: flat for static instances up to the budget of baked triangles; two

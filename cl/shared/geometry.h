@@ -56,8 +56,8 @@ typedef struct {
 /* Entries of the traversal's private stack; host/accel/bvh_build.c bounds the tree's depth so it never
  * overflows. */
 #define BVH_STACK_SIZE 64
-/* Two levels (FEATURE_INSTANCES): a TLAS walk's entries, then one BLAS's, each bounded as one
- * tree's. */
+/* Two levels (FEATURE_INSTANCES with FEATURE_TLAS): a TLAS walk's entries, then one BLAS's, each
+ * bounded as one tree's. */
 #define BVH_SCENE_STACK_SIZE (2 * BVH_STACK_SIZE)
 
 /* Wide BVH for CPUs (host/accel/bvh_wide.c, cl/geometry/bvh_traverse_wide.cl): the 2-wide tree collapsed to 4 or 8
@@ -120,13 +120,15 @@ typedef BvhTriangle TraversalPrim;
 /* ---- Instances (shared/DESIGN.md "Objects"; host/scene/instances.c, cl/geometry/instance.cl) -- */
 
 /* A scene is a set of instances of meshes. Every mesh (an OBJ with its material override) is
- * flattened once into the vertex and triangle arrays, in object space, and has one BVH (BLAS) in
- * bvh_nodes/bvh_tris; a top-level BVH (TLAS) over the instances' world boxes comes first in
- * bvh_nodes (root 0) and its leaves name instances. Objects without a transform whose mesh is
- * used once are merged into one mesh in world space (instance 0, the identity); a scene that has
- * nothing else is built one-level (without FEATURE_INSTANCES, shared/features.h: bvh_nodes is
- * that mesh's BVH, as in v1). Triangle indices (Hit.prim, LightEntry.triangle) are global, into
- * triangles[]. */
+ * flattened once into the vertex and triangle arrays, in object space. With two BVH levels
+ * (FEATURE_TLAS) each mesh has one BVH (BLAS) in bvh_nodes/bvh_tris, and a top-level BVH (TLAS)
+ * over the instances' world boxes comes first in bvh_nodes (root 0), its leaves naming instances;
+ * with a flat BVH (FEATURE_INSTANCES alone, host/accel/scene_bvh.h BVH_FLAT) bvh_nodes/bvh_tris
+ * hold one BVH over every instance's triangles in world space and flat_prims maps them back.
+ * Objects without a transform whose mesh is used once are merged into one mesh in world space
+ * (instance 0, the identity); a scene that has nothing else is built one-level (without
+ * FEATURE_INSTANCES, shared/features.h: bvh_nodes is that mesh's BVH, as in v1). Triangle
+ * indices (Hit.prim, LightEntry.triangle) are global, into triangles[]. */
 #define INSTANCE_STATIC 0xffffffffu /* Instance.motion of an instance that does not move */
 typedef struct {
     float4 to_world[3];  /* rows of the 3x4 object-to-world matrix M (p' = M p); a moving

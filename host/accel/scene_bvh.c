@@ -109,8 +109,8 @@ void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *tri
                                   num_instances);
         return;
     case BVH_FLAT:
-        /* Every mesh's "BLAS" is the whole tree: only the brute-force ablation of two levels
-         * reads these, and a flat BVH's ablation walks its own triangles. */
+        /* blas_root, first_prim and num_mesh_prims stay 0: only the two-level walk and its
+         * brute-force ablation read them, and a flat BVH's ablation walks its own triangles. */
         build_flat(out, positions, triangles, meshes, instances, num_instances);
         return;
     case BVH_ONE_LEVEL:
@@ -120,6 +120,15 @@ void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *tri
         die("scene_bvh_build: one level takes exactly one mesh (got %u)", num_meshes);
     build_one_level(out, positions, triangles + meshes[0].first_triangle, meshes[0].num_triangles);
     out->num_mesh_prims[0] = out->num_prims;
+}
+
+void scene_bvh_drop_arrays(SceneBvh *bvh)
+{
+    free(bvh->nodes);
+    free(bvh->prims);
+    free(bvh->flat_prims);
+    bvh->nodes = bvh->prims = NULL;
+    bvh->flat_prims = NULL;
 }
 
 void scene_bvh_free(SceneBvh *bvh)

@@ -65,5 +65,8 @@ void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *tri
                      const BvhMesh *meshes, uint32_t num_meshes, const BvhInstance *instances,
                      uint32_t num_instances, int width, bool quantized, BvhLevels levels);
 void scene_bvh_free(SceneBvh *bvh);
+/* Frees the nodes, prims and flat_prims once the device holds its copies (a flat BVH at the
+ * budget is ~90 MiB); the counts, levels, per-mesh arrays and build times stay. */
+void scene_bvh_drop_arrays(SceneBvh *bvh);
 
 #endif

@@ -83,12 +83,19 @@ static bool open_on_device(Device *dev, SceneBvh *bvh, SceneBuffers *buffers, co
     double t1 = seconds_now();
     scene_accel_build(bvh, &scene->data, dev, scene_accel_levels(&scene->data));
     *bvh_seconds = seconds_now() - t1;
+    /* A walk over the wrong levels reads past the BVH's arrays: never launch one. */
+    ProgramFeatures walk = dev->features & (ProgramFeatures)(FEATURE_INSTANCES | FEATURE_TLAS);
+    if (walk != BVH_LEVELS_FEATURES(bvh->levels))
+        die("the program's traversal features (%#x) do not match the BVH's levels (%d)", walk,
+            (int)bvh->levels);
     if (!scene_buffers_upload(dev, &scene->data, bvh, buffers, err)) {
         scene_buffers_release(buffers);
         scene_bvh_free(bvh);
         device_close(dev);
         return false;
     }
+    /* The device has the nodes and triangles now; keep only the BVH's counts and times. */
+    scene_bvh_drop_arrays(bvh);
     return true;
 }
 

@@ -143,7 +143,7 @@ uint64_t scene_hash(const Scene *scene)
     const SceneDesc *desc = &scene->desc;
     Hash64 s;
     hash64_init(&s);
-    hash64_bytes(&s, "pt scene 2", 10); /* bump when what is hashed changes */
+    hash64_bytes(&s, "pt scene 3", 10); /* bump when what is hashed changes */
     hash_array(&s, d->positions, d->num_vertices, sizeof *d->positions);
     hash_array(&s, d->normals, d->num_vertices, sizeof *d->normals);
     hash_array(&s, d->uvs, d->num_vertices, sizeof *d->uvs);
@@ -170,6 +170,7 @@ uint64_t scene_hash(const Scene *scene)
     for (uint32_t i = 0; i < d->num_instances; i++)
         hash_instance(&s, &d->instances[i]);
     hash64_u32(&s, d->two_level);
+    hash64_u32(&s, d->keep_two_levels); /* two levels or a flat BVH: the hits' rounding differs */
     hash_array(&s, d->analytic_lights, d->num_analytic, sizeof *d->analytic_lights);
     const Environment *env = &d->environment;
     size_t env_texels = (size_t)env->width * env->height;
