@@ -28,7 +28,7 @@ static void build_scene_bvh(InstancedScene *s, SceneBvh *bvh, int width, bool qu
     for (uint32_t i = 0; i < s->num_instances; i++) {
         const TestInstance *in = &s->inst[i];
         boxes[i].mesh = in->mesh;
-        memcpy(boxes[i].to_world, in->to_world.m, sizeof boxes[i].to_world);
+        boxes[i].to_world = in->to_world;
         world_box(s, in, boxes[i].lo, boxes[i].hi);
         for (int k = 0; k < 3; k++)
             s->lo[k] = fminf(s->lo[k], boxes[i].lo[k]), s->hi[k] = fmaxf(s->hi[k], boxes[i].hi[k]);

@@ -41,12 +41,11 @@ static void build_one_level(SceneBvh *out, const float4 *positions, const Triang
     out->blas_seconds = seconds_now() - t0;
 }
 
-static float4 transformed_point(const double m[3][4], float4 p)
+static float4 transformed_point(const Affine *m, float4 p)
 {
-    float4 q = {{0}};
-    for (int r = 0; r < 3; r++)
-        q.s[r] = (float)(m[r][0] * p.s[0] + m[r][1] * p.s[1] + m[r][2] * p.s[2] + m[r][3]);
-    return q;
+    double x[3] = {p.s[0], p.s[1], p.s[2]}, y[3];
+    affine_point(m, x, y);
+    return (float4){{(float)y[0], (float)y[1], (float)y[2], 0.0f}};
 }
 
 /* Flat: each instance's triangles in world space, three corners of their own each (the mesh's
@@ -73,7 +72,7 @@ static void build_flat(SceneBvh *out, const float4 *positions, const Triangle *t
         for (uint32_t t = mesh->first_triangle; t < mesh->first_triangle + mesh->num_triangles;
              t++, f++) {
             for (int k = 0; k < 3; k++)
-                world[3 * f + k] = transformed_point(instances[i].to_world,
+                world[3 * f + k] = transformed_point(&instances[i].to_world,
                                                      positions[triangles[t].v.s[k]]);
             flat[f].v = (uint4){{3 * f, 3 * f + 1, 3 * f + 2, triangles[t].v.s[3]}};
             out->flat_prims[2 * f] = i;

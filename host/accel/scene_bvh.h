@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "base/shared_types.h"
+#include "base/transform.h"
 
 /* A mesh: its range of the scene's triangle array. */
 typedef struct {
@@ -27,7 +28,7 @@ typedef struct {
 typedef struct {
     uint32_t mesh;
     float lo[3], hi[3];
-    double to_world[3][4];
+    Affine to_world;
 } BvhInstance;
 
 typedef enum {

@@ -70,7 +70,7 @@ void scene_accel_build(SceneBvh *out, const SceneData *data, const Device *dev, 
     for (uint32_t i = 0; i < ni; i++) {
         const SceneInstance *si = &data->instances[i];
         instances[i].mesh = si->mesh;
-        memcpy(instances[i].to_world, si->to_world.m, sizeof instances[i].to_world);
+        instances[i].to_world = si->to_world;
         if (levels == BVH_TWO_LEVEL)
             instance_tlas_box(data, si, &budget, instances[i].lo, instances[i].hi);
     }
