@@ -238,6 +238,38 @@ Test(texture, device_sampling_decodes_srgb_filters_repeats_and_flips_v)
     texture_set_free(&set);
 }
 
+/* An 8-bit image read as linear stays one uint per texel, and the device reads value / 255 with
+ * no decoding, bilinear like the rest, at its offset after another texture. */
+Test(texture, device_sampling_of_8_bit_linear_is_undecoded_at_its_offset)
+{
+    const char *dir = test_temp_dir();
+    char before[512], path[512];
+    snprintf(before, sizeof before, "%s/srgb-first.png", dir);
+    snprintf(path, sizeof path, "%s/linear.png", dir);
+    const unsigned char first[] = {9, 9, 9, 255};
+    cr_assert(stbi_write_png(before, 1, 1, 4, first, 4));
+    const unsigned char px[] = {255, 128, 0, 64, 0, 2, 200, 255}; /* 2 x 1 RGBA */
+    cr_assert(stbi_write_png(path, 2, 1, 4, px, 8));
+    TextureSet set = {0};
+    Error err = {0};
+    cr_assert_eq(texture_set_add(&set, before, &err), 0, "%s", err.message);
+    cr_assert_eq(texture_set_add_encoded(&set, path, TEXTURE_ENCODING_LINEAR, &err), 1, "%s",
+                 err.message);
+    cr_expect_eq(set.infos[1].format, TEXTURE_RGBA8_LINEAR);
+    cr_expect_eq(set.num_texels, 3u, "one uint per texel");
+    const float uv[][2] = {{0.25f, 0.5f}, {0.75f, 0.5f}, {0.5f, 0.5f}};
+    cl_float4 out[3];
+    sample_on_device(&set, 1, &uv[0][0], 3, out);
+    for (int i = 0; i < 3; i++)
+        for (int ch = 0; ch < 4; ch++) {
+            double a = px[ch] / 255.0, b = px[4 + ch] / 255.0;
+            double expected = i == 0 ? a : i == 1 ? b : 0.5 * (a + b);
+            cr_expect(fabs(out[i].s[ch] - expected) < 1e-6, "uv %d channel %d: got %g, expected %g",
+                      i, ch, (double)out[i].s[ch], expected);
+        }
+    texture_set_free(&set);
+}
+
 Test(texture, device_sampling_of_hdr_is_linear_at_its_offset)
 {
     const char *dir = test_temp_dir();

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* texture.cl: texture lookups on the packed texel buffer (host/scene/texture.h). Bilinear filtering,
- * repeat wrapping; 8-bit texels are sRGB-decoded before filtering. OBJ's v = 0 is the image's
+ * repeat wrapping; 8-bit sRGB texels are decoded before filtering. OBJ's v = 0 is the image's
  * bottom row, and row 0 of the stored image is its top. A texture with TextureInfo.flags (wrap
  * modes, nearest, a uv transform, a channel, a scale: glTF's samplers and textureInfos) takes
  * texture_sample_flagged; flags 0 keeps the plain path's code. */
@@ -19,7 +19,9 @@ inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, in
     }
     uint packed = texels[info.offset + index];
     float4 c = (float4)((float)(packed & 0xffu), (float)((packed >> 8) & 0xffu),
-                        (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) * (1.0f / 255.0f);
+                        (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) / 255.0f;
+    if (info.format == TEXTURE_RGBA8_LINEAR)
+        return c;
     return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);
 }
 

@@ -82,6 +82,10 @@ typedef struct {
 /* Procedural fBm Perlin noise in object space: `offset` points to 9 uints, color0 rgb, color1 rgb,
  * frequency (float bits), octaves, seed (uint); width = height = 1. */
 #define TEXTURE_NOISE 2u
+/* One uint per texel as TEXTURE_RGBA8_SRGB, but every channel linear (value / 255): 8-bit images
+ * read as data (normal, roughness, metallic, opacity maps) keep a quarter of RGBA32F's memory and
+ * traffic. */
+#define TEXTURE_RGBA8_LINEAR 3u
 
 /* How a texture is sampled (TextureInfo.flags; 0: bilinear, repeating, rgba as stored, the
  * lookup's plain path). Wrap modes per axis as glTF's samplers (GL's REPEAT, CLAMP_TO_EDGE,

@@ -33,11 +33,12 @@ uint32_t texture_set_find_key(const TextureSet *set, const char *key)
 }
 
 /* Decoded image, before packing: either 8-bit RGBA or float RGBA (stb expands grey and grey-alpha
- * to RGBA and fills a missing alpha with opaque). */
+ * to RGBA and fills a missing alpha with opaque). 8-bit rgb is sRGB-encoded unless linear8. */
 typedef struct {
     int width, height, channels;
     unsigned char *rgba8;
     float *rgba32f;
+    bool linear8;
 } DecodedImage;
 
 /* An OpenEXR image through io/exr_read.c (the reader the environment map uses): rgb, opaque. */
@@ -130,30 +131,18 @@ static float srgb_to_linear(float c)
     return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
 }
 
-/* Brings the image to the encoding it is stored with: 8-bit sRGB stays 8-bit (the kernel decodes);
- * 8-bit linear becomes float (the kernel's 8-bit format is sRGB only); float read as sRGB is
- * decoded here. */
-static bool apply_encoding(DecodedImage *img, TextureEncoding encoding, const char *path, Error *err)
+/* Brings the image to the encoding it is stored with: 8-bit stays 8-bit (TEXTURE_RGBA8_SRGB or
+ * TEXTURE_RGBA8_LINEAR; the kernel decodes); float read as sRGB is decoded here. */
+static void apply_encoding(DecodedImage *img, TextureEncoding encoding)
 {
     size_t n = 4 * (size_t)img->width * (size_t)img->height;
     if (img->rgba8 && encoding == TEXTURE_ENCODING_LINEAR) {
-        float *f = malloc(n * sizeof *f);
-        if (!f) {
-            error_set(err, ERR_TOO_LARGE, path, 0, "%s: out of memory for a linear %dx%d texture",
-                      path, img->width, img->height);
-            return false;
-        }
-        for (size_t i = 0; i < n; i++)
-            f[i] = img->rgba8[i] / 255.0f;
-        free(img->rgba8); /* stbi_image_free is free() here: stb uses the default allocator */
-        img->rgba8 = NULL;
-        img->rgba32f = f;
+        img->linear8 = true;
     } else if (img->rgba32f && encoding == TEXTURE_ENCODING_SRGB) {
         for (size_t i = 0; i < n; i++)
             if (i % 4 != 3)
                 img->rgba32f[i] = srgb_to_linear(img->rgba32f[i]);
     }
-    return true;
 }
 
 /* What the host's material checks need: channels, cut-out alpha, the mean linear colour. */
@@ -167,7 +156,9 @@ static TextureStats image_stats(const DecodedImage *img)
         srgb[i] = srgb_to_linear(i / 255.0f);
     for (size_t i = 0; i < texels; i++) {
         for (int c = 0; c < 3; c++) {
-            float v = img->rgba8 ? srgb[img->rgba8[4 * i + c]] : img->rgba32f[4 * i + c];
+            float v = !img->rgba8    ? img->rgba32f[4 * i + c]
+                      : img->linear8 ? img->rgba8[4 * i + c] / 255.0f
+                                     : srgb[img->rgba8[4 * i + c]];
             sum[c] += isfinite(v) && v > 0.0f ? v : 0.0f;
         }
         float alpha = img->rgba8 ? img->rgba8[4 * i + 3] / 255.0f : img->rgba32f[4 * i + 3];
@@ -217,7 +208,9 @@ static bool pack_texels(TextureSet *set, const char *path, const DecodedImage *i
         .offset = (uint32_t)set->num_texels,
         .width = (uint32_t)img->width,
         .height = (uint32_t)img->height,
-        .format = img->rgba32f ? TEXTURE_RGBA32F : TEXTURE_RGBA8_SRGB,
+        .format = img->rgba32f  ? TEXTURE_RGBA32F
+                  : img->linear8 ? TEXTURE_RGBA8_LINEAR
+                                 : TEXTURE_RGBA8_SRGB,
     };
     set->num_texels += uints;
     return true;
@@ -254,12 +247,9 @@ static uint32_t add_decoded(TextureSet *set, DecodedImage img, TextureEncoding e
                             const char *path, const char *key, Error *err)
 {
     TextureInfo info;
-    TextureStats stats = {0};
-    bool ok = apply_encoding(&img, encoding, path, err);
-    if (ok) {
-        stats = image_stats(&img);
-        ok = pack_texels(set, path, &img, &info, err);
-    }
+    apply_encoding(&img, encoding);
+    TextureStats stats = image_stats(&img);
+    bool ok = pack_texels(set, path, &img, &info, err);
     free(img.rgba8);
     free(img.rgba32f);
     if (!ok)

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* texture.h: textures packed into one texel buffer with per-texture offset, size and format
- * (cl/shared.h TextureInfo). 8-bit images (stb_image) with sRGB encoding stay 8-bit and the kernel
- * decodes when sampling; 8-bit images read as linear, .hdr (stb_image) and .exr (io/image_io.h)
- * are stored as linear 32-bit floats. Procedural noise textures store their parameters. Beside
+ * (cl/shared.h TextureInfo). 8-bit images (stb_image) stay 8-bit, sRGB-encoded (the kernel decodes
+ * when sampling) or linear; .hdr (stb_image) and .exr (io/image_io.h) are stored as linear 32-bit
+ * floats. Procedural noise textures store their parameters. Beside
  * the kernel's TextureInfo, the host keeps what material checks need (TextureStats). */
 #ifndef PT_TEXTURE_H
 #define PT_TEXTURE_H
@@ -30,7 +30,7 @@ typedef struct {
 } TextureNoise;
 
 typedef struct {
-    uint32_t *texels; /* see TEXTURE_RGBA8_SRGB / TEXTURE_RGBA32F / TEXTURE_NOISE */
+    uint32_t *texels; /* see TEXTURE_RGBA8_SRGB / TEXTURE_RGBA32F / TEXTURE_NOISE / TEXTURE_RGBA8_LINEAR */
     size_t num_texels; /* in uints */
     TextureInfo *infos;
     TextureStats *stats; /* per texture, host only */
