@@ -67,6 +67,35 @@ PT_INLINE bool shadow_through_media(constant RenderParams *p, const SceneView *s
     return false;
 }
 
+/* Whether something stops the shadow ray o + t d, t in [0, tmax), of sample k's path, queued at
+ * bounce (its cut-out and media streams) in medium slot `medium`; with media *contribution is
+ * scaled by the transmittance along it. brute_force is a constant at every call. Shared by
+ * connect_path and shade_surface_connect. */
+PT_INLINE bool shadow_ray_occluded(constant RenderParams *p, const SceneView *scene,
+                                   const global uint *active_pixels, uint k, float3 o, float3 d,
+                                   float tmax, float time, uint medium, uint bounce,
+                                   bool brute_force, float3 *contribution)
+{
+    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
+    if (PT_FEATURE(MEDIA)) {
+        RngKey key = path_rng_key(p, active_pixels, k);
+        float3 tr = (float3)(1.0f);
+        bool reaches = shadow_through_media(p, scene, brute_count, o, d, tmax, time, brute_force,
+                                            medium, key, bounce, &tr);
+        *contribution *= tr;
+        return !reaches;
+    }
+    if (PT_FEATURE(CUTOUT)) {
+        /* The queuing bounce's DIM_SHADOW_OPACITY stream decides the cut-out pass-throughs. */
+        RngKey key = path_rng_key(p, active_pixels, k);
+        return trace_occluded_through(scene, brute_count, o, d, tmax, time, brute_force,
+                                      rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
+    }
+    return brute_force
+               ? scene_brute_force(scene, brute_count, o, d, 0.0f, tmax, true, time).prim != HIT_NONE
+               : scene_occluded(scene, brute_count, o, d, 0.0f, tmax, time);
+}
+
 /* Traces the shadow ray that slot's path waits for (shadow_contribution_waits) and adds its
  * contribution to radiance[sample_id] when unoccluded; false, touching nothing, when none waits.
  * brute_force is a constant at every call. Shared by the kernels below and megakernel.cl. */
@@ -76,34 +105,15 @@ PT_INLINE bool connect_path(constant RenderParams *p, const SceneView *scene,
     float4 contribution = shadow_contribution[slot];
     if (!shadow_contribution_waits(contribution))
         return false;
-    uint brute_count = SCENE_BRUTE_FORCE_COUNT(p); /* scene_trace.cl */
     float4 origin = shadow_origin[slot];
     float4 direction = shadow_direction[slot];
-    float3 d = xyz(direction);
-    float tmax = shadow_origin_tmax(origin);
     float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
-    bool occluded;
-    if (PT_FEATURE(MEDIA)) {
-        RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
-        float3 tr = (float3)(1.0f);
-        occluded = !shadow_through_media(p, scene, brute_count, xyz(origin), d, tmax, time,
-                                         brute_force, shadow_direction_medium(direction), key,
-                                         shadow_direction_bounce(direction), &tr);
-        contribution = (float4)(xyz(contribution) * tr, contribution.w);
-    } else if (PT_FEATURE(CUTOUT)) {
-        /* The queuing bounce's DIM_SHADOW_OPACITY stream decides the cut-out pass-throughs. */
-        RngKey key = path_rng_key(p, active_pixels, sample_id[slot]);
-        uint bounce = shadow_direction_bounce(direction);
-        occluded = trace_occluded_through(scene, brute_count, xyz(origin), d, tmax, time,
-                                          brute_force,
-                                          rng_bounce_bits(key, bounce, DIM_SHADOW_OPACITY));
-    } else {
-        occluded = brute_force ? scene_brute_force(scene, brute_count, xyz(origin), d, 0.0f, tmax,
-                                                   true, time).prim != HIT_NONE
-                               : scene_occluded(scene, brute_count, xyz(origin), d, 0.0f, tmax,
-                                                time);
-    }
-    resolve_shadow_ray(PATH_STATE_ARGS slot, contribution, occluded);
+    float3 c = xyz(contribution);
+    bool occluded = shadow_ray_occluded(
+        p, scene, active_pixels, sample_id[slot], xyz(origin), xyz(direction),
+        shadow_origin_tmax(origin), time, shadow_direction_medium(direction),
+        shadow_direction_bounce(direction), brute_force, &c);
+    resolve_shadow_ray(PATH_STATE_ARGS slot, (float4)(c, contribution.w), occluded);
     return true;
 }
 

@@ -20,7 +20,7 @@ PT_INLINE void run_path(constant RenderParams *p, const SceneView *scene, PATH_S
 {
     while (intersect_closest_path(p, scene, PATH_STATE_ARGS slot, false)) {
         (*extension)++;
-        if (shade_path(p, scene, PATH_STATE_ARGS slot) &&
+        if (shade_path(p, scene, PATH_STATE_ARGS slot, 0) &&
             connect_path(p, scene, PATH_STATE_ARGS slot, false))
             (*shadow)++;
     }
@@ -162,7 +162,7 @@ kernel void trace_paths_packets(constant RenderParams *p, SCENE_PARAMS PATH_STAT
             for (uint slot = first; slot < end; slot++)
                 if (path_depth[slot] != 0u) {
                     extension++;
-                    shade_path(p, &scene, PATH_STATE_ARGS slot);
+                    shade_path(p, &scene, PATH_STATE_ARGS slot, 0);
                 }
             uint occluded = connect_packet(&scene, PATH_STATE_ARGS first, n);
             live = false;

@@ -8,6 +8,7 @@ typedef struct {
     float3 origin, direction, contribution;
     float tmax;
     uint medium; /* the slot of the medium it starts in (intersect_shadow tracks it with media) */
+    uint bounce; /* the bounce that queued it (its cut-out and media streams); set on queuing */
     bool queued; /* false: no ray, the other fields undefined */
 } ShadowRay;
 
@@ -72,12 +73,19 @@ PT_INLINE ShadowRay connect_light(constant RenderParams *p, const SceneView *sce
     return ray;
 }
 
-/* Stores a queued shadow ray in slot's shadow lanes (bounce: for its cut-out stream); true when
- * queued. */
-PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce)
+/* Queues a shadow ray (bounce: for its cut-out and media streams): stored in slot's shadow lanes
+ * for intersect_shadow, or with held (shade_surface_connect, which traces it at once) handed back
+ * in *held instead; true when queued. */
+PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce,
+                                ShadowRay *held)
 {
     if (!ray.queued)
         return false;
+    if (held) {
+        ray.bounce = bounce;
+        *held = ray;
+        return true;
+    }
     shadow_origin[slot] = shadow_origin_pack(ray.origin, ray.tmax);
     shadow_direction[slot] = shadow_direction_pack(ray.direction, bounce, ray.medium);
     shadow_contribution[slot] = shadow_contribution_pack(ray.contribution, true);

@@ -83,7 +83,7 @@ PT_INLINE bool continue_path(constant RenderParams *p, PATH_STATE_PARAMS uint sl
 PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *scene,
                                    const EnvMap *env, PATH_STATE_PARAMS uint slot, float3 position,
                                    float3 d, float3 beta, float eta_scale, uint state, float time,
-                                   RngKey key, uint bounce, uint depth)
+                                   RngKey key, uint bounce, uint depth, ShadowRay *held)
 {
     if (depth >= p->max_depth) {
         path_depth[slot] = 0u;
@@ -102,7 +102,7 @@ PT_INLINE bool shade_medium_vertex(constant RenderParams *p, const SceneView *sc
                 clamp_indirect(p, beta * phase * ls.radiance * (weight / ls.pdf_w), depth >= 2u);
             ray.medium = medium;
             ray.queued = true;
-            queued = queue_shadow_ray(PATH_STATE_ARGS slot, ray, bounce);
+            queued = queue_shadow_ray(PATH_STATE_ARGS slot, ray, bounce, held);
         }
     }
     uint4 u = rng_bounce_bits4(key, bounce, DIM_BSDF_U);
@@ -141,9 +141,10 @@ PT_INLINE void cross_interface(constant RenderParams *p, PATH_STATE_PARAMS uint 
     since_vertex[slot] = distance;
 }
 
-/* Shades the path in slot; true when it queued a shadow ray. */
+/* Shades the path in slot; true when it queued a shadow ray: into the slot's shadow lanes, or
+ * with held (a constant at every call site) into *held (queue_shadow_ray). */
 PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
-                          PATH_STATE_PARAMS uint slot)
+                          PATH_STATE_PARAMS uint slot, ShadowRay *held)
 {
     uint depth = path_depth[slot];
     if (depth == 0u)
@@ -175,7 +176,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         if (event == MEDIUM_EVENT_SCATTER)
             return shade_medium_vertex(p, scene, &env, PATH_STATE_ARGS slot,
                                        origin + t_event * xyz(direction), xyz(direction), beta,
-                                       eta_scale, state, time, key, bounce, depth);
+                                       eta_scale, state, time, key, bounce, depth, held);
         if (event == MEDIUM_EVENT_ABSORB) {
             path_depth[slot] = 0u;
             return false;
@@ -213,7 +214,7 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
         SurfaceBsdf sb = surface_bsdf(scene, &sp, h.prim, m, leaf);
         ShadowRay shadow =
             connect_light(p, scene, &env, &sp, &sb, tm, beta, medium, time, key, bounce, depth);
-        queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce);
+        queued = queue_shadow_ray(PATH_STATE_ARGS slot, shadow, bounce, held);
         path_continues = continue_path(p, PATH_STATE_ARGS slot, &sp, &sb, tm, beta, eta_scale,
                                        medium, crossings, key, bounce, depth);
     }
@@ -234,7 +235,7 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
     uint slot = i < n_active ? active[i] : 0u;
-    bool queued = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot);
+    bool queued = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot, 0);
     if (!(p->flags & RENDER_SHADOW_QUEUE))
         return; /* uniform: no barrier below is reached by anyone */
     if (get_local_id(0) == 0)

@@ -22,7 +22,8 @@
     X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
     X(AOV, "render_aov")                                                                           \
     X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
-    X(TAIL, "finish_paths")
+    X(TAIL, "finish_paths")                                                                        \
+    X(CONNECT, "shade_surface_connect")
 typedef struct BackgroundBuild BackgroundBuild;
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };

@@ -62,12 +62,14 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         w->stats->stage_ms[STAGE_SORT_MATERIALS] += ms;
         w->stats->stage_launches[STAGE_SORT_MATERIALS]++;
     }
-    if (!w->settings.shadow_flags) {
+    bool connects = w->settings.connect_in_shading; /* shade_surface_connect: no shadow stage */
+    if (!w->settings.shadow_flags && !connects) {
         uint32_t zero = 0;
         device_fill(w->dev, w->shadow_count, &zero, sizeof zero, 0, sizeof zero, NULL);
     }
     run_over_active(w, STAGE_SHADE_SURFACE, n_active);
-    run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
+    if (!connects)
+        run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
 }
 
 /* The window's extension rays so far (a read-back: waits for the queue). */

@@ -44,6 +44,9 @@ typedef struct {
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = the default (render/pool_size.h); at least the pool */
     int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
+    bool connect_in_shading; /* the wavefront's shading traces each vertex's shadow ray itself
+                              * (shade_surface_connect: no intersect_shadow launch); also
+                              * PT_CONNECT_IN_SHADING=1. Not with brute_force (pt bench's row) */
     int tail_paths;       /* the wavefront takes a window's last paths to their ends in one launch
                            * (finish_paths, megakernel.h) once no samples are left to start and at
                            * most this many are live; 0: PT_TAIL_PATHS, else TAIL_PATHS_DEFAULT;
@@ -72,12 +75,13 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
  *            TAIL: by tail_init or tail_kernel_ready (megakernel.h), the windows' last paths;
  *            HELPER: by the helper.
  *   variant  a second kernel "<kernel>_<variant>" that some settings take instead: BRUTE_FORCE (the
- *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), or NONE. */
+ *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), CONNECT
+ *            (shading that traces its shadow rays, connect_in_shading), or NONE. */
 #define STAGES(X)                                                                                  \
     X(GENERATE_CAMERA_RAYS, generate_camera_rays, OWN_COUNT, INIT, NONE)                           \
     X(INTERSECT_CLOSEST, intersect_closest, OVER_ACTIVE, INIT, BRUTE_FORCE)                        \
     X(SORT_MATERIALS, sort_materials, HELPER, HELPER, NONE)                                        \
-    X(SHADE_SURFACE, shade_surface, OVER_ACTIVE, INIT, NONE)                                       \
+    X(SHADE_SURFACE, shade_surface, OVER_ACTIVE, INIT, CONNECT)                                    \
     X(INTERSECT_SHADOW, intersect_shadow, OVER_ACTIVE, INIT, BRUTE_FORCE)                          \
     X(COMPACT_PATHS, compact_paths, HELPER, HELPER, NONE)                                          \
     X(ACCUMULATE_FILM, accumulate_film, OWN_COUNT, INIT, MOMENTS)                                  \

@@ -19,10 +19,11 @@ const char *const stage_names[STAGE_COUNT] = {STAGES(STAGE_NAME)};
 /* The columns of STAGES that setting up the kernels reads (wavefront.h says what they mean). */
 enum { STAGE_OVER_ACTIVE, STAGE_OWN_COUNT, STAGE_HELPER };
 enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_TAIL, STAGE_MADE_HELPER };
-enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS };
+enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS, STAGE_VARIANT_CONNECT };
 #define STAGE_VARIANT_KERNEL_NONE(kernel) NULL
 #define STAGE_VARIANT_KERNEL_BRUTE_FORCE(kernel) #kernel "_brute_force"
 #define STAGE_VARIANT_KERNEL_MOMENTS(kernel) #kernel "_moments"
+#define STAGE_VARIANT_KERNEL_CONNECT(kernel) #kernel "_connect"
 static const struct {
     int launch, made, variant;
     const char *variant_kernel;
@@ -69,13 +70,17 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
 
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
- * film with its second moments, so that the plain accumulation stays as it was (the variant
- * column of STAGES). */
+ * film with its second moments, so that the plain accumulation stays as it was, and shading that
+ * traces its own shadow rays (the variant column of STAGES). NULL: the stage does not run
+ * (intersect_shadow when shading connects). */
 static const char *stage_kernel(int stage, const RenderSettings *s)
 {
     int variant = stage_kinds[stage].variant;
+    if (stage == STAGE_INTERSECT_SHADOW && s->connect_in_shading)
+        return NULL;
     if ((variant == STAGE_VARIANT_BRUTE_FORCE && s->brute_force) ||
-        (variant == STAGE_VARIANT_MOMENTS && s->moments))
+        (variant == STAGE_VARIANT_MOMENTS && s->moments) ||
+        (variant == STAGE_VARIANT_CONNECT && s->connect_in_shading))
         return stage_kinds[stage].variant_kernel;
     return stage_names[stage];
 }
@@ -92,8 +97,11 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
                           s->clamp_indirect);
         return false;
     }
-    if (!adaptive_configure(w, scene, &w->settings, err))
+    if (!adaptive_configure(w, scene, &w->settings, err) ||
+        !env_flag("PT_CONNECT_IN_SHADING", s->connect_in_shading, &w->settings.connect_in_shading,
+                  err))
         return false;
+    w->settings.connect_in_shading &= !s->brute_force; /* connect_path's walk is the BVH's */
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     bool gpu = (dev->type & CL_DEVICE_TYPE_GPU) != 0;
@@ -157,7 +165,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     /* The megakernel replaces every stage but the film's: their kernels are not asked for, so
      * their part of the program is never built (device_kernel builds parts on demand). */
     for (int k = 0; k < STAGE_COUNT; k++)
-        if (stage_kinds[k].made == STAGE_MADE_INIT &&
+        if (stage_kinds[k].made == STAGE_MADE_INIT && stage_kernel(k, s) &&
             (!w->kernels[STAGE_TRACE_PATHS] || k == STAGE_ACCUMULATE_FILM))
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
     if (!tail_init(w, err))
@@ -231,10 +239,13 @@ static void set_all_args(Wavefront *w)
         w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
         KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
                     KARG(w->counters));
-        KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE],
-                    KARG(w->shadow_queue), KARG(w->shadow_count));
-        KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
-                    KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
+        i = KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE],
+                        KARG(w->shadow_queue), KARG(w->shadow_count));
+        if (w->settings.connect_in_shading) /* shade_surface_connect counts its shadow rays */
+            KERNEL_ARG(w->kernels[STAGE_SHADE_SURFACE], i, w->counters);
+        else
+            KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
+                        KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
     }
     if (w->kernels[STAGE_FINISH_PATHS])
         wavefront_bind_tail(w);
