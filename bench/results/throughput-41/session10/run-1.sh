@@ -60,16 +60,16 @@ for n in dict.fromkeys(r['scene'] for r in rows):
         print(n, 'missing values', [r for r in rows if r['scene'] == n])
 PY
 echo "== rounds $(el) s"
-for r in 1 2; do for c in "" "--sort-materials"; do
+for r in 1; do for c in "" "--sort-materials"; do
   echo "room round $r ${c:-default}: $($NEW render /tmp/nw/normal-walls.json $R $c -o /tmp/q.exr 2>&1 | mp)  connect: $(PT_CONNECT_IN_SHADING=1 $NEW render /tmp/nw/normal-walls.json $R $c -o /tmp/q.exr 2>&1 | mp)"
 done; done
-for s in tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/nw2/normal-walls.json /tmp/small-light.json; do
+for s in tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/nw2/normal-walls.json; do
   for e in 0 1; do echo "-- profile $s connect=$e"
     PT_CONNECT_IN_SHADING=$e $NEW render $s $R --profile -o /tmp/q.exr 2>&1 | grep -E "Mpaths|^[a-z_]+ +[0-9]+ +[0-9.]+ +[0-9.]+%"; done; done
 echo "== profiles $(el) s"
 wait $PIP; cat /tmp/pip.txt
 export PYTHONPATH=/tmp/site PYTHON=python3 PT=$NEW DEVICE=gpu WIDTH=1280 HEIGHT=960 SPP=64 DEPTH=8 ROUNDS=1
-timeout $(( 520 - $(el) )) tools/bench-vs-mitsuba.sh tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/small-light.json tests/scenes/envmap tests/scenes/conductors tests/scenes/cornell-sphere /tmp/torus-100k.json -o $O/plain > $O/plain.txt 2>&1
+timeout $(( 440 - $(el) )) tools/bench-vs-mitsuba.sh tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/small-light.json tests/scenes/envmap tests/scenes/conductors tests/scenes/cornell-sphere /tmp/torus-100k.json -o $O/plain > $O/plain.txt 2>&1
 echo "plain rc=$? $(el) s"; grep -A20 "renderer" $O/plain.txt || tail -30 $O/plain.txt
 grep -h "shade-connect" $O/plain/pt.csv | cut -d, -f1-12 | head -10
 echo "== done $(el) s"
