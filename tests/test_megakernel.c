@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 /* The CPU's path-per-work-item kernel (PATH_KERNEL_MEGAKERNEL, cl/stages/megakernel.cl), the
- * wavefront's tail and the wavefront whose shading traces its own shadow rays
- * (connect_in_shading, cl/stages/shade_surface_connect.cl) against the plain wavefront on the same
- * device: the same stage functions in the same order per path, so the same rays and the film's
+ * wavefront's tail and the wavefront whose shading leaves its shadow rays to intersect_shadow
+ * (split_shadow) against the wavefront, whose shading traces them, on the same device: the same stage functions in the same order per path, so the same rays and the film's
  * very bits, on scenes that exercise every material family, textures, normal maps, media, the
  * environment map, the indirect clamp and adaptive sampling (whose windows cycle over the pixels
  * still sampled). And which of them a render gets. */
@@ -75,15 +74,17 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     cr_expect_gt(tail.stage_launches[STAGE_FINISH_PATHS], 0, "%s: finish_paths never ran", scene);
     expect_same_bits(scene, "the wavefront's tail", &f, a, b, &wave, &tail);
     free(b);
-    /* Shading that traces its own shadow rays: no intersect_shadow launch, the same bits. */
-    RenderSettings c = s;
-    c.connect_in_shading = true;
-    RenderStats connected;
-    b = render_fixture_render(&f, c, &connected);
-    cr_expect_eq(connected.stage_launches[STAGE_INTERSECT_SHADOW], 0,
+    /* Shadow rays traced by intersect_shadow (split) or by the shading that queued them (the
+     * wavefront's default): the same bits. */
+    cr_expect_eq(wave.stage_launches[STAGE_INTERSECT_SHADOW], 0,
                  "%s: intersect_shadow ran while shading connects", scene);
-    cr_expect_gt(connected.stage_launches[STAGE_SHADE_SURFACE], 0, "%s: shading never ran", scene);
-    expect_same_bits(scene, "shading that connects", &f, a, b, &wave, &connected);
+    RenderSettings c = s;
+    c.split_shadow = true;
+    RenderStats split;
+    b = render_fixture_render(&f, c, &split);
+    cr_expect_gt(split.stage_launches[STAGE_INTERSECT_SHADOW], 0,
+                 "%s: split shadow rays but no intersect_shadow", scene);
+    expect_same_bits(scene, "the split shadow stage", &f, a, b, &wave, &split);
     free(b);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
@@ -114,7 +115,7 @@ Test(megakernel, same_bits_and_rays_as_the_wavefront, .timeout = 600)
 }
 
 /* Media and `interface` surfaces (the medium state and since_vertex ride along with the path):
- * the tail, the megakernel and shading that connects render the wavefront's bits (tests' program
+ * the tail, the megakernel and the split shadow stage render the wavefront's bits (tests' program
  * only: the one-level program has no media). The smoke's grid medium draws its shadow rays'
  * ratio tracking from the queuing bounce's stream. */
 Test(megakernel, same_bits_with_media, .timeout = 600)
