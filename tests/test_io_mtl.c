@@ -204,7 +204,7 @@ Test(mtl_mapping, pbr_extension_is_principled)
     uint32_t pr = m.tex[MATERIAL_TEX_ROUGHNESS];
     cr_assert_neq(pr, NO_TEXTURE);
     cr_expect_eq(m.tex[MATERIAL_TEX_METALLIC], pr, "one file, one texture");
-    cr_expect_eq(scene.data.textures.infos[pr].format, TEXTURE_RGBA32F, "map_Pr is linear");
+    cr_expect_eq(scene.data.textures.infos[pr].format, TEXTURE_RGBA8_LINEAR, "map_Pr is linear");
     scene_free(&scene);
     m = mapped("Kd 0.5 0.4 0.3\nPm 0.5");
     cr_expect_eq(m.type, MATERIAL_PRINCIPLED, "Pm alone");
@@ -285,7 +285,7 @@ Test(mtl_mapping, opacity_from_map_d_d_and_rgba_map_kd)
     Material m = mtl_material("Kd 1 1 1\nmap_d g.png", &scene);
     uint32_t d = m.tex[MATERIAL_TEX_OPACITY];
     cr_assert_neq(d, NO_TEXTURE);
-    cr_expect_eq(scene.data.textures.infos[d].format, TEXTURE_RGBA32F, "map_d is linear");
+    cr_expect_eq(scene.data.textures.infos[d].format, TEXTURE_RGBA8_LINEAR, "map_d is linear");
     cr_expect(m.flags & MATERIAL_FLAG_CUTOUT);
     scene_free(&scene);
     m = mapped("Kd 1 1 1\nd 0.25");
