@@ -29,7 +29,9 @@ typedef struct {
     bool sort_materials; /* shade the live paths grouped by the material they hit */
     bool split_shadow;   /* intersect_shadow as a stage of its own, reading the shadow rays that
                           * shade_surface stored, instead of shading that traces them itself
-                          * (the kernel shade_surface, the default); also PT_CONNECT_IN_SHADING=0.
+                          * (the kernel shade_surface, the default up to CONNECT_MAX_TRIANGLES
+                          * traced triangles, wavefront_state.c); PT_CONNECT_IN_SHADING=0|1
+                          * overrides that choice.
                           * shadow_flags and brute_force imply it (pt bench's split-shadow row) */
     bool shadow_flags;   /* with split_shadow: intersect_shadow checks a flag per active path
                           * instead of reading the queue that shade_surface appends to with

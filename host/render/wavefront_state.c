@@ -68,6 +68,14 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
     return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
 }
 
+/* Shading traces its own shadow rays (the kernel shade_surface) in scenes of at most this many
+ * traced triangles, and leaves them to intersect_shadow in larger ones: the fused kernel holds
+ * shading's registers through the walk, which costs more as walks grow longer, while what it
+ * saves (the shadow lanes' stores and loads, a launch, the queue) is the same per ray. On an H100
+ * it won from 36 triangles (+10%) to 25k (+3.5%) and lost at 50k (-9%) and 114k (-5%)
+ * (bench/README.md "Shading that traces its shadow rays"). */
+#define CONNECT_MAX_TRIANGLES (1u << 15)
+
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
  * film with its second moments, so that the plain accumulation stays as it was, and shading that
@@ -97,7 +105,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
                           s->clamp_indirect);
         return false;
     }
-    bool connects = !s->split_shadow;
+    bool connects =
+        !s->split_shadow && scene_traced_triangles(&scene->data) <= CONNECT_MAX_TRIANGLES;
     if (!adaptive_configure(w, scene, &w->settings, err) ||
         !env_flag("PT_CONNECT_IN_SHADING", connects, &connects, err))
         return false;
