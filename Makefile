@@ -53,8 +53,7 @@ CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shar
               cl/parallel/scan.cl cl/parallel/sort_materials.cl cl/post/bloom.cl \
               cl/stages/path_state.cl cl/stages/render_aov.cl cl/stages/generate_camera_rays.cl \
               cl/stages/intersect_closest.cl cl/stages/shade_emission.cl \
-              cl/stages/shade_next_event.cl cl/stages/shade_surface.cl cl/stages/intersect_shadow.cl \
-              cl/stages/shade_surface_connect.cl \
+              cl/stages/shade_next_event.cl cl/stages/intersect_shadow.cl cl/stages/shade_surface.cl \
               cl/stages/integrate_geodesic.cl cl/stages/megakernel.cl \
               cl/stages/accumulate_film.cl cl/stages/film_variance.cl cl/stages/adaptive_select.cl
 

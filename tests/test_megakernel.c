@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 /* The CPU's path-per-work-item kernel (PATH_KERNEL_MEGAKERNEL, cl/stages/megakernel.cl), the
- * wavefront's tail and the wavefront whose shading traces its own shadow rays
- * (connect_in_shading, cl/stages/shade_surface_connect.cl) against the plain wavefront on the same
- * device: the same stage functions in the same order per path, so the same rays and the film's
+ * wavefront's tail and the wavefront whose shading leaves its shadow rays to intersect_shadow
+ * (split_shadow) against the wavefront, whose shading traces them, on the same device: the same stage functions in the same order per path, so the same rays and the film's
  * very bits, on scenes that exercise every material family, textures, normal maps, media, the
  * environment map, the indirect clamp and adaptive sampling (whose windows cycle over the pixels
  * still sampled). And which of them a render gets. */
 #include <criterion/criterion.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -75,15 +75,17 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     cr_expect_gt(tail.stage_launches[STAGE_FINISH_PATHS], 0, "%s: finish_paths never ran", scene);
     expect_same_bits(scene, "the wavefront's tail", &f, a, b, &wave, &tail);
     free(b);
-    /* Shading that traces its own shadow rays: no intersect_shadow launch, the same bits. */
-    RenderSettings c = s;
-    c.connect_in_shading = true;
-    RenderStats connected;
-    b = render_fixture_render(&f, c, &connected);
-    cr_expect_eq(connected.stage_launches[STAGE_INTERSECT_SHADOW], 0,
+    /* Shadow rays traced by intersect_shadow (split) or by the shading that queued them (the
+     * wavefront's default): the same bits. */
+    cr_expect_eq(wave.stage_launches[STAGE_INTERSECT_SHADOW], 0,
                  "%s: intersect_shadow ran while shading connects", scene);
-    cr_expect_gt(connected.stage_launches[STAGE_SHADE_SURFACE], 0, "%s: shading never ran", scene);
-    expect_same_bits(scene, "shading that connects", &f, a, b, &wave, &connected);
+    RenderSettings c = s;
+    c.split_shadow = true;
+    RenderStats split;
+    b = render_fixture_render(&f, c, &split);
+    cr_expect_gt(split.stage_launches[STAGE_INTERSECT_SHADOW], 0,
+                 "%s: split shadow rays but no intersect_shadow", scene);
+    expect_same_bits(scene, "the split shadow stage", &f, a, b, &wave, &split);
     free(b);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
@@ -114,7 +116,7 @@ Test(megakernel, same_bits_and_rays_as_the_wavefront, .timeout = 600)
 }
 
 /* Media and `interface` surfaces (the medium state and since_vertex ride along with the path):
- * the tail, the megakernel and shading that connects render the wavefront's bits (tests' program
+ * the tail, the megakernel and the split shadow stage render the wavefront's bits (tests' program
  * only: the one-level program has no media). The smoke's grid medium draws its shadow rays'
  * ratio tracking from the queuing bounce's stream. */
 Test(megakernel, same_bits_with_media, .timeout = 600)
@@ -283,4 +285,56 @@ Test(megakernel, no_slot_waits_for_a_shadow_ray_after_a_window, .timeout = 300)
     RenderSettings packets = {.spp = 4, .max_depth = 8, .seed = 3, .pool_size = 128,
                               .path_kernel = PATH_KERNEL_MEGAKERNEL};
     expect_no_slot_waits("scenes/cornell-box/scene.json", true, packets, "megakernel");
+}
+
+/* A lit grid of n x n quads (2 n^2 triangles) facing the camera, its scene's path returned. */
+static const char *write_grid_scene(const char *name, int n)
+{
+    static char scene[512];
+    char obj[512];
+    const char *dir = test_temp_dir();
+    snprintf(obj, sizeof obj, "%s/%s.obj", dir, name);
+    snprintf(scene, sizeof scene, "%s/%s.json", dir, name);
+    FILE *f = fopen(obj, "w");
+    cr_assert_not_null(f);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            fprintf(f, "v %g %g 0\n", (double)i / n - 0.5, (double)j / n - 0.5);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            fprintf(f, "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+        }
+    fclose(f);
+    f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"up\": [0, 1, 0], "
+               "\"fov_y\": 40}, \"film\": {\"width\": 8, \"height\": 8}, "
+               "\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 1], \"intensity\": 1}], "
+               "\"objects\": [{\"obj\": \"%s.obj\"}]}\n", name);
+    fclose(f);
+    return scene;
+}
+
+/* The wavefront's shading traces its shadow rays in scenes of up to 2^15 traced triangles and
+ * leaves them to intersect_shadow in larger ones (CONNECT_MAX_TRIANGLES); PT_CONNECT_IN_SHADING
+ * is not set here. Grids of 2 x 128^2 = 32768 and 2 x 129^2 = 33282 triangles. */
+Test(megakernel, shading_connects_up_to_2_15_triangles, .timeout = 240)
+{
+    const int sizes[] = {128, 129};
+    for (int k = 0; k < 2; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "grid%d", sizes[k]);
+        RenderFixture f;
+        render_fixture_open(&f, write_grid_scene(name, sizes[k]), 8, 8);
+        RenderStats st;
+        free(render_fixture_render(&f, (RenderSettings){.spp = 1, .max_depth = 2,
+                                                        .path_kernel = PATH_KERNEL_WAVEFRONT},
+                                   &st));
+        cr_expect_gt(st.shadow_rays, 0u, "%s: no shadow rays", name);
+        cr_expect_eq(st.stage_launches[STAGE_INTERSECT_SHADOW] > 0, k == 1,
+                     "%s: intersect_shadow launched %u times", name,
+                     st.stage_launches[STAGE_INTERSECT_SHADOW]);
+        render_fixture_close(&f);
+    }
 }

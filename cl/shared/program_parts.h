@@ -19,7 +19,7 @@
 #define PT_PART_BIT_AOV 4u        /* render_aov */
 #define PT_PART_BIT_ABLATION 8u   /* the brute-force intersection kernels (--brute-force) */
 #define PT_PART_BIT_TAIL 16u      /* finish_paths: the last paths of the wavefront's windows */
-#define PT_PART_BIT_CONNECT 32u   /* shade_surface_connect (RenderSettings.connect_in_shading) */
+#define PT_PART_BIT_SPLIT 32u     /* shade_surface_split, intersect_shadow (RenderSettings.split_shadow) */
 #define PT_PARTS_ALL 63u
 
 #ifdef __OPENCL_C_VERSION__

@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* intersect_shadow: resolves the next-event shadow rays that shade_surface queued.
+/* intersect_shadow: resolves the next-event shadow rays that shade_surface_split queued (the
+ * wavefront with RenderSettings.split_shadow; shade_surface traces its own with
+ * shadow_ray_occluded, and the megakernels with connect_path).
  * Reads: active[0..n_active), shadow_origin (tmax), shadow_direction (bounce: the one that queued
  * it, for the cut-out decisions), shadow_contribution (waits), sample_id. Writes:
  * radiance[sample_id] += contribution when unoccluded; shadow_contribution's waits = false.
@@ -70,7 +72,7 @@ PT_INLINE bool shadow_through_media(constant RenderParams *p, const SceneView *s
 /* Whether something stops the shadow ray o + t d, t in [0, tmax), of sample k's path, queued at
  * bounce (its cut-out and media streams) in medium slot `medium`; with media *contribution is
  * scaled by the transmittance along it. brute_force is a constant at every call. Shared by
- * connect_path and shade_surface_connect. */
+ * connect_path and shade_surface (shade_surface.cl). */
 PT_INLINE bool shadow_ray_occluded(constant RenderParams *p, const SceneView *scene,
                                    const global uint *active_pixels, uint k, float3 o, float3 d,
                                    float tmax, float time, uint medium, uint bounce,
@@ -136,7 +138,7 @@ PT_INLINE void intersect_shadow_group(constant RenderParams *p, const SceneView 
     count_group_rays(group_rays, 0u, traced ? 1u : 0u, counters);
 }
 
-#if PT_PART(CORE)
+#if PT_PART(SPLIT)
 kernel void intersect_shadow(INTERSECT_SHADOW_PARAMS)
 {
     local uint group_rays[2];

@@ -74,7 +74,7 @@ PT_INLINE ShadowRay connect_light(constant RenderParams *p, const SceneView *sce
 }
 
 /* Queues a shadow ray (bounce: for its cut-out and media streams): stored in slot's shadow lanes
- * for intersect_shadow, or with held (shade_surface_connect, which traces it at once) handed back
+ * for intersect_shadow, or with held (the kernel shade_surface, which traces it at once) handed back
  * in *held instead; true when queued. */
 PT_INLINE bool queue_shadow_ray(PATH_STATE_PARAMS uint slot, ShadowRay ray, uint bounce,
                                 ShadowRay *held)

@@ -5,10 +5,11 @@
  * of different depths share a launch once slots are refilled.
  * Reads: hit, hit_instance (PT_FEATURE(INSTANCES)), path_time (PT_FEATURE(MOTION): where moving
  * instances and their emitters are), ray_*, throughput, path_depth, sample_id, scene. Writes:
- * radiance[sample_id], throughput, ray_* (next segment), shadow_* (waits when queued), path_depth
- * (depth + 1, or 0 when the path ends). Positions, normals and directions are world space;
- * textures are looked up at the hit's object-space point (surface.cl).
- * Next: intersect_shadow, then compaction. */
+ * radiance[sample_id], throughput, ray_* (next segment), path_depth (depth + 1, or 0 when the
+ * path ends), and with shade_surface_split shadow_* (waits when queued). Positions, normals and
+ * directions are world space; textures are looked up at the hit's object-space point (surface.cl).
+ * The kernel shade_surface also traces the vertex's shadow ray (below); shade_surface_split leaves
+ * it to intersect_shadow. Next: compaction. */
 
 /* ---- shade_path's steps (the names of Cycles' integrator_shade_surface): the light it gathers is
  * shade_emission.cl's, its light connection shade_next_event.cl's, the vertex set-up it shares
@@ -223,11 +224,49 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
     return queued;
 }
 
-/* With shadow_queue != 0 (RENDER_SHADOW_QUEUE), the slots that queued a shadow ray are appended to
- * shadow_queue[] (one global atomic per work-group, on shadow_count[0]) so that intersect_shadow
- * runs over those only; otherwise intersect_shadow checks every active slot's flag. */
+/* shade_surface: shades each active slot's vertex (shade_path) and traces the shadow ray it
+ * queued at once, from registers (shadow_ray_occluded, intersect_shadow.cl): the shadow lanes are
+ * neither written nor read, and no second launch, shadow queue or second read of the active list
+ * runs per step. The additions to radiance[sample_id] come in the split stages' order (the
+ * vertex's own light, then the shadow ray's), so the film's bits are theirs. What it costs: lanes
+ * whose vertex queued no ray (specular, or the light behind) idle while the others trace, and the
+ * traversal's registers join shading's. counters[COUNTER_SHADOW_RAYS] counts the shadow rays
+ * (count_group_rays). */
 #if PT_PART(CORE)
 kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
+                          const global uint *active, uint n_active, global uint *counters)
+{
+    local uint group_rays[2];
+    clear_group_rays(group_rays);
+    SceneView scene = SCENE_VIEW;
+    uint i = get_global_id(0);
+    bool traced = false;
+    if (i < n_active) {
+        uint slot = active[i];
+        ShadowRay ray;
+        if (shade_path(p, &scene, PATH_STATE_ARGS slot, &ray)) {
+            float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
+            uint k = sample_id[slot];
+            float3 c = ray.contribution;
+            if (!shadow_ray_occluded(p, &scene, active_pixels, k, ray.origin, ray.direction,
+                                     ray.tmax, time, ray.medium, ray.bounce, false, &c))
+                radiance[k] += (float4)(c, 0.0f);
+            traced = true;
+        }
+    }
+    /* Every work item gets here: no early return above. */
+    count_group_rays(group_rays, 0u, traced ? 1u : 0u, counters);
+}
+#endif
+
+/* shade_surface_split: shading that stores each queued shadow ray in its slot's lanes for
+ * intersect_shadow (RenderSettings.split_shadow: the wavefront before issue 41's tenth session,
+ * kept to measure against). With shadow_queue != 0 (RENDER_SHADOW_QUEUE), the slots that queued a
+ * shadow ray are appended to shadow_queue[] (one global atomic per work-group, on shadow_count[0])
+ * so that intersect_shadow runs over those only; otherwise intersect_shadow checks every active
+ * slot's flag. */
+#if PT_PART(SPLIT)
+kernel void shade_surface_split(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                           const global uint *active, uint n_active, global uint *shadow_queue,
                           global uint *shadow_count)
 {

@@ -93,9 +93,9 @@ static void append_profile_csv(const char *csv, const Session *s, const RenderSt
  * neither (every bounce over the whole pool). "default" takes the path kernel pt render takes (on
  * CPUs the megakernel, render/megakernel.h); the wavefront's ablations are pinned to the
  * wavefront; "megakernel" is the megakernel on any device (with packets where it has them),
- * "megakernel-single" the one with one path per work item; "shade-connect" the wavefront
- * whose shading traces its own shadow rays (RenderSettings.connect_in_shading), sorting as the
- * default. */
+ * "megakernel-single" the one with one path per work item; "split-shadow" the wavefront whose
+ * shading leaves its shadow rays to intersect_shadow (RenderSettings.split_shadow), sorting as
+ * the default; "shadow-flags" is split too. */
 typedef struct {
     const char *name;
     bool no_compaction;
@@ -104,7 +104,7 @@ typedef struct {
     int sort_materials; /* SORT_MATERIALS_* (render/session.h) */
     bool brute_force; /* only on scenes of at most BRUTE_FORCE_MAX_TRIANGLES */
     int path_kernel;  /* PATH_KERNEL_* */
-    bool connect_in_shading;
+    bool split_shadow;
 } BenchMode;
 
 static const BenchMode modes[] = {
@@ -116,7 +116,7 @@ static const BenchMode modes[] = {
     {"no-refill", false, 1, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT, false},
     {"no-compaction", true, 0, false, SORT_MATERIALS_OFF, false, PATH_KERNEL_WAVEFRONT, false},
     {"sort-materials", false, 0, false, SORT_MATERIALS_ON, false, PATH_KERNEL_WAVEFRONT, false},
-    {"shade-connect", false, 0, false, SORT_MATERIALS_AUTO, false, PATH_KERNEL_WAVEFRONT, true},
+    {"split-shadow", false, 0, false, SORT_MATERIALS_AUTO, false, PATH_KERNEL_WAVEFRONT, true},
     {"brute-force", false, 0, false, SORT_MATERIALS_OFF, true, PATH_KERNEL_WAVEFRONT, false},
 };
 #define BRUTE_FORCE_MAX_TRIANGLES 4096
@@ -157,7 +157,7 @@ int command_bench(const Options *o)
         settings[m].shadow_flags = modes[m].shadow_flags;
         settings[m].brute_force = modes[m].brute_force;
         settings[m].path_kernel = modes[m].path_kernel;
-        settings[m].connect_in_shading = modes[m].connect_in_shading;
+        settings[m].split_shadow = modes[m].split_shadow;
         settings[m].sort_materials = session_sorts_materials(&s.scene.data, modes[m].sort_materials);
         /* Warm-up: PoCL specialises each kernel for the launch sizes it first sees (a second or
          * more, once per machine); keep that out of the figures. */

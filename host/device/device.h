@@ -23,7 +23,7 @@
     X(AOV, "render_aov")                                                                           \
     X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
     X(TAIL, "finish_paths")                                                                        \
-    X(CONNECT, "shade_surface_connect")
+    X(SPLIT, "shade_surface_split intersect_shadow")
 typedef struct BackgroundBuild BackgroundBuild;
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };

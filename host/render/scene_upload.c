@@ -45,15 +45,23 @@ static void instance_tlas_box(const SceneData *data, const SceneInstance *si, ui
         lo[k] = fmaxf(lo[k], elo[k]), hi[k] = fminf(hi[k], ehi[k]);
 }
 
+uint64_t scene_traced_triangles(const SceneData *data)
+{
+    if (!data->two_level)
+        return data->num_triangles;
+    uint64_t all = 0;
+    for (uint32_t i = 0; i < data->num_instances; i++)
+        all += data->meshes[data->instances[i].mesh].num_triangles;
+    return all;
+}
+
 BvhLevels scene_accel_levels(const SceneData *data)
 {
     if (!data->two_level)
         return BVH_ONE_LEVEL;
     if (data->keep_two_levels || data->num_moving > 0)
         return BVH_TWO_LEVEL;
-    uint64_t baked = 0;
-    for (uint32_t i = 0; i < data->num_instances; i++)
-        baked += data->meshes[data->instances[i].mesh].num_triangles;
+    uint64_t baked = scene_traced_triangles(data);
     return baked > 0 && baked <= FLAT_BVH_TRIANGLE_BUDGET ? BVH_FLAT : BVH_TWO_LEVEL;
 }
 

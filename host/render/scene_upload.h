@@ -31,6 +31,9 @@ RenderParams render_params_for_scene(const SceneDesc *desc, const SceneBuffers *
  * overlap of instance boxes (bench/README.md "Flat BVHs for instances"). */
 #define FLAT_BVH_TRIANGLE_BUDGET (1u << 20)
 BvhLevels scene_accel_levels(const SceneData *data);
+/* The triangles rays are traced against: the scene's, or every instance's mesh's, counted once
+ * per instance. */
+uint64_t scene_traced_triangles(const SceneData *data);
 /* The program features those levels need (cl/shared/features.h: INSTANCES, TLAS). */
 #define BVH_LEVELS_FEATURES(levels)                                                               \
     ((levels) == BVH_TWO_LEVEL ? (ProgramFeatures)(FEATURE_INSTANCES | FEATURE_TLAS)              \

@@ -138,13 +138,6 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
 }
 
 /* Triangles as rendered: each instance counts its mesh's. */
-static double instanced_triangles(const SceneData *d)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < d->num_instances; i++)
-        sum += d->meshes[d->instances[i].mesh].num_triangles;
-    return sum;
-}
 
 /* The process's peak resident memory in MiB (Linux reports ru_maxrss in KiB). */
 static double peak_rss_mib(void)
@@ -168,13 +161,13 @@ void session_print_summary(const Session *s)
         fprintf(stderr,
                 "pt: %u meshes, %u instances (%u moving): %.4g triangles rendered; two-level BVH "
                 "(BLAS %.3f s, TLAS %.3f s)\n",
-                d->num_meshes, d->num_instances, d->num_moving, instanced_triangles(d),
+                d->num_meshes, d->num_instances, d->num_moving, (double)scene_traced_triangles(d),
                 s->bvh.blas_seconds, s->bvh.tlas_seconds);
     else if (s->bvh.levels == BVH_FLAT)
         fprintf(stderr,
                 "pt: %u meshes, %u instances: %.4g triangles rendered; one flat BVH over them "
                 "(%.3f s; --instancing always keeps two levels)\n",
-                d->num_meshes, d->num_instances, instanced_triangles(d), s->bvh.blas_seconds);
+                d->num_meshes, d->num_instances, (double)scene_traced_triangles(d), s->bvh.blas_seconds);
     fprintf(stderr, "pt: device %s (%s, driver %s), %.1f MiB of scene buffers; host peak %.0f MiB\n",
             s->dev.name, s->dev.platform_name, s->dev.driver_version,
             (double)s->buffers.bytes / (1 << 20), peak_rss_mib());

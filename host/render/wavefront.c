@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /* wavefront.c: the frame loop. A render traces windows of samples; each window generates camera
- * paths into free slots, steps every live path (extend, [sort], shade, connect), compacts the
+ * paths into free slots, steps every live path (extend, [sort], shade and connect), compacts the
  * survivors and refills the pool, then accumulates the window into the film. The device state it
  * drives is set up in render/wavefront_state.c. */
 #include <stdio.h>
@@ -62,13 +62,13 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         w->stats->stage_ms[STAGE_SORT_MATERIALS] += ms;
         w->stats->stage_launches[STAGE_SORT_MATERIALS]++;
     }
-    bool connects = w->settings.connect_in_shading; /* shade_surface_connect: no shadow stage */
-    if (!w->settings.shadow_flags && !connects) {
+    bool split = w->settings.split_shadow; /* else shading traces the shadow rays itself */
+    if (split && !w->settings.shadow_flags) {
         uint32_t zero = 0;
         device_fill(w->dev, w->shadow_count, &zero, sizeof zero, 0, sizeof zero, NULL);
     }
     run_over_active(w, STAGE_SHADE_SURFACE, n_active);
-    if (!connects)
+    if (split)
         run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
 }
 

@@ -27,9 +27,15 @@ typedef struct {
     bool profile;        /* time every kernel (waits after each launch) */
     bool brute_force;    /* no BVH: every ray against every triangle (benchmark ablation) */
     bool sort_materials; /* shade the live paths grouped by the material they hit */
-    bool shadow_flags;   /* intersect_shadow checks a flag per active path instead of reading
-                          * the queue that shade_surface appends to with atomics (the default:
-                          * 1.5 to 6% faster on an H100; pt bench measures both) */
+    bool split_shadow;   /* intersect_shadow as a stage of its own, reading the shadow rays that
+                          * shade_surface stored, instead of shading that traces them itself
+                          * (the kernel shade_surface, the default up to CONNECT_MAX_TRIANGLES
+                          * traced triangles, wavefront_state.c); PT_CONNECT_IN_SHADING=0|1
+                          * overrides that choice.
+                          * shadow_flags and brute_force imply it (pt bench's split-shadow row) */
+    bool shadow_flags;   /* with split_shadow: intersect_shadow checks a flag per active path
+                          * instead of reading the queue that shade_surface appends to with
+                          * atomics (1.5 to 6% slower on an H100; pt bench measures both) */
     float clamp_indirect; /* > 0: every contribution of indirect light (reaching the camera over
                            * 2 or more scattering vertices) is scaled so that no channel exceeds
                            * this (--clamp, Cycles' "clamp indirect"; biased, off by default; see
@@ -44,9 +50,6 @@ typedef struct {
     uint32_t window_size; /* samples per window, the unit of progress (and of wavefront_advance's
                            * steps); 0 = the default (render/pool_size.h); at least the pool */
     int path_kernel;      /* PATH_KERNEL_*: the wavefront or one work item per path (megakernel.h) */
-    bool connect_in_shading; /* the wavefront's shading traces each vertex's shadow ray itself
-                              * (shade_surface_connect: no intersect_shadow launch); also
-                              * PT_CONNECT_IN_SHADING=1. Not with brute_force (pt bench's row) */
     int tail_paths;       /* the wavefront takes a window's last paths to their ends in one launch
                            * (finish_paths, megakernel.h) once no samples are left to start and at
                            * most this many are live; 0: PT_TAIL_PATHS, else TAIL_PATHS_DEFAULT;
@@ -75,13 +78,14 @@ enum { PATH_KERNEL_AUTO, PATH_KERNEL_WAVEFRONT, PATH_KERNEL_MEGAKERNEL, PATH_KER
  *            TAIL: by tail_init or tail_kernel_ready (megakernel.h), the windows' last paths;
  *            HELPER: by the helper.
  *   variant  a second kernel "<kernel>_<variant>" that some settings take instead: BRUTE_FORCE (the
- *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), CONNECT
- *            (shading that traces its shadow rays, connect_in_shading), or NONE. */
+ *            brute-force ablation, no BVH), MOMENTS (the film with its second moments), SPLIT
+ *            (shading that stores its shadow rays for intersect_shadow, split_shadow), or NONE.
+ *            shade_surface's row of the profile holds the shadow rays' tracing unless split. */
 #define STAGES(X)                                                                                  \
     X(GENERATE_CAMERA_RAYS, generate_camera_rays, OWN_COUNT, INIT, NONE)                           \
     X(INTERSECT_CLOSEST, intersect_closest, OVER_ACTIVE, INIT, BRUTE_FORCE)                        \
     X(SORT_MATERIALS, sort_materials, HELPER, HELPER, NONE)                                        \
-    X(SHADE_SURFACE, shade_surface, OVER_ACTIVE, INIT, CONNECT)                                    \
+    X(SHADE_SURFACE, shade_surface, OVER_ACTIVE, INIT, SPLIT)                                      \
     X(INTERSECT_SHADOW, intersect_shadow, OVER_ACTIVE, INIT, BRUTE_FORCE)                          \
     X(COMPACT_PATHS, compact_paths, HELPER, HELPER, NONE)                                          \
     X(ACCUMULATE_FILM, accumulate_film, OWN_COUNT, INIT, MOMENTS)                                  \

@@ -19,11 +19,11 @@ const char *const stage_names[STAGE_COUNT] = {STAGES(STAGE_NAME)};
 /* The columns of STAGES that setting up the kernels reads (wavefront.h says what they mean). */
 enum { STAGE_OVER_ACTIVE, STAGE_OWN_COUNT, STAGE_HELPER };
 enum { STAGE_MADE_INIT, STAGE_MADE_HOLES, STAGE_MADE_MEGAKERNEL, STAGE_MADE_TAIL, STAGE_MADE_HELPER };
-enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS, STAGE_VARIANT_CONNECT };
+enum { STAGE_VARIANT_NONE, STAGE_VARIANT_BRUTE_FORCE, STAGE_VARIANT_MOMENTS, STAGE_VARIANT_SPLIT };
 #define STAGE_VARIANT_KERNEL_NONE(kernel) NULL
 #define STAGE_VARIANT_KERNEL_BRUTE_FORCE(kernel) #kernel "_brute_force"
 #define STAGE_VARIANT_KERNEL_MOMENTS(kernel) #kernel "_moments"
-#define STAGE_VARIANT_KERNEL_CONNECT(kernel) #kernel "_connect"
+#define STAGE_VARIANT_KERNEL_SPLIT(kernel) #kernel "_split"
 static const struct {
     int launch, made, variant;
     const char *variant_kernel;
@@ -68,19 +68,27 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
     return device_buffer(w->dev, name, CL_MEM_READ_WRITE, size, NULL, err);
 }
 
+/* Shading traces its own shadow rays (the kernel shade_surface) in scenes of at most this many
+ * traced triangles, and leaves them to intersect_shadow in larger ones: the fused kernel holds
+ * shading's registers through the walk, which costs more as walks grow longer, while what it
+ * saves (the shadow lanes' stores and loads, a launch, the queue) is the same per ray. On an H100
+ * it won from 36 triangles (+10%) to 25k (+3.5%) and lost at 50k (-9%) and 114k (-5%)
+ * (bench/README.md "Shading that traces its shadow rays"). */
+#define CONNECT_MAX_TRIANGLES (1u << 15)
+
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
  * film with its second moments, so that the plain accumulation stays as it was, and shading that
- * traces its own shadow rays (the variant column of STAGES). NULL: the stage does not run
- * (intersect_shadow when shading connects). */
+ * leaves its shadow rays to intersect_shadow (the variant column of STAGES). NULL: the stage does
+ * not run (intersect_shadow unless split_shadow: shading traces the shadow rays). */
 static const char *stage_kernel(int stage, const RenderSettings *s)
 {
     int variant = stage_kinds[stage].variant;
-    if (stage == STAGE_INTERSECT_SHADOW && s->connect_in_shading)
+    if (stage == STAGE_INTERSECT_SHADOW && !s->split_shadow)
         return NULL;
     if ((variant == STAGE_VARIANT_BRUTE_FORCE && s->brute_force) ||
         (variant == STAGE_VARIANT_MOMENTS && s->moments) ||
-        (variant == STAGE_VARIANT_CONNECT && s->connect_in_shading))
+        (variant == STAGE_VARIANT_SPLIT && s->split_shadow))
         return stage_kinds[stage].variant_kernel;
     return stage_names[stage];
 }
@@ -97,11 +105,13 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
                           s->clamp_indirect);
         return false;
     }
+    bool connects =
+        !s->split_shadow && scene_traced_triangles(&scene->data) <= CONNECT_MAX_TRIANGLES;
     if (!adaptive_configure(w, scene, &w->settings, err) ||
-        !env_flag("PT_CONNECT_IN_SHADING", s->connect_in_shading, &w->settings.connect_in_shading,
-                  err))
+        !env_flag("PT_CONNECT_IN_SHADING", connects, &connects, err))
         return false;
-    w->settings.connect_in_shading &= !s->brute_force; /* connect_path's walk is the BVH's */
+    /* The ablations measure the split stages (brute force: connect_path's walk is the BVH's). */
+    w->settings.split_shadow = !connects || s->shadow_flags || s->brute_force;
     const SceneDesc *desc = &scene->desc;
     w->num_pixels = (uint32_t)desc->width * (uint32_t)desc->height;
     bool gpu = (dev->type & CL_DEVICE_TYPE_GPU) != 0;
@@ -125,7 +135,7 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->params.seed = s->seed;
     w->params.max_depth = (uint)s->max_depth;
     w->params.flags = (s->no_nee ? RENDER_NO_NEE : 0u) |
-                      (s->shadow_flags ? 0u : RENDER_SHADOW_QUEUE) |
+                      (s->split_shadow && !s->shadow_flags ? RENDER_SHADOW_QUEUE : 0u) |
                       (s->clamp_indirect > 0.0f ? RENDER_CLAMP_INDIRECT : 0u) |
                       (sampler_resolve(s->sampler, desc->sampler) == SAMPLER_SOBOL ? RENDER_SOBOL : 0u) |
                       (desc->num_black_holes > 0 ? RENDER_BLACK_HOLES : 0u);
@@ -137,7 +147,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
     w->counters = state_buffer(w, "counters", COUNTER_COUNT * sizeof(uint32_t), err);
     w->active = state_buffer(w, "active_paths", pool * sizeof(uint32_t), err);
     w->free_slots = state_buffer(w, "free_slots", pool * sizeof(uint32_t), err);
-    w->shadow_queue = state_buffer(w, "shadow_queue", (s->shadow_flags ? 1 : pool) * sizeof(uint32_t), err);
+    bool queue = s->split_shadow && !s->shadow_flags; /* RENDER_SHADOW_QUEUE */
+    w->shadow_queue = state_buffer(w, "shadow_queue", (queue ? pool : 1) * sizeof(uint32_t), err);
     w->shadow_count = state_buffer(w, "shadow_count", sizeof(uint32_t), err);
 #define PATH_STATE_ALLOC(type, name) w->name = state_buffer(w, #name, pool * sizeof(type), err);
     PATH_STATE_FIELDS(PATH_STATE_ALLOC)
@@ -239,13 +250,14 @@ static void set_all_args(Wavefront *w)
         w->generate_counts_arg = KERNEL_ARGS(generate, i, KARG(w->active), KARG(w->free_slots));
         KERNEL_ARGS(w->kernels[STAGE_INTERSECT_CLOSEST], own[STAGE_INTERSECT_CLOSEST],
                     KARG(w->counters));
-        i = KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE],
+        if (w->settings.split_shadow) {
+            KERNEL_ARGS(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE],
                         KARG(w->shadow_queue), KARG(w->shadow_count));
-        if (w->settings.connect_in_shading) /* shade_surface_connect counts its shadow rays */
-            KERNEL_ARG(w->kernels[STAGE_SHADE_SURFACE], i, w->counters);
-        else
             KERNEL_ARGS(w->kernels[STAGE_INTERSECT_SHADOW], own[STAGE_INTERSECT_SHADOW],
                         KARG(w->counters), KARG(w->shadow_queue), KARG(w->shadow_count));
+        } else { /* shade_surface counts the shadow rays it traces */
+            KERNEL_ARG(w->kernels[STAGE_SHADE_SURFACE], own[STAGE_SHADE_SURFACE], w->counters);
+        }
     }
     if (w->kernels[STAGE_FINISH_PATHS])
         wavefront_bind_tail(w);
