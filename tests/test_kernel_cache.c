@@ -181,13 +181,13 @@ Test(kernel_cache, program_parts_built_when_needed, .timeout = 900)
     cr_expect_eq(status, CL_INVALID_KERNEL_NAME, "the megakernel's part has no shade_surface");
     if (missing)
         clReleaseKernel(missing);
-    cl_kernel shade = device_kernel(&dev, "shade_surface");
-    cr_expect_not_null(dev.programs[PROGRAM_PART_CORE], "asking for shade_surface built its part");
+    cl_kernel closest = device_kernel(&dev, "intersect_closest");
+    cr_expect_not_null(dev.programs[PROGRAM_PART_CORE], "asking for intersect_closest built its part");
     cr_expect_gt(dev.build_seconds, first);
     cl_kernel trace = device_kernel(&dev, "trace_paths");
     cr_expect_not_null(trace);
     cr_expect_null(dev.programs[PROGRAM_PART_AOV], "no render_aov was asked for");
-    clReleaseKernel(shade);
+    clReleaseKernel(closest);
     clReleaseKernel(trace);
     device_close(&dev);
 

@@ -14,13 +14,14 @@
 #ifndef PT_SHARED_PROGRAM_PARTS_H
 #define PT_SHARED_PROGRAM_PARTS_H
 
-#define PT_PART_BIT_CORE 1u       /* the wavefront's stages and the device-wide primitives */
+#define PT_PART_BIT_CORE 1u       /* the wavefront's stages but shading, the device-wide primitives */
 #define PT_PART_BIT_MEGAKERNEL 2u /* trace_paths, trace_paths_packets */
 #define PT_PART_BIT_AOV 4u        /* render_aov */
 #define PT_PART_BIT_ABLATION 8u   /* the brute-force intersection kernels (--brute-force) */
 #define PT_PART_BIT_TAIL 16u      /* finish_paths: the last paths of the wavefront's windows */
 #define PT_PART_BIT_SPLIT 32u     /* shade_surface_split, intersect_shadow (RenderSettings.split_shadow) */
-#define PT_PARTS_ALL 63u
+#define PT_PART_BIT_CONNECT 64u   /* shade_surface, which traces its shadow rays */
+#define PT_PARTS_ALL 127u
 
 #ifdef __OPENCL_C_VERSION__
 #ifndef PT_PARTS

@@ -231,8 +231,10 @@ PT_INLINE bool shade_path(constant RenderParams *p, const SceneView *scene,
  * vertex's own light, then the shadow ray's), so the film's bits are theirs. What it costs: lanes
  * whose vertex queued no ray (specular, or the light behind) idle while the others trace, and the
  * traversal's registers join shading's. counters[COUNTER_SHADOW_RAYS] counts the shadow rays
- * (count_group_rays). */
-#if PT_PART(CORE)
+ * (count_group_rays). Each way of shading is a program part of its own (CONNECT, SPLIT), so that
+ * a first build compiles the shading code once: NVIDIA's compiler inlines all of it into every
+ * kernel that shades. */
+#if PT_PART(CONNECT)
 kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARAMS
                           const global uint *active, uint n_active, global uint *counters)
 {

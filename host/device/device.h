@@ -23,7 +23,8 @@
     X(AOV, "render_aov")                                                                           \
     X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
     X(TAIL, "finish_paths")                                                                        \
-    X(SPLIT, "shade_surface_split intersect_shadow")
+    X(SPLIT, "shade_surface_split intersect_shadow")                                               \
+    X(CONNECT, "shade_surface")
 typedef struct BackgroundBuild BackgroundBuild;
 #define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
