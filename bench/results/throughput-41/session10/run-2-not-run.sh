@@ -1,5 +1,5 @@
 #!/bin/bash
-# NOT RUN: three attempts to start a machine (H100 and H200) failed and the device time ran out.
+# NOT RUN: no machine started in three attempts (two more were refused during lockouts), then too little device time was left to start one.
 # Session 10, call 2: the final build (.gpu48/pt: shading traces its shadow rays up to 2^15
 # triangles, each way of shading a program part of its own) against 54624b3 (.gpu47/pt), both as
 # pt render runs by default, interleaved, 2 rounds, 1280x960, 64 spp, max depth 8; the bits; the
