@@ -239,7 +239,9 @@ Test(texture, device_sampling_decodes_srgb_filters_repeats_and_flips_v)
 }
 
 /* An 8-bit image read as linear stays one uint per texel, and the device reads value / 255 with
- * no decoding, bilinear like the rest, at its offset after another texture. */
+ * no decoding, bilinear like the rest, at its offset after another texture. At a texel's centre
+ * the value is exactly value * (1 / 255), a product, which every device rounds alike (3, 6 and 7
+ * over 255 as quotients round to other floats). */
 Test(texture, device_sampling_of_8_bit_linear_is_undecoded_at_its_offset)
 {
     const char *dir = test_temp_dir();
@@ -248,7 +250,7 @@ Test(texture, device_sampling_of_8_bit_linear_is_undecoded_at_its_offset)
     snprintf(path, sizeof path, "%s/linear.png", dir);
     const unsigned char first[] = {9, 9, 9, 255};
     cr_assert(stbi_write_png(before, 1, 1, 4, first, 4));
-    const unsigned char px[] = {255, 128, 0, 64, 0, 2, 200, 255}; /* 2 x 1 RGBA */
+    const unsigned char px[] = {255, 128, 3, 64, 6, 7, 200, 255}; /* 2 x 1 RGBA */
     cr_assert(stbi_write_png(path, 2, 1, 4, px, 8));
     TextureSet set = {0};
     Error err = {0};
@@ -266,6 +268,12 @@ Test(texture, device_sampling_of_8_bit_linear_is_undecoded_at_its_offset)
             double expected = i == 0 ? a : i == 1 ? b : 0.5 * (a + b);
             cr_expect(fabs(out[i].s[ch] - expected) < 1e-6, "uv %d channel %d: got %g, expected %g",
                       i, ch, (double)out[i].s[ch], expected);
+            if (i < 2) {
+                float product = (float)px[4 * i + ch] * (1.0f / 255.0f);
+                cr_expect(memcmp(&out[i].s[ch], &product, sizeof product) == 0,
+                          "texel %d channel %d: %.9g, not the product %.9g", i, ch,
+                          (double)out[i].s[ch], (double)product);
+            }
         }
     texture_set_free(&set);
 }

@@ -19,7 +19,9 @@ inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, in
     }
     uint packed = texels[info.offset + index];
     float4 c = (float4)((float)(packed & 0xffu), (float)((packed >> 8) & 0xffu),
-                        (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) / 255.0f;
+                        (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) * (1.0f / 255.0f);
+    /* A product, not a quotient: the same bits on every device (NVIDIA's division, within 2.5
+     * ulp, is not correctly rounded unless PT_EXACT_MATHS). */
     if (info.format == TEXTURE_RGBA8_LINEAR)
         return c;
     return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);

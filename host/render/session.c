@@ -137,8 +137,6 @@ bool session_open(Session *s, const RenderDesc *o, Error *err)
     return true;
 }
 
-/* Triangles as rendered: each instance counts its mesh's. */
-
 /* The process's peak resident memory in MiB (Linux reports ru_maxrss in KiB). */
 static double peak_rss_mib(void)
 {
@@ -167,7 +165,8 @@ void session_print_summary(const Session *s)
         fprintf(stderr,
                 "pt: %u meshes, %u instances: %.4g triangles rendered; one flat BVH over them "
                 "(%.3f s; --instancing always keeps two levels)\n",
-                d->num_meshes, d->num_instances, (double)scene_traced_triangles(d), s->bvh.blas_seconds);
+                d->num_meshes, d->num_instances, (double)scene_traced_triangles(d),
+                s->bvh.blas_seconds);
     fprintf(stderr, "pt: device %s (%s, driver %s), %.1f MiB of scene buffers; host peak %.0f MiB\n",
             s->dev.name, s->dev.platform_name, s->dev.driver_version,
             (double)s->buffers.bytes / (1 << 20), peak_rss_mib());
