@@ -50,4 +50,25 @@ export PYTHONPATH=/tmp/site
 for s in tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/small-light.json tests/scenes/cornell-sphere /tmp/torus-100k.json tests/scenes/envmap tests/scenes/conductors; do
   python3 tools/bench_mitsuba.py $s --width 1280 --height 960 --spp 64 --max-depth 8 --reps 3 --variant cuda_ad_rgb --rr-depth 5 --csv $O/mitsuba.csv 2>&1 | grep -E "Mpaths|rror" | tail -3
 done
+# What the driver compiled: the kernel cache's PTX through ptxas (registers, stack, spills) and
+# the SASS of every program, to read here at no device time.
+export PATH=$PATH:/usr/local/cuda/bin
+mkdir -p /tmp/sass
+python3 - > $O/ptxas.txt 2>&1 <<'PY'
+import glob, os, subprocess
+for n, path in enumerate(sorted(p for p in glob.glob('/tmp/ptcache/**', recursive=True) if os.path.isfile(p))):
+    data = open(path, 'rb').read()
+    i = data.find(b'//')
+    if i < 0 or b'.entry' not in data:
+        continue
+    base = f'/tmp/sass/p{n:02d}'
+    open(base + '.ptx', 'wb').write(data[i:])
+    kernels = [l.split()[-1].split('(')[0] for l in data[i:].decode(errors='replace').splitlines() if '.entry' in l]
+    print('==', path, len(data), ' '.join(kernels))
+    r = subprocess.run(['ptxas', '-arch=sm_90', '-v', '-o', base + '.cubin', base + '.ptx'], capture_output=True, text=True)
+    print(r.stderr[-4000:])
+    s = subprocess.run(['cuobjdump', '-sass', base + '.cubin'], capture_output=True, text=True)
+    open(base + '.sass', 'w').write(s.stdout)
+PY
+tar cJf $O/sass.tar.xz -C /tmp/sass . 2>/dev/null; ls -la $O
 echo "== done $(el) s"
