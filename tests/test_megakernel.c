@@ -88,7 +88,7 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
     expect_same_bits(scene, "the split shadow stage", &f, a, b, &wave, &split);
     free(b);
     /* Every step's closest hits and shading over every slot of the pool, free ones included
-     * (ACTIVE_ALL_SLOTS; by default only a full pool's steps, which these renders never have). */
+     * (ACTIVE_ALL_SLOTS; off by default). */
     setenv("PT_ALL_SLOTS_PERCENT", "0", 1);
     RenderStats all;
     b = render_fixture_render(&f, s, &all);

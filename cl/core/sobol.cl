@@ -18,7 +18,7 @@
 
 /* x with its 32 bits in reverse order (OpenCL C 1.2 has no bit-reverse built-in). NVIDIA's
  * compiler does not make the swaps below its bit-reverse instruction, and a Sobol tuple reverses
- * five words: with the instruction spelled out, shading took 8% less time on an H100
+ * five words: with the instruction spelled out, shading took 6-12% less time on an H100
  * (bench/README.md "Where the GPU's time goes"). */
 inline uint reverse_bits(uint x)
 {

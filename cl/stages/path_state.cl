@@ -100,42 +100,12 @@ inline uint active_slot(const global uint *active, uint n_active, uint i)
     return (n_active & ACTIVE_ALL_SLOTS) ? i : active[i];
 }
 
-/* The work-group's ray counts (extension, shadow), one global atomic each per group
- * (intersect_closest, shade_surface, intersect_shadow, megakernel.cl): cleared before the rays
- * are traced, added to counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] after. Every work
- * item of the group calls both. Portably the counts meet in local memory, behind two barriers.
- * On NVIDIA, where groups are whole warps (a multiple of 32 work items, as pt's launches are),
- * each warp sums its lanes' counts with shuffles and its first lane adds them, with no barrier:
- * the barriers held every group's warps to its slowest one, which cost shading 2-3%
- * (bench/README.md "Where the GPU's time goes"). */
-inline bool group_counts_by_warp(void)
-{
-#ifdef PT_VENDOR_NVIDIA
-    return get_local_size(0) % 32u == 0u;
-#else
-    return false;
-#endif
-}
-
-#ifdef PT_VENDOR_NVIDIA
-/* The sum of v over the warp's 32 lanes, in every lane (every lane must call it). */
-inline uint warp_sum(uint v)
-{
-    for (uint lanes = 16u; lanes > 0u; lanes >>= 1) {
-        uint other;
-        asm volatile("shfl.sync.bfly.b32 %0, %1, %2, 0x1f, 0xffffffff;"
-                     : "=r"(other)
-                     : "r"(v), "r"(lanes));
-        v += other;
-    }
-    return v;
-}
-#endif
-
+/* The work-group's ray counts (extension, shadow) in local memory, one global atomic each per
+ * group (intersect_closest, shade_surface, intersect_shadow, megakernel.cl): cleared before the
+ * rays are traced, added to counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] after. Both
+ * contain a barrier, so every work item of the group calls them. */
 inline void clear_group_rays(local uint *group_rays)
 {
-    if (group_counts_by_warp())
-        return;
     if (get_local_id(0) == 0)
         group_rays[0] = group_rays[1] = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -144,19 +114,6 @@ inline void clear_group_rays(local uint *group_rays)
 inline void count_group_rays(local uint *group_rays, uint extension, uint shadow,
                              global uint *counters)
 {
-#ifdef PT_VENDOR_NVIDIA
-    if (group_counts_by_warp()) {
-        extension = warp_sum(extension);
-        shadow = warp_sum(shadow);
-        if (get_local_id(0) % 32u == 0u) {
-            if (extension > 0)
-                atomic_add(&counters[COUNTER_EXTENSION_RAYS], extension);
-            if (shadow > 0)
-                atomic_add(&counters[COUNTER_SHADOW_RAYS], shadow);
-        }
-        return;
-    }
-#endif
     if (extension > 0)
         atomic_add(&group_rays[0], extension);
     if (shadow > 0)

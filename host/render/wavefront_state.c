@@ -77,9 +77,12 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
 #define CONNECT_MAX_TRIANGLES (1u << 15)
 
 /* A step whose live paths fill at least this share of the pool (percent; PT_ALL_SLOTS_PERCENT
- * overrides it, 101: never) runs its closest hits and shading over every slot instead of the
- * active list (cl/shared/render.h ACTIVE_ALL_SLOTS): a refilled pool's list holds every slot. */
-#define ALL_SLOTS_PERCENT 100
+ * overrides it) runs its closest hits and shading over every slot instead of the active list
+ * (cl/shared/render.h ACTIVE_ALL_SLOTS): a refilled pool's list holds every slot. 101, never, until
+ * a GPU has measured it: it spares each work item the list's read, but it also mixes a step's new
+ * camera rays, which the list keeps together, among its bouncing paths (bench/README.md "Where the
+ * GPU's time goes"). */
+#define ALL_SLOTS_PERCENT 101
 
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
