@@ -61,8 +61,9 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         w->stats->live_per_step[step] += n_active;
     if (w->kernels[STAGE_INTEGRATE_GEODESIC]) /* bends the rays near black holes */
         run_over_active(w, STAGE_INTEGRATE_GEODESIC, n_active);
-    /* Where most slots are live, the closest hits and the shading run over the slots themselves
-     * (shading only when not sorted: then it takes the sorted list). */
+    /* Where the pool is full enough (all_slots_from; off by default), the closest hits and the
+     * shading run over the slots themselves (shading only when not sorted: it then takes the
+     * sorted list). */
     uint32_t pool = w->stats->config.pool_size;
     bool all_slots = n_active >= w->all_slots_from;
     if (all_slots)
