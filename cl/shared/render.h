@@ -320,8 +320,8 @@ inline bool shadow_contribution_waits(float4 contribution) { return contribution
 
 /* Set in a launch's n_active (intersect_closest, shade_surface, shade_surface_split): the launch
  * runs over every slot of the pool in slot order, work item i shading slot i, instead of over
- * active[0..n_active). The host sets it where most slots are live (host/render/wavefront.c
- * trace_step): the list's read is a dependent memory access before any other, and slot order is
+ * active[0..n_active). The host sets it where the pool is full enough (host/render/wavefront.c
+ * trace_step; off by default, PT_ALL_SLOTS_PERCENT): the list's read is a dependent memory access before any other, and slot order is
  * the path state's own, so loads of neighbouring work items share memory sectors. Free slots
  * (path_depth 0) are skipped as they are on the list. Each slot's work is independent of the
  * others', so the order changes no result. */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_closest: extends every live path by one segment.
- * Reads: active[0..n_active) (or every slot: ACTIVE_ALL_SLOTS), ray_origin (path_ray_origin), ray_direction. Writes: hit (t, u, v,
- * triangle or HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and
+ * Reads: active[0..n_active) (or every slot: ACTIVE_ALL_SLOTS), ray_origin (path_ray_origin),
+ * ray_direction. Writes: hit (t, u, v, triangle or HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and
  * skipped. counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays,
  * path_state.cl). intersect_closest_brute_force is the same stage without the BVH (pt bench's
  * ablation row and the test that it renders the same image): a kernel of its own, so that the

@@ -17,19 +17,22 @@ static void run(Wavefront *w, int stage, size_t n)
     w->stats->stage_launches[stage]++;
 }
 
+/* A stage over n work items, its n_active argument n_arg. */
+static void run_listed(Wavefront *w, int stage, cl_uint n_arg, uint32_t n)
+{
+    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n_arg);
+    run(w, stage, n);
+}
+
 static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
 {
-    cl_uint n = n_active;
-    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n);
-    run(w, stage, n_active);
+    run_listed(w, stage, n_active, n_active);
 }
 
 /* The same stage over every slot of the pool, in slot order (cl/shared/render.h ACTIVE_ALL_SLOTS). */
 static void run_over_slots(Wavefront *w, int stage, uint32_t pool)
 {
-    cl_uint n = pool | ACTIVE_ALL_SLOTS;
-    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n);
-    run(w, stage, pool);
+    run_listed(w, stage, pool | ACTIVE_ALL_SLOTS, pool);
 }
 
 /* With --profile the compactor adds its kernels' device time to stage_ms[STAGE_COMPACT_PATHS]
@@ -66,6 +69,7 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
      * sorted list). */
     uint32_t pool = w->stats->config.pool_size;
     bool all_slots = n_active >= w->all_slots_from;
+    w->stats->all_slot_steps += all_slots;
     if (all_slots)
         run_over_slots(w, STAGE_INTERSECT_CLOSEST, pool);
     else
