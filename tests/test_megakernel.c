@@ -87,20 +87,6 @@ static void expect_same_render_on(const char *scene, RenderSettings s, int width
                  "%s: split shadow rays but no intersect_shadow", scene);
     expect_same_bits(scene, "the split shadow stage", &f, a, b, &wave, &split);
     free(b);
-    /* Every step's closest hits and shading over every slot of the pool, free ones included
-     * (ACTIVE_ALL_SLOTS; off by default). */
-    setenv("PT_ALL_SLOTS_PERCENT", "0", 1);
-    RenderStats all;
-    b = render_fixture_render(&f, s, &all);
-    expect_same_bits(scene, "steps over every slot", &f, a, b, &wave, &all);
-    cr_expect_gt(all.all_slot_steps, 0, "%s: no step ran over every slot", scene);
-    free(b);
-    b = render_fixture_render(&f, c, &all);
-    expect_same_bits(scene, "split steps over every slot", &f, a, b, &wave, &all);
-    cr_expect_gt(all.all_slot_steps, 0, "%s: no split step ran over every slot", scene);
-    free(b);
-    unsetenv("PT_ALL_SLOTS_PERCENT");
-    cr_expect_eq(wave.all_slot_steps, 0, "%s: steps ran over every slot by default", scene);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL, a, &wave, &mega);
     expect_same_as_wavefront(scene, &f, s, PATH_KERNEL_MEGAKERNEL_SINGLE, a, &wave, &single);
     bool wide = f.dev->bvh_width == 8;

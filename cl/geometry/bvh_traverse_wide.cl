@@ -401,19 +401,3 @@ inline Hit trace_scene_brute_force(const global TraversalPrim *packs,
 }
 
 #endif /* BVH_WIDTH != 2 */
-
-/* The queries every stage calls, over whichever layout BVH_WIDTH selected (trace_bvh is the 2-wide
- * walk of bvh_traverse.cl or the wide one above). num_prims is for the brute-force ablation only. */
-Hit trace_closest(const global TraversalNode *nodes, const global TraversalPrim *prims,
-                  uint num_prims, float3 origin, float3 dir, float tmin, float tmax)
-{
-    (void)num_prims;
-    return trace_bvh(nodes, prims, origin, dir, tmin, tmax, false);
-}
-
-bool trace_any(const global TraversalNode *nodes, const global TraversalPrim *prims, uint num_prims,
-               float3 origin, float3 dir, float tmin, float tmax)
-{
-    (void)num_prims;
-    return trace_bvh(nodes, prims, origin, dir, tmin, tmax, true).prim != HIT_NONE;
-}

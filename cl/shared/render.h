@@ -318,15 +318,6 @@ inline bool shadow_contribution_waits(float4 contribution) { return contribution
 #define COUNTER_EXTENSION_RAYS 2 /* closest-hit rays traced in the current window */
 #define COUNTER_COUNT 4
 
-/* Set in a launch's n_active (intersect_closest, shade_surface, shade_surface_split): the launch
- * runs over every slot of the pool in slot order, work item i shading slot i, instead of over
- * active[0..n_active). The host sets it where the pool is full enough (host/render/wavefront.c
- * trace_step; off by default, PT_ALL_SLOTS_PERCENT): the list's read is a dependent memory access before any other, and slot order is
- * the path state's own, so loads of neighbouring work items share memory sectors. Free slots
- * (path_depth 0) are skipped as they are on the list. Each slot's work is independent of the
- * others', so the order changes no result. */
-#define ACTIVE_ALL_SLOTS 0x80000000u
-
 /* The paths of one trace_paths_packets work item (cl/stages/megakernel.cl), whose rays are traced
  * as one packet: host/render/megakernel.c launches a work item per PACKET_RAYS samples. */
 #define PACKET_RAYS 8

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* intersect_closest: extends every live path by one segment.
- * Reads: active[0..n_active) (or every slot: ACTIVE_ALL_SLOTS), ray_origin (path_ray_origin),
- * ray_direction. Writes: hit (t, u, v, triangle or HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and
+ * Reads: active[0..n_active), ray_origin (path_ray_origin), ray_direction. Writes: hit (t, u, v,
+ * triangle or HIT_NONE). Next: shade_surface. Without compaction, dead slots are in the list and
  * skipped. counters[COUNTER_EXTENSION_RAYS] counts the rays traced (count_group_rays,
  * path_state.cl). intersect_closest_brute_force is the same stage without the BVH (pt bench's
  * ablation row and the test that it renders the same image): a kernel of its own, so that the
@@ -55,9 +55,8 @@ PT_INLINE void intersect_closest_group(constant RenderParams *p, const SceneView
 {
     clear_group_rays(group_rays);
     uint i = get_global_id(0);
-    uint n = active_count(n_active);
-    uint slot = i < n ? active_slot(active, n_active, i) : 0u;
-    bool traced = i < n && intersect_closest_path(p, scene, PATH_STATE_ARGS slot, brute_force);
+    uint slot = i < n_active ? active[i] : 0u;
+    bool traced = i < n_active && intersect_closest_path(p, scene, PATH_STATE_ARGS slot, brute_force);
     /* Every work item gets here: no early return above. */
     count_group_rays(group_rays, traced ? 1u : 0u, 0u, counters);
 }

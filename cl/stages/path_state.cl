@@ -93,13 +93,6 @@ inline Hit path_hit(float4 hit, uint instance)
     return h;
 }
 
-/* The launch's work items (n_active without ACTIVE_ALL_SLOTS) and work item i's slot. */
-inline uint active_count(uint n_active) { return n_active & ~ACTIVE_ALL_SLOTS; }
-inline uint active_slot(const global uint *active, uint n_active, uint i)
-{
-    return (n_active & ACTIVE_ALL_SLOTS) ? i : active[i];
-}
-
 /* The work-group's ray counts (extension, shadow) in local memory, one global atomic each per
  * group (intersect_closest, shade_surface, intersect_shadow, megakernel.cl): cleared before the
  * rays are traced, added to counters[COUNTER_EXTENSION_RAYS / COUNTER_SHADOW_RAYS] after. Both

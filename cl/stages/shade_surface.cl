@@ -243,8 +243,8 @@ kernel void shade_surface(constant RenderParams *p, SCENE_PARAMS PATH_STATE_PARA
     SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
     bool traced = false;
-    if (i < active_count(n_active)) {
-        uint slot = active_slot(active, n_active, i);
+    if (i < n_active) {
+        uint slot = active[i];
         ShadowRay ray;
         if (shade_path(p, &scene, PATH_STATE_ARGS slot, &ray)) {
             float time = PT_FEATURE(MOTION) ? path_time[slot] : 0.0f;
@@ -275,9 +275,8 @@ kernel void shade_surface_split(constant RenderParams *p, SCENE_PARAMS PATH_STAT
     local uint group_count, group_base;
     SceneView scene = SCENE_VIEW;
     uint i = get_global_id(0);
-    uint n = active_count(n_active);
-    uint slot = i < n ? active_slot(active, n_active, i) : 0u;
-    bool queued = i < n && shade_path(p, &scene, PATH_STATE_ARGS slot, 0);
+    uint slot = i < n_active ? active[i] : 0u;
+    bool queued = i < n_active && shade_path(p, &scene, PATH_STATE_ARGS slot, 0);
     if (!(p->flags & RENDER_SHADOW_QUEUE))
         return; /* uniform: no barrier below is reached by anyone */
     if (get_local_id(0) == 0)

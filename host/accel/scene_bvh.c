@@ -29,6 +29,11 @@ static void build_one_level(SceneBvh *out, const float4 *positions, const Triang
     bvh_build_for_width(&bvh, positions, triangles, n, out->width);
     BvhLayout layout;
     bvh_layout(&layout, &bvh, out->width, out->quantized);
+    /* The 2-wide closest-hit walk packs a leaf's first triangle as the quantised node does
+     * (cl/geometry/bvh_traverse_speculative.cl). */
+    if (out->width == 2 && layout.num_prims >= BVH_QUANTIZED_MAX_TRIANGLES)
+        die("BVH: %u triangles; the 2-wide layout addresses fewer than %u (PT_BVH_WIDTH=8 lifts "
+            "the limit)", layout.num_prims, BVH_QUANTIZED_MAX_TRIANGLES);
     out->nodes = copy_of(layout.nodes, (size_t)layout.num_nodes * layout.node_size);
     out->node_size = layout.node_size;
     out->num_nodes = layout.num_nodes;

@@ -17,22 +17,11 @@ static void run(Wavefront *w, int stage, size_t n)
     w->stats->stage_launches[stage]++;
 }
 
-/* A stage over n work items, its n_active argument n_arg. */
-static void run_listed(Wavefront *w, int stage, cl_uint n_arg, uint32_t n)
-{
-    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n_arg);
-    run(w, stage, n);
-}
-
 static void run_over_active(Wavefront *w, int stage, uint32_t n_active)
 {
-    run_listed(w, stage, n_active, n_active);
-}
-
-/* The same stage over every slot of the pool, in slot order (cl/shared/render.h ACTIVE_ALL_SLOTS). */
-static void run_over_slots(Wavefront *w, int stage, uint32_t pool)
-{
-    run_listed(w, stage, pool | ACTIVE_ALL_SLOTS, pool);
+    cl_uint n = n_active;
+    KERNEL_ARG(w->kernels[stage], w->n_active_arg[stage], n);
+    run(w, stage, n_active);
 }
 
 /* With --profile the compactor adds its kernels' device time to stage_ms[STAGE_COMPACT_PATHS]
@@ -64,16 +53,7 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         w->stats->live_per_step[step] += n_active;
     if (w->kernels[STAGE_INTEGRATE_GEODESIC]) /* bends the rays near black holes */
         run_over_active(w, STAGE_INTEGRATE_GEODESIC, n_active);
-    /* Where the pool is full enough (all_slots_from; off by default), the closest hits and the
-     * shading run over the slots themselves (shading only when not sorted: it then takes the
-     * sorted list). */
-    uint32_t pool = w->stats->config.pool_size;
-    bool all_slots = n_active >= w->all_slots_from;
-    w->stats->all_slot_steps += all_slots;
-    if (all_slots)
-        run_over_slots(w, STAGE_INTERSECT_CLOSEST, pool);
-    else
-        run_over_active(w, STAGE_INTERSECT_CLOSEST, n_active);
+    run_over_active(w, STAGE_INTERSECT_CLOSEST, n_active);
     if (w->sorter) {
         double ms = 0.0;
         material_sorter_set_profile(w->sorter, w->settings.profile ? &ms : NULL);
@@ -87,10 +67,7 @@ static void trace_step(Wavefront *w, uint32_t n_active, uint32_t step)
         uint32_t zero = 0;
         device_fill(w->dev, w->shadow_count, &zero, sizeof zero, 0, sizeof zero, NULL);
     }
-    if (all_slots && !w->sorter)
-        run_over_slots(w, STAGE_SHADE_SURFACE, pool);
-    else
-        run_over_active(w, STAGE_SHADE_SURFACE, n_active);
+    run_over_active(w, STAGE_SHADE_SURFACE, n_active);
     if (split)
         run_over_active(w, STAGE_INTERSECT_SHADOW, n_active);
 }

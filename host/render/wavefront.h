@@ -118,7 +118,6 @@ typedef struct {
     X(uint64_t, shadow_rays)    /* any-hit rays traced for next-event estimation */                \
     X(uint32_t, nonfinite)      /* samples dropped as NaN/Inf */                                   \
     X(uint32_t, windows)        /* windows rendered */                                             \
-    X(uint32_t, all_slot_steps) /* steps run over every slot (ACTIVE_ALL_SLOTS, wavefront.c) */    \
     ARRAY(double, stage_ms, STAGE_COUNT) /* device time per stage, with settings.profile */        \
     ARRAY(uint32_t, stage_launches, STAGE_COUNT)                                                   \
     ARRAY(uint64_t, live_per_step, RENDER_LIVE_STEPS) /* entering each step, all windows */

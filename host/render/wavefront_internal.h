@@ -49,8 +49,6 @@ struct Wavefront {
                                     * trace_paths_packets */
     uint32_t tail_paths;           /* finish_paths takes a window's last paths once at most this
                                     * many are live (tail_init); 0: never */
-    uint64_t all_slots_from;       /* a step with at least this many live paths runs its closest
-                                    * hits and shading over every slot (ACTIVE_ALL_SLOTS) */
 };
 
 /* Binds params, [the scene's buffers] and the path state to k's first arguments, in the order of

@@ -76,14 +76,6 @@ static cl_mem state_buffer(Wavefront *w, const char *name, size_t size, Error *e
  * (bench/README.md "Shading that traces its shadow rays"). */
 #define CONNECT_MAX_TRIANGLES (1u << 15)
 
-/* A step whose live paths fill at least this share of the pool (percent; PT_ALL_SLOTS_PERCENT
- * overrides it) runs its closest hits and shading over every slot instead of the active list
- * (cl/shared/render.h ACTIVE_ALL_SLOTS): a refilled pool's list holds every slot. 101, never, until
- * a GPU has measured it: it spares each work item the list's read, but it also mixes a step's new
- * camera rays, which the list keeps together, among its bouncing paths (bench/README.md "Where the
- * GPU's time goes"). */
-#define ALL_SLOTS_PERCENT 101
-
 /* The kernel of a stage: the brute-force ablation (every ray against every triangle) has
  * intersection kernels of its own, so that the production ones carry no branch for it; so has the
  * film with its second moments, so that the plain accumulation stays as it was, and shading that
@@ -187,13 +179,8 @@ static bool wavefront_init(Wavefront *w, Device *dev, const Scene *scene,
         if (stage_kinds[k].made == STAGE_MADE_INIT && stage_kernel(k, s) &&
             (!w->kernels[STAGE_TRACE_PATHS] || k == STAGE_ACCUMULATE_FILM))
             w->kernels[k] = device_kernel(dev, stage_kernel(k, s));
-    long all_slots_percent;
-    if (!tail_init(w, err) || !env_int("PT_ALL_SLOTS_PERCENT", 0, 101, ALL_SLOTS_PERCENT,
-                                       &all_slots_percent, err))
+    if (!tail_init(w, err))
         return false;
-    w->all_slots_from = all_slots_percent > 100
-                            ? UINT64_MAX
-                            : ((uint64_t)pool * (uint64_t)all_slots_percent + 99u) / 100u;
     /* Material sorting orders the wavefront's shading launches: the megakernel has none. */
     if (s->sort_materials && !stats->config.megakernel) {
         w->sorted_active = state_buffer(w, "sorted_active_paths", pool * sizeof(uint32_t), err);
