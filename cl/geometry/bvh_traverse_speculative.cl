@@ -28,7 +28,8 @@ inline uint walk_leaf_count(uint entry)
 #define NO_LEAF 0u            /* the root, never a leaf */
 
 /* Whether x holds in every lane of the SIMD group that runs this call. On NVIDIA a vote over the
- * lanes converged here (activemask); elsewhere a work item is its own group. */
+ * lanes converged here (activemask); elsewhere a work item is its own group. -DPT_EXP_NO_VOTE
+ * takes the vote out on NVIDIA too (plain while-while: 1-8% slower, bench/README.md). */
 #if defined(PT_VENDOR_NVIDIA) && !defined(PT_EXP_NO_VOTE)
 inline bool all_lanes(bool x)
 {
