@@ -86,14 +86,32 @@ inline float box_slack_of(float3 lo, float3 hi, float3 origin, WatertightRay tra
     return BOX_SLACK_ULPS * FLT_EPSILON * fmax(reach.x, fmax(reach.y, reach.z)) * fabs(tray.shear.z);
 }
 
-#if BVH_WIDTH == 2 /* else cl/geometry/bvh_traverse_wide.cl; trace_closest and trace_any follow it */
+#if BVH_WIDTH == 2 /* else cl/geometry/bvh_traverse_wide.cl; the queries: cl/geometry/bvh_query.cl */
 /* A child reference is an inner node index, or a leaf (sign bit set) whose triangle range is
  * spelled differently by the two node formats: the float node has ~first in the reference and the
  * count in a lane of its own (`lane`), the quantised one packs both into the reference. */
 inline bool child_is_leaf(uint ref) { return as_int(ref) < 0; }
+
+/* A leaf as an entry of a walk (its next node, its stack, trace_scene_bvh's node) when it is not
+ * intersected at once: sign bit, first triangle (a TLAS's: instance) << 4, count. The quantised
+ * reference is already this; the float node's leaf is packed so on entry, which bounds its
+ * triangles and instances as the quantised layout's (host/accel/scene_bvh.c). */
+inline uint walk_leaf(uint first, uint count)
+{
+    return BVH_QUANTIZED_LEAF | (first << BVH_QUANTIZED_COUNT_BITS) | count;
+}
+inline uint walk_leaf_first(uint entry)
+{
+    return (entry & ~BVH_QUANTIZED_LEAF) >> BVH_QUANTIZED_COUNT_BITS;
+}
+inline uint walk_leaf_count(uint entry)
+{
+    return entry & ((1u << BVH_QUANTIZED_COUNT_BITS) - 1u);
+}
+
 #if BVH_QUANTIZED
-inline uint leaf_first(uint ref, uint lane) { return (ref & ~BVH_QUANTIZED_LEAF) >> BVH_QUANTIZED_COUNT_BITS; }
-inline uint leaf_count(uint ref, uint lane) { return ref & ((1u << BVH_QUANTIZED_COUNT_BITS) - 1u); }
+inline uint leaf_first(uint ref, uint lane) { return walk_leaf_first(ref); }
+inline uint leaf_count(uint ref, uint lane) { return walk_leaf_count(ref); }
 
 /* The frame of a quantised node, as seen by one ray: the distance to the frame's origin planes
  * and the distance per step, per axis (plane = origin + q * step, so t = q * per_step + at_origin). */
@@ -228,10 +246,10 @@ typedef struct {
     float slack; /* see box_slack */
 } Walk;
 
-/* Visits one child whose box the ray meets at t_entry: a leaf is intersected now (in a TLAS,
- * defer_leaves, it names an instance and is visited like an inner node), an inner node becomes
- * the next node or, if there is one already, goes on the stack. True when an any-hit query is
- * answered. */
+/* Visits one child whose box the ray meets at t_entry: a leaf is intersected now, or with
+ * defer_leaves (a TLAS's leaves, which name instances; bvh_traverse_speculative.cl's postponed
+ * leaves) visited like an inner node as a walk_leaf entry; an inner node becomes the next node
+ * or, if there is one already, goes on the stack. True when an any-hit query is answered. */
 inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, float t_entry,
                         WatertightRay ray, float tmin, bool any_hit, Walk *walk, uint *stack,
                         uint stack_limit, bool defer_leaves, uint instance)
@@ -245,8 +263,10 @@ inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, flo
                                   any_hit, &walk->hit, instance) &&
                    any_hit;
         /* The empty TLAS's leaf names no instance (a quantised empty box may pass the test). */
-        if (leaf_count(ref, lane) == 0u)
+        uint count = leaf_count(ref, lane);
+        if (count == 0u)
             return false;
+        ref = walk_leaf(leaf_first(ref, lane), count);
     }
     if (walk->next == 0)
         walk->next = ref;
@@ -353,7 +373,7 @@ inline Hit trace_scene_bvh(const global TraversalNode *nodes, const global BvhTr
     uint blas_base = 0;
     for (;;) {
         if (child_is_leaf(tr.node)) {
-            instance = leaf_first(tr.node, 0u);
+            instance = walk_leaf_first(tr.node);
             Affine m = instance_to_object(instances, motions, instance, time);
             float3 o = affine_point(m, origin), d = affine_vector(m, dir);
             uint root = instances[instance].blas_root;

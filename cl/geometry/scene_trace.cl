@@ -49,8 +49,8 @@ inline Hit scene_trace(const SceneView *scene, float3 o, float3 d, float tmin, f
     if (SCENE_TWO_LEVELS)
         return trace_scene_bvh(scene->bvh_nodes, scene->bvh_tris, scene->instances,
                                scene->instance_motion, o, d, tmin, tmax, time, any_hit);
-    return scene_hit_of_one_level(scene,
-                            trace_bvh_query(scene->bvh_nodes, scene->bvh_tris, o, d, tmin, tmax, any_hit));
+    return scene_hit_of_one_level(
+        scene, trace_bvh_query(scene->bvh_nodes, scene->bvh_tris, o, d, tmin, tmax, any_hit));
 }
 
 inline Hit scene_closest(const SceneView *scene, uint brute_count, float3 o, float3 d, float tmin,
