@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bvh_query.cl: the one-level queries, over whichever layout BVH_WIDTH selected. Closest hits on
- * the 2-wide layout take the speculative walk (bvh_traverse_speculative.cl; 1.00-1.07x on an
- * H100, 0.99x on one scene: bench/README.md "Leaves postponed"); any hits, and every query on the wide layouts, take
+ * the 2-wide layout take the speculative walk (bvh_traverse_speculative.cl; 0.99-1.07x on an H100:
+ * bench/README.md "Leaves postponed"); any hits, and every query on the wide layouts, take
  * trace_bvh (bvh_traverse.cl, bvh_traverse_wide.cl). -DBVH_NO_SPECULATION (through PT_CL_OPTIONS)
  * sends closest hits to trace_bvh too, for comparison: the hits are the same. */
 

@@ -3,8 +3,8 @@
 # pt-head = 20b0076, pt-exp = pt-head + next-experiments.patch), .whl not needed.
 # Experiments (every variant should give pt-head's bits):
 #   tcall  -DPT_EXP_TEXTURE_CALL: one texture sampler that every lookup calls (noinline) instead
-#          of a copy inlined at each (the room's shade_surface is 36.7k SASS instructions against
-#          the Cornell box's 12.1k, with 42 inlined texel fetches);
+#          of a copy inlined at each (the room's shade_surface is 18,360 SASS instructions against
+#          the Cornell box's 6,024, with about 42 inlined texel fetches);
 #   core40, core32: -cl-nv-maxrregcount on the CORE part only (intersect_closest: 48 registers,
 #          66% occupancy); conn64: on the CONNECT part only (shade_surface: 69-80 registers).
 set -u
