@@ -1,6 +1,8 @@
 #!/bin/bash
-# NOT RUN (no device time left in session 12): the next call. Carry .gpu45, .gpu54 (or rebuild:
-# pt-head = 20b0076, pt-exp = pt-head + next-experiments.patch), .whl not needed.
+# NOT RUN (no device time left in session 12): the next call. Carry .gpu45, .gpu53, .gpu54 (or
+# rebuild: pt-head = 26ebd38, pt-exp = pt-head + next-experiments.patch; .gpu53's pt-final =
+# 23b713d, the build call 3 measured, before the review moved the speculative walk onto
+# traversal_visit_children: `prev` checks that this costs nothing). .whl not needed.
 # Experiments (every variant should give pt-head's bits):
 #   tcall  -DPT_EXP_TEXTURE_CALL: one texture sampler that every lookup calls (noinline) instead
 #          of a copy inlined at each (the room's shade_surface is 18,360 SASS instructions against
@@ -22,18 +24,18 @@ import bench_efficiency as b
 b.small_light_scene('/tmp'); b.torus_scene('/tmp')" > /dev/null
 python3 tools/make_bench_scenes.py --normal-walls /tmp/nw > /dev/null
 python3 tools/make_forest.py --count 42 /tmp/forest43 >/dev/null 2>&1
-mkdir -p /tmp/g54 && tar xJf .gpu54/bins.tar.xz -C /tmp/g54
+mkdir -p /tmp/g54 /tmp/g53 && tar xJf .gpu54/bins.tar.xz -C /tmp/g54 && tar xJf .gpu53/bins.tar.xz -C /tmp/g53
 HEAD=/tmp/g54/pt-head EXP=/tmp/g54/pt-exp CMP=/tmp/g54/bench_compare_exr
 R="--device gpu --width 1280 --height 960 --spp 64 --max-depth 8"
 M="-cl-mad-enable -cl-no-signed-zeros"
 mp() { sed -n 's/.* s: \([0-9.]*\) Mpaths\/s, \([0-9.]*\) Mrays.*/\1 \2/p' | awk '{printf "%s,%.4f", $1, $2 / $1}'; }
 runv() { local v=$1; shift; case $v in
-  head) $HEAD "$@";; exp) $EXP "$@";;
+  head) $HEAD "$@";; exp) $EXP "$@";; prev) /tmp/g53/pt-final "$@";;
   tcall) PT_CL_OPTIONS="$M -DPT_EXP_TEXTURE_CALL" $EXP "$@";;
   core40) PT_EXP_MAXRREG_CORE=40 $EXP "$@";; core32) PT_EXP_MAXRREG_CORE=32 $EXP "$@";;
   conn64) PT_EXP_MAXRREG_CONNECT=64 $EXP "$@";;
   tcall64) PT_EXP_MAXRREG_CONNECT=64 PT_CL_OPTIONS="$M -DPT_EXP_TEXTURE_CALL" $EXP "$@";; esac; }
-VS="exp tcall core40 core32 conn64 tcall64"
+VS="prev exp tcall core40 core32 conn64 tcall64"
 echo "== setup $(el) s"
 SC="tests/scenes/cornell /tmp/small-light.json /tmp/nw/normal-walls.json tests/scenes/cornell-sphere /tmp/forest43 /tmp/torus-100k.json tests/scenes/envmap tests/scenes/conductors"
 for s in $SC; do n=$(basename $s .json)
