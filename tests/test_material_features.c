@@ -4,7 +4,10 @@
  * session_sorts_materials: only where materials take more than one way through shading). */
 #include <criterion/criterion.h>
 #include <stdio.h>
+#include <string.h>
 #include <unistd.h>
+
+#include <stb_image_write.h>
 
 #include "render/session.h"
 #include "scene/scene.h"
@@ -90,4 +93,68 @@ Test(material_features, sorting_needs_a_second_kind_of_shading)
               "a plain diffuse quad (no normal map: another way)");
     cr_expect(!sorts_floor_and_quad("{\"type\": \"diffuse\", \"albedo\": [0, 0, 0]}"),
               "a black quad scatters nothing either");
+}
+
+/* Features of one diffuse quad whose material reads textures of the given JSON (name "t" for the
+ * albedo, "n" for the normal map, "b" for a bump map; NULL leaves the slot constant). */
+static uint32_t texture_features(const char *albedo, const char *normal, const char *bump)
+{
+    const char *dir = test_temp_dir();
+    const unsigned char rgb[] = {200, 100, 50};
+    char png[512], hdr[512];
+    snprintf(png, sizeof png, "%s/t.png", dir);
+    snprintf(hdr, sizeof hdr, "%s/t.hdr", dir);
+    cr_assert(stbi_write_png(png, 1, 1, 3, rgb, 3));
+    const float one[] = {1.0f, 0.5f, 0.25f};
+    cr_assert(stbi_write_hdr(hdr, 1, 1, 3, one));
+    test_write_file(dir, "q.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    char textures[1024] = "", material[512] = "\"type\": \"diffuse\"";
+    const char *json[3] = {albedo, normal, bump}, *slot[3] = {"albedo", "normal_map", "bump_map"};
+    const char *name[3] = {"t", "n", "b"};
+    for (int i = 0; i < 3; i++) {
+        if (!json[i])
+            continue;
+        size_t used = strlen(textures);
+        snprintf(textures + used, sizeof textures - used, "%s\"%s\": %s", used ? ", " : "", name[i],
+                 json[i]);
+        used = strlen(material);
+        snprintf(material + used, sizeof material - used, ", \"%s\": \"%s\"", slot[i], name[i]);
+    }
+    char scene_json[2048];
+    snprintf(scene_json, sizeof scene_json,
+             "{\"textures\": {%s}, \"materials\": {\"m\": {%s}}, "
+             "\"objects\": [{\"obj\": \"q.obj\", \"material\": \"m\"}]}",
+             textures, material);
+    Scene scene;
+    uint32_t features = features_of(test_write_file(dir, "scene.json", scene_json), &scene);
+    scene_free(&scene);
+    return features;
+}
+
+/* Each texel format, glTF's sampling and bump maps keep their code only where a texture needs
+ * them (cl/material/texture.cl inlines a lookup at every call site). */
+Test(material_features, textures_report_their_format_sampling_and_bump)
+{
+    enum { SRGB = MATERIAL_FEATURE_SRGB_TEXTURE, FLOAT = MATERIAL_FEATURE_FLOAT_TEXTURE,
+           SAMPLER = MATERIAL_FEATURE_TEXTURE_SAMPLER, DETAIL = MATERIAL_FEATURE_SURFACE_DETAIL,
+           BUMP = MATERIAL_FEATURE_BUMP_MAP };
+    uint32_t f = texture_features("{\"file\": \"t.png\"}", NULL, NULL);
+    cr_expect_eq(f, SRGB, "an 8-bit colour image is sRGB: %#x", f);
+    f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\"}", NULL, NULL);
+    cr_expect_eq(f, 0u, "8-bit linear is the plain lookup: %#x", f);
+    f = texture_features("{\"file\": \"t.hdr\"}", NULL, NULL);
+    cr_expect_eq(f, FLOAT, "a Radiance image is float: %#x", f);
+    f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\", \"wrap\": \"clamp\"}", NULL,
+                         NULL);
+    cr_expect_eq(f, SAMPLER, "a wrap mode: %#x", f);
+    f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\", \"filter\": \"nearest\"}",
+                         NULL, NULL);
+    cr_expect_eq(f, SAMPLER, "nearest: %#x", f);
+    f = texture_features(NULL, "{\"file\": \"t.png\", \"encoding\": \"linear\"}", NULL);
+    cr_expect_eq(f, DETAIL, "a normal map without bump: %#x", f);
+    f = texture_features(NULL, NULL, "{\"file\": \"t.png\", \"encoding\": \"linear\"}");
+    cr_expect_eq(f, DETAIL | BUMP, "a bump map: %#x", f);
+    f = texture_features("{\"file\": \"t.hdr\"}", "{\"file\": \"t.png\", \"encoding\": \"linear\"}",
+                         "{\"file\": \"t.png\"}");
+    cr_expect_eq(f, FLOAT | SRGB | DETAIL | BUMP, "all three: %#x", f);
 }

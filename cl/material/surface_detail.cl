@@ -85,7 +85,7 @@ inline Frame surface_detail_frame(const SceneView *scene, uint prim, SurfaceHit 
     float3 dpdu, dpdv, object_dpdu, object_dpdv;
     surface_uv_derivatives(scene, prim, &surf, &dpdu, &dpdv, &object_dpdu, &object_dpdv);
     float3 n = surf.shading_normal;
-    if (m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE)
+    if (PT_FEATURE(BUMP_MAP) && m.tex[MATERIAL_TEX_BUMP] != NO_TEXTURE)
         n = bump_normal(scene, m, surf.uv, surf.object_position, object_dpdu, object_dpdv, n, dpdu,
                         dpdv);
     if (m.tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE)

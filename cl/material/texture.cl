@@ -3,7 +3,9 @@
  * repeat wrapping; 8-bit sRGB texels are decoded before filtering. OBJ's v = 0 is the image's
  * bottom row, and row 0 of the stored image is its top. A texture with TextureInfo.flags (wrap
  * modes, nearest, a uv transform, a channel, a scale: glTF's samplers and textureInfos) takes
- * texture_sample_flagged; flags 0 keeps the plain path's code. */
+ * texture_sample_flagged; flags 0 keeps the plain path's code. Each format's decoding and the
+ * flagged path are compiled only where the scene has such a texture (FLOAT_TEXTURE, SRGB_TEXTURE,
+ * TEXTURE_SAMPLER: cl/shared/features.h), since every lookup inlines them. */
 
 inline float srgb_to_linear(float c)
 {
@@ -13,7 +15,7 @@ inline float srgb_to_linear(float c)
 inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, int y)
 {
     uint index = (uint)y * info.width + (uint)x;
-    if (info.format == TEXTURE_RGBA32F) {
+    if (PT_FEATURE(FLOAT_TEXTURE) && info.format == TEXTURE_RGBA32F) {
         const global uint *p = texels + info.offset + 4u * index;
         return (float4)(as_float(p[0]), as_float(p[1]), as_float(p[2]), as_float(p[3]));
     }
@@ -22,7 +24,7 @@ inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, in
                         (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) * (1.0f / 255.0f);
     /* A product, not a quotient: the same bits on every device (NVIDIA's division, within 2.5
      * ulp, is not correctly rounded unless PT_EXACT_MATHS). */
-    if (info.format == TEXTURE_RGBA8_LINEAR)
+    if (!PT_FEATURE(SRGB_TEXTURE) || info.format == TEXTURE_RGBA8_LINEAR)
         return c;
     return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);
 }
@@ -99,7 +101,7 @@ float4 texture_sample(const SceneView *scene, uint index, float2 uv)
 {
     const global uint *texels = scene->texels;
     TextureInfo info = scene->textures[index];
-    if (info.flags != 0u)
+    if (PT_FEATURE(TEXTURE_SAMPLER) && info.flags != 0u)
         return texture_sample_flagged(texels, info, uv);
     /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. The
      * fmin/fmax keep a NaN or infinite uv (and rounding of the fraction up to 1) from reaching the

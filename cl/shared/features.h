@@ -22,9 +22,13 @@
     X(PRINCIPLED, "principled")                                                                    \
     X(MIX, "mix")                                                                                  \
     X(SURFACE_DETAIL, "surface-detail")     /* normal or bump map, or anisotropy */                \
+    X(BUMP_MAP, "bump-map")                 /* a bump map (three lookups per hit) */               \
     X(TEXTURED_SCALARS, "textured-scalars") /* roughness, metallic or mix weight from a texture */ \
     X(ABSORPTION, "absorption")             /* a dielectric with Beer-Lambert absorption */        \
     X(NOISE_TEXTURE, "noise-texture")       /* a procedural texture (fBm, inlined at lookups) */   \
+    X(SRGB_TEXTURE, "srgb-texture")         /* an 8-bit sRGB image (decoded per texel) */          \
+    X(FLOAT_TEXTURE, "float-texture")       /* a float image */                                    \
+    X(TEXTURE_SAMPLER, "texture-sampler")   /* glTF sampling: wrap modes, nearest, uv transform */ \
     X(EMISSION_TEXTURE, "emission-texture")                                                        \
     X(REFRACTION, "refraction") /* a dielectric: roulette follows radiance's eta^2 (shade_surface) */
 /* Scene features. INSTANCES and TLAS are not only optimisations: they must match the layout that

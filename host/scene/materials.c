@@ -217,9 +217,19 @@ static bool material_may_be_rough(const Material *m)
 uint32_t material_features(const Material *materials, uint32_t count, const TextureSet *textures)
 {
     uint32_t features = 0;
-    for (uint32_t i = 0; i < textures->count; i++)
-        if (textures->infos[i].format == TEXTURE_NOISE)
+    /* Each texel format and glTF's sampling keep their code only where a texture needs it
+     * (cl/material/texture.cl): a lookup is inlined at every one of its call sites. */
+    for (uint32_t i = 0; i < textures->count; i++) {
+        const TextureInfo *t = &textures->infos[i];
+        if (t->format == TEXTURE_NOISE)
             features |= MATERIAL_FEATURE_NOISE_TEXTURE;
+        if (t->format == TEXTURE_RGBA8_SRGB)
+            features |= MATERIAL_FEATURE_SRGB_TEXTURE;
+        if (t->format == TEXTURE_RGBA32F)
+            features |= MATERIAL_FEATURE_FLOAT_TEXTURE;
+        if (t->format != TEXTURE_NOISE && t->flags != 0u)
+            features |= MATERIAL_FEATURE_TEXTURE_SAMPLER;
+    }
     for (uint32_t i = 0; i < count; i++) {
         const Material *m = &materials[i];
         if (m->type == MATERIAL_CONDUCTOR && material_may_be_rough(m))
@@ -240,6 +250,8 @@ uint32_t material_features(const Material *materials, uint32_t count, const Text
         if (m->tex[MATERIAL_TEX_NORMAL] != NO_TEXTURE || m->tex[MATERIAL_TEX_BUMP] != NO_TEXTURE ||
             m->anisotropy != 0.0f)
             features |= MATERIAL_FEATURE_SURFACE_DETAIL;
+        if (m->tex[MATERIAL_TEX_BUMP] != NO_TEXTURE)
+            features |= MATERIAL_FEATURE_BUMP_MAP;
         if (m->tex[MATERIAL_TEX_ROUGHNESS] != NO_TEXTURE || m->tex[MATERIAL_TEX_METALLIC] != NO_TEXTURE ||
             m->tex[MATERIAL_TEX_WEIGHT] != NO_TEXTURE)
             features |= MATERIAL_FEATURE_TEXTURED_SCALARS;
