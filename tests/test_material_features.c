@@ -46,7 +46,8 @@ Test(material_features, each_scene_reports_what_it_uses)
                              MATERIAL_FEATURE_SURFACE_DETAIL, "conductors: %#x", copper);
     scene_free(&s);
     uint32_t wall = features_of("tests/scenes/normalmap/scene.json", &s);
-    cr_expect_eq(wall, MATERIAL_FEATURE_SURFACE_DETAIL, "normal map: %#x", wall);
+    cr_expect_eq(wall, MATERIAL_FEATURE_TEXTURE | MATERIAL_FEATURE_SURFACE_DETAIL, "normal map: %#x",
+                 wall);
     /* One kind of shading: the light only emits. */
     cr_expect(!session_sorts_materials(&s.data, SORT_MATERIALS_AUTO), "normal-mapped wall, a lamp");
     scene_free(&s);
@@ -131,30 +132,30 @@ static uint32_t texture_features(const char *albedo, const char *normal, const c
     return features;
 }
 
-/* Each texel format, glTF's sampling and bump maps keep their code only where a texture needs
- * them (cl/material/texture.cl inlines a lookup at every call site). */
+/* Texture lookups, each texel format, glTF's sampling and bump maps keep their code only where a
+ * texture needs them (cl/material/texture.cl inlines a lookup at every call site). */
 Test(material_features, textures_report_their_format_sampling_and_bump)
 {
-    enum { SRGB = MATERIAL_FEATURE_SRGB_TEXTURE, FLOAT = MATERIAL_FEATURE_FLOAT_TEXTURE,
+    enum { TEX = MATERIAL_FEATURE_TEXTURE, SRGB = MATERIAL_FEATURE_SRGB_TEXTURE, FLOAT = MATERIAL_FEATURE_FLOAT_TEXTURE,
            SAMPLER = MATERIAL_FEATURE_TEXTURE_SAMPLER, DETAIL = MATERIAL_FEATURE_SURFACE_DETAIL,
            BUMP = MATERIAL_FEATURE_BUMP_MAP };
     uint32_t f = texture_features("{\"file\": \"t.png\"}", NULL, NULL);
-    cr_expect_eq(f, SRGB, "an 8-bit colour image is sRGB: %#x", f);
+    cr_expect_eq(f, TEX | SRGB, "an 8-bit colour image is sRGB: %#x", f);
     f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\"}", NULL, NULL);
-    cr_expect_eq(f, 0u, "8-bit linear is the plain lookup: %#x", f);
+    cr_expect_eq(f, TEX, "8-bit linear is the plain lookup: %#x", f);
     f = texture_features("{\"file\": \"t.hdr\"}", NULL, NULL);
-    cr_expect_eq(f, FLOAT, "a Radiance image is float: %#x", f);
+    cr_expect_eq(f, TEX | FLOAT, "a Radiance image is float: %#x", f);
     f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\", \"wrap\": \"clamp\"}", NULL,
                          NULL);
-    cr_expect_eq(f, SAMPLER, "a wrap mode: %#x", f);
+    cr_expect_eq(f, TEX | SAMPLER, "a wrap mode: %#x", f);
     f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\", \"filter\": \"nearest\"}",
                          NULL, NULL);
-    cr_expect_eq(f, SAMPLER, "nearest: %#x", f);
+    cr_expect_eq(f, TEX | SAMPLER, "nearest: %#x", f);
     f = texture_features(NULL, "{\"file\": \"t.png\", \"encoding\": \"linear\"}", NULL);
-    cr_expect_eq(f, DETAIL, "a normal map without bump: %#x", f);
+    cr_expect_eq(f, TEX | DETAIL, "a normal map without bump: %#x", f);
     f = texture_features(NULL, NULL, "{\"file\": \"t.png\", \"encoding\": \"linear\"}");
-    cr_expect_eq(f, DETAIL | BUMP, "a bump map: %#x", f);
+    cr_expect_eq(f, TEX | DETAIL | BUMP, "a bump map: %#x", f);
     f = texture_features("{\"file\": \"t.hdr\"}", "{\"file\": \"t.png\", \"encoding\": \"linear\"}",
                          "{\"file\": \"t.png\"}");
-    cr_expect_eq(f, FLOAT | SRGB | DETAIL | BUMP, "all three: %#x", f);
+    cr_expect_eq(f, TEX | FLOAT | SRGB | DETAIL | BUMP, "all three: %#x", f);
 }

@@ -37,6 +37,37 @@ inline uint walk_pop(Walk *walk, const uint *stack)
     return walk->stack_size ? stack[--walk->stack_size] : WALK_DONE;
 }
 
+/* A child reference as a walk entry: inner nodes as they are, leaves as walk_leaf (the quantised
+ * reference already is one). */
+inline uint walk_entry(uint ref, uint lane)
+{
+#if BVH_QUANTIZED
+    return ref;
+#else
+    return child_is_leaf(ref) ? walk_leaf(~ref, lane) : ref;
+#endif
+}
+
+/* traversal_visit_children for this walk, where no leaf is intersected during a visit: hit.t
+ * cannot move between the two children, so test_children's cull is the only one, and the nearer
+ * child is next while the farther goes on the stack (selects, no branch on which is which).
+ * -DPT_EXP_TIGHT_STEP (experiment). */
+inline void speculative_visit(Traversal *tr, const global TraversalNode *nodes, uint *stack)
+{
+    COUNT_STEPS(tr->walk.hit, 1u, 0u);
+    bool hit[2];
+    float t[2];
+    uint ref[2], lane[2];
+    test_children(&nodes[tr->node], tr->box, tr->box_tmin, tr->walk.hit.t + tr->walk.slack, hit, t,
+                  ref, lane);
+    bool swap = hit[1] && (!hit[0] || t[1] < t[0]);
+    uint near = walk_entry(swap ? ref[1] : ref[0], swap ? lane[1] : lane[0]);
+    uint far = walk_entry(swap ? ref[0] : ref[1], swap ? lane[0] : lane[1]);
+    if (hit[0] && hit[1] && tr->walk.stack_size < BVH_STACK_SIZE) /* always: the builder bounds it */
+        stack[tr->walk.stack_size++] = far;
+    tr->walk.next = hit[0] || hit[1] ? near : 0u;
+}
+
 /* trace_bvh's closest hit. */
 inline Hit trace_bvh_speculative(const global TraversalNode *nodes, const global BvhTriangle *tris,
                                  float3 origin, float3 dir, float tmin, float tmax)
@@ -49,7 +80,11 @@ inline Hit trace_bvh_speculative(const global TraversalNode *nodes, const global
         /* Inner nodes, until this lane meets a second leaf or runs out, or every lane still
          * here holds a leaf. */
         while (!child_is_leaf(tr.node)) {
+#ifdef PT_EXP_TIGHT_STEP
+            speculative_visit(&tr, nodes, stack);
+#else
             traversal_visit_children(&tr, nodes, tris, false, stack, BVH_STACK_SIZE, true, 0u);
+#endif
             tr.node = tr.walk.next ? tr.walk.next : walk_pop(&tr.walk, stack);
             if (leaf == NO_LEAF && child_is_leaf(tr.node) && tr.node != WALK_DONE) {
                 leaf = tr.node;

@@ -46,7 +46,7 @@ inline Bsdf bsdf_at(const SceneView *scene, Material m, float2 uv, float3 positi
     b.type = m.type;
     b.flags = m.flags;
     b.base = xyz(m.base);
-    if (m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
+    if (PT_FEATURE(TEXTURE) && m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
         b.base *= xyz(texture_eval(scene, m.tex[MATERIAL_TEX_BASE], uv, position));
     b.eta = xyz(m.eta);
     b.k = xyz(m.k);

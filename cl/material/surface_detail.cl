@@ -104,10 +104,11 @@ inline Frame surface_detail_frame(const SceneView *scene, uint prim, SurfaceHit 
  * reaches the cutoff base.w and 0 below (glTF's alphaMode MASK). */
 inline float material_opacity(const SceneView *scene, Material m, float2 uv, float3 position)
 {
-    float opacity = m.tex[MATERIAL_TEX_OPACITY] != NO_TEXTURE
+    float opacity = PT_FEATURE(TEXTURE) && m.tex[MATERIAL_TEX_OPACITY] != NO_TEXTURE
                         ? texture_eval(scene, m.tex[MATERIAL_TEX_OPACITY], uv, position).x
                         : m.opacity;
-    if ((m.flags & MATERIAL_FLAG_BASE_ALPHA) && m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
+    if (PT_FEATURE(TEXTURE) && (m.flags & MATERIAL_FLAG_BASE_ALPHA) &&
+        m.tex[MATERIAL_TEX_BASE] != NO_TEXTURE)
         opacity *= texture_eval(scene, m.tex[MATERIAL_TEX_BASE], uv, position).w;
     if (m.flags & MATERIAL_FLAG_ALPHA_MASK)
         opacity = opacity >= m.base.w ? 1.0f : 0.0f;

@@ -25,6 +25,7 @@
     X(BUMP_MAP, "bump-map")                 /* a bump map (three lookups per hit) */               \
     X(TEXTURED_SCALARS, "textured-scalars") /* roughness, metallic or mix weight from a texture */ \
     X(ABSORPTION, "absorption")             /* a dielectric with Beer-Lambert absorption */        \
+    X(TEXTURE, "texture")                   /* any texture (without, no lookup is compiled) */     \
     X(NOISE_TEXTURE, "noise-texture")       /* a procedural texture (fBm, inlined at lookups) */   \
     X(SRGB_TEXTURE, "srgb-texture")         /* an 8-bit sRGB image (decoded per texel) */          \
     X(FLOAT_TEXTURE, "float-texture")       /* a float image */                                    \

@@ -226,8 +226,9 @@ bool session_sorts_materials(const SceneData *d, int request)
         return request == SORT_MATERIALS_ON;
     /* Refraction alone (a smooth dielectric) branches no more than Lambert does, and how texels
      * are stored and sampled does not change a material's way through shading. */
-    uint32_t same_way = MATERIAL_FEATURE_REFRACTION | MATERIAL_FEATURE_SRGB_TEXTURE |
-                        MATERIAL_FEATURE_FLOAT_TEXTURE | MATERIAL_FEATURE_TEXTURE_SAMPLER;
+    uint32_t same_way = MATERIAL_FEATURE_REFRACTION | MATERIAL_FEATURE_TEXTURE |
+                        MATERIAL_FEATURE_SRGB_TEXTURE | MATERIAL_FEATURE_FLOAT_TEXTURE |
+                        MATERIAL_FEATURE_TEXTURE_SAMPLER;
     if (!(material_features(d->materials, d->num_materials, &d->textures) & ~same_way))
         return false;
     return shading_diverges(d);

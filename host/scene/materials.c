@@ -219,6 +219,8 @@ uint32_t material_features(const Material *materials, uint32_t count, const Text
     uint32_t features = 0;
     /* Each texel format and glTF's sampling keep their code only where a texture needs it
      * (cl/material/texture.cl): a lookup is inlined at every one of its call sites. */
+    if (textures->count > 0)
+        features |= MATERIAL_FEATURE_TEXTURE;
     for (uint32_t i = 0; i < textures->count; i++) {
         const TextureInfo *t = &textures->infos[i];
         if (t->format == TEXTURE_NOISE)
