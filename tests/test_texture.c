@@ -175,6 +175,17 @@ static double srgb_decode(unsigned value)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+/* The kernels' decode table is the formula in double, rounded to float once: every code. */
+Test(texture, srgb_decode_table_is_the_transfer_function_rounded_once)
+{
+    const float *table = texture_srgb_decode_table();
+    for (unsigned code = 0; code < TEXTURE_SRGB_CODES; code++)
+        cr_expect_eq(table[code], (float)srgb_decode(code), "code %u: %a against %a", code,
+                     (double)table[code], (double)(float)srgb_decode(code));
+    cr_expect_eq(table[0], 0.0f);
+    cr_expect_eq(table[255], 1.0f);
+}
+
 typedef struct {
     double rgba[4];
 } Rgba;

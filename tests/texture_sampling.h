@@ -11,8 +11,8 @@
 #include "scene/texture.h"
 #include "support.h"
 
-/* Runs a texture test kernel (tests/cl/texture_test.cl: kernel(texels, infos, index, inputs, out,
- * n)) for texture `index` over n inputs of input_bytes / n bytes each; out gets n float4. */
+/* Runs a texture test kernel (tests/cl/texture_test.cl: kernel(texels, infos, srgb_decode, index,
+ * inputs, out, n)) for texture `index` over n inputs of input_bytes / n bytes each; out gets n float4. */
 static inline void run_texture_kernel(const char *kernel_name, const uint32_t *texel_words,
                                       size_t texel_bytes, const TextureInfo *texture_infos,
                                       uint32_t texture_count, uint32_t index, const void *inputs,
@@ -24,16 +24,20 @@ static inline void run_texture_kernel(const char *kernel_name, const uint32_t *t
                                   &err);
     cl_mem infos = device_buffer(dev, "textures", CL_MEM_READ_ONLY,
                                  texture_count * sizeof(TextureInfo), (void *)texture_infos, &err);
+    cl_mem srgb = device_buffer(dev, "srgb_decode", CL_MEM_READ_ONLY,
+                                TEXTURE_SRGB_CODES * sizeof(float),
+                                (void *)texture_srgb_decode_table(), &err);
     cl_mem in = device_buffer(dev, "inputs", CL_MEM_READ_ONLY, input_bytes, (void *)inputs, &err);
     cl_mem result = device_buffer(dev, "out", CL_MEM_WRITE_ONLY, n * sizeof(cl_float4), NULL, &err);
     cr_assert_not(error_is_set(&err), "%s", err.message);
     cl_kernel kernel = device_kernel(dev, kernel_name);
-    KERNEL_ARGS(kernel, 0, KARG(texels), KARG(infos), KARG(index), KARG(in), KARG(result), KARG(n));
+    KERNEL_ARGS(kernel, 0, KARG(texels), KARG(infos), KARG(srgb), KARG(index), KARG(in), KARG(result),
+                KARG(n));
     device_run(dev, kernel, n, 0, NULL);
     device_read(dev, result, 0, n * sizeof(cl_float4), out);
     clReleaseKernel(kernel);
-    cl_mem all[] = {texels, infos, in, result};
-    for (int i = 0; i < 4; i++)
+    cl_mem all[] = {texels, infos, srgb, in, result};
+    for (int i = 0; i < 5; i++)
         clReleaseMemObject(all[i]);
     test_device_release(dev);
 }

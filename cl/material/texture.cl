@@ -7,12 +7,11 @@
  * flagged path are compiled only where the scene has such a texture (FLOAT_TEXTURE, SRGB_TEXTURE,
  * TEXTURE_SAMPLER: cl/shared/features.h), since every lookup inlines them. */
 
-inline float srgb_to_linear(float c)
-{
-    return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
-
-inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, int y)
+/* texels: the scene's texel words; srgb: its srgb_decode table, each 8-bit code's linear value
+ * (host/scene/texture.h: correctly rounded and the same on every device, where pow per channel
+ * was neither and cost a dozen transcendental evaluations per bilinear lookup). */
+inline float4 texel_fetch(const global uint *texels, const global float *srgb, TextureInfo info,
+                          int x, int y)
 {
     uint index = (uint)y * info.width + (uint)x;
     if (PT_FEATURE(FLOAT_TEXTURE) && info.format == TEXTURE_RGBA32F) {
@@ -20,13 +19,25 @@ inline float4 texel_fetch(const global uint *texels, TextureInfo info, int x, in
         return (float4)(as_float(p[0]), as_float(p[1]), as_float(p[2]), as_float(p[3]));
     }
     uint packed = texels[info.offset + index];
-    float4 c = (float4)((float)(packed & 0xffu), (float)((packed >> 8) & 0xffu),
-                        (float)((packed >> 16) & 0xffu), (float)(packed >> 24)) * (1.0f / 255.0f);
+    uint r = packed & 0xffu, g = (packed >> 8) & 0xffu, b = (packed >> 16) & 0xffu;
     /* A product, not a quotient: the same bits on every device (NVIDIA's division, within 2.5
      * ulp, is not correctly rounded unless PT_EXACT_MATHS). */
-    if (!PT_FEATURE(SRGB_TEXTURE) || info.format == TEXTURE_RGBA8_LINEAR)
-        return c;
-    return (float4)(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z), c.w);
+    float a = (float)(packed >> 24) * (1.0f / 255.0f);
+    if (PT_FEATURE(SRGB_TEXTURE) && info.format == TEXTURE_RGBA8_SRGB)
+        return (float4)(srgb[r], srgb[g], srgb[b], a);
+    return (float4)((float)r * (1.0f / 255.0f), (float)g * (1.0f / 255.0f),
+                    (float)b * (1.0f / 255.0f), a);
+}
+
+/* The four texels around a point, weighted by its fractions ax (towards x1) and ay (y1). */
+inline float4 texel_bilinear(const global uint *texels, const global float *srgb, TextureInfo info,
+                             int x0, int x1, int y0, int y1, float ax, float ay)
+{
+    float4 top = mix(texel_fetch(texels, srgb, info, x0, y0),
+                     texel_fetch(texels, srgb, info, x1, y0), ax);
+    float4 bottom = mix(texel_fetch(texels, srgb, info, x0, y1),
+                        texel_fetch(texels, srgb, info, x1, y1), ax);
+    return mix(top, bottom, ay);
 }
 
 inline int wrap_coord(int i, int n)
@@ -65,7 +76,8 @@ inline int wrap_index(int i, int n, uint wrap)
 
 /* texture_sample with the sampling of info.flags (cl/shared/material.h TEXTURE_FLAG_*). The same
  * texel convention as the plain path: v flipped, texel centres at half-integers. */
-float4 texture_sample_flagged(const global uint *texels, TextureInfo info, float2 uv)
+float4 texture_sample_flagged(const global uint *texels, const global float *srgb,
+                              TextureInfo info, float2 uv)
 {
     uint flags = info.flags;
     if (flags & TEXTURE_FLAG_TRANSFORM)
@@ -79,16 +91,14 @@ float4 texture_sample_flagged(const global uint *texels, TextureInfo info, float
     float y = fmin(fmax((1.0f - wrap_unit(uv.y, wrap_t)) * (float)h, -2.0f * h), 2.0f * h);
     float4 c;
     if (flags & TEXTURE_FLAG_NEAREST) {
-        c = texel_fetch(texels, info, wrap_index((int)floor(x), w, wrap_s),
+        c = texel_fetch(texels, srgb, info, wrap_index((int)floor(x), w, wrap_s),
                         wrap_index((int)floor(y), h, wrap_t));
     } else {
         float fx = floor(x - 0.5f), fy = floor(y - 0.5f);
         float ax = x - 0.5f - fx, ay = y - 0.5f - fy;
         int x0 = wrap_index((int)fx, w, wrap_s), x1 = wrap_index((int)fx + 1, w, wrap_s);
         int y0 = wrap_index((int)fy, h, wrap_t), y1 = wrap_index((int)fy + 1, h, wrap_t);
-        float4 top = mix(texel_fetch(texels, info, x0, y0), texel_fetch(texels, info, x1, y0), ax);
-        float4 bottom = mix(texel_fetch(texels, info, x0, y1), texel_fetch(texels, info, x1, y1), ax);
-        c = mix(top, bottom, ay);
+        c = texel_bilinear(texels, srgb, info, x0, x1, y0, y1, ax, ay);
     }
     uint channel = TEXTURE_FLAG_CHANNEL(flags);
     c.x = channel == 1u ? c.y : channel == 2u ? c.z : channel == 3u ? c.w : c.x;
@@ -100,9 +110,10 @@ float4 texture_sample_flagged(const global uint *texels, TextureInfo info, float
 float4 texture_sample(const SceneView *scene, uint index, float2 uv)
 {
     const global uint *texels = scene->texels;
+    const global float *srgb = scene->srgb_decode;
     TextureInfo info = scene->textures[index];
     if (PT_FEATURE(TEXTURE_SAMPLER) && info.flags != 0u)
-        return texture_sample_flagged(texels, info, uv);
+        return texture_sample_flagged(texels, srgb, info, uv);
     /* Texel centres sit at half-integer coordinates; flip v so v = 0 is the bottom row. The
      * fmin/fmax keep a NaN or infinite uv (and rounding of the fraction up to 1) from reaching the
      * float-to-int conversions below, whose out-of-range result is undefined. */
@@ -113,9 +124,7 @@ float4 texture_sample(const SceneView *scene, uint index, float2 uv)
     float ax = x - fx, ay = y - fy;
     int x0 = wrap_near((int)fx, (int)info.width), x1 = wrap_near((int)fx + 1, (int)info.width);
     int y0 = wrap_near((int)fy, (int)info.height), y1 = wrap_near((int)fy + 1, (int)info.height);
-    float4 top = mix(texel_fetch(texels, info, x0, y0), texel_fetch(texels, info, x1, y0), ax);
-    float4 bottom = mix(texel_fetch(texels, info, x0, y1), texel_fetch(texels, info, x1, y1), ax);
-    return mix(top, bottom, ay);
+    return texel_bilinear(texels, srgb, info, x0, x1, y0, y1, ax, ay);
 }
 
 /* ---- Procedural noise (TEXTURE_NOISE) ------------------------------------------------------ */

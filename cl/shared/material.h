@@ -86,6 +86,8 @@ typedef struct {
  * read as data (normal, roughness, metallic, opacity maps) keep a quarter of RGBA32F's memory and
  * traffic. */
 #define TEXTURE_RGBA8_LINEAR 3u
+/* Entries of the scene's srgb_decode buffer (shared/render.h): one per 8-bit code. */
+#define TEXTURE_SRGB_CODES 256
 
 /* How a texture is sampled (TextureInfo.flags; 0: bilinear, repeating, rgba as stored, the
  * lookup's plain path). Wrap modes per axis as glTF's samplers (GL's REPEAT, CLAMP_TO_EDGE,

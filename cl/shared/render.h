@@ -157,6 +157,7 @@ typedef struct {
     X(uint, material_ids)                                                                           \
     X(Material, materials)                                                                          \
     X(uint, texels)                                                                                 \
+    X(float, srgb_decode)      /* each 8-bit sRGB code's linear value (host/scene/texture.h) */    \
     X(TextureInfo, textures)                                                                        \
     X(LightEntry, lights)                                                                           \
     X(AnalyticLight, analytic_lights)                                                               \

@@ -166,6 +166,7 @@ bool scene_buffers_upload(Device *dev, const SceneData *data, const SceneBvh *bv
     src.materials = source(data->num_materials, sizeof(Material), data->materials);
     src.texels = source(data->textures.num_texels, sizeof(uint32_t), data->textures.texels);
     src.textures = source(data->textures.count, sizeof(TextureInfo), data->textures.infos);
+    src.srgb_decode = source(TEXTURE_SRGB_CODES, sizeof(float), texture_srgb_decode_table());
     src.lights = source(lights.count, sizeof(LightEntry), lights.entries);
     src.analytic_lights = source(lights.num_analytic, sizeof(AnalyticLight), lights.analytic);
     out->params.num_analytic = lights.num_analytic;

@@ -14,6 +14,7 @@
 #include "io/image_checks.h"
 #include "io/image_io.h"
 #include "io/input_file.h"
+#include "scene/srgb_decode_table.h"
 
 /* Every offset and texel index is a uint in the kernel (and RGBA32F indices are multiplied by 4),
  * so the whole texel buffer is capped at 2^31 uints (8 GiB). */
@@ -145,15 +146,15 @@ static void apply_encoding(DecodedImage *img, TextureEncoding encoding)
     }
 }
 
+const float *texture_srgb_decode_table(void) { return srgb_decode_table; }
+
 /* What the host's material checks need: channels, cut-out alpha, the mean linear colour. */
 static TextureStats image_stats(const DecodedImage *img)
 {
     TextureStats st = {.channels = img->channels};
     size_t texels = (size_t)img->width * (size_t)img->height;
     double sum[3] = {0.0, 0.0, 0.0};
-    float srgb[256];
-    for (int i = 0; i < 256; i++)
-        srgb[i] = srgb_to_linear(i / 255.0f);
+    const float *srgb = texture_srgb_decode_table();
     for (size_t i = 0; i < texels; i++) {
         for (int c = 0; c < 3; c++) {
             float v = !img->rgba8    ? img->rgba32f[4 * i + c]

@@ -81,4 +81,9 @@ bool texture_set_append(TextureSet *set, const TextureInfo *info, const TextureS
 float texture_mean_luminance(const TextureSet *set, uint32_t index);
 void texture_set_free(TextureSet *set);
 
+/* TEXTURE_SRGB_CODES floats: the linear value of each 8-bit sRGB code, computed in double and
+ * rounded once, which the kernels read (cl/material/texture.cl texel_fetch) instead of evaluating
+ * the transfer function per channel: correctly rounded, and the same on every device. */
+const float *texture_srgb_decode_table(void);
+
 #endif
