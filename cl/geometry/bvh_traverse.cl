@@ -247,9 +247,9 @@ typedef struct {
 } Walk;
 
 /* Visits one child whose box the ray meets at t_entry: a leaf is intersected now, or with
- * defer_leaves (a TLAS's leaves, which name instances; bvh_traverse_speculative.cl's postponed
- * leaves) visited like an inner node as a walk_leaf entry; an inner node becomes the next node
- * or, if there is one already, goes on the stack. True when an any-hit query is answered. */
+ * defer_leaves (a TLAS's leaves, which name instances) visited like an inner node as a walk_leaf
+ * entry; an inner node becomes the next node or, if there is one already, goes on the stack.
+ * True when an any-hit query is answered. */
 inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, float t_entry,
                         WatertightRay ray, float tmin, bool any_hit, Walk *walk, uint *stack,
                         uint stack_limit, bool defer_leaves, uint instance)
@@ -299,18 +299,25 @@ inline void traversal_start(Traversal *tr, const global TraversalNode *nodes, fl
     tr->node = 0;
 }
 
+/* Tests tr->node's two child boxes against the ray, within the closest hit so far. */
+inline void traversal_test_children(Traversal *tr, const global TraversalNode *nodes, bool hit[2],
+                                    float t[2], uint ref[2], uint lane[2])
+{
+    COUNT_STEPS(tr->walk.hit, 1u, 0u);
+    test_children(&nodes[tr->node], tr->box, tr->box_tmin, tr->walk.hit.t + tr->walk.slack, hit, t,
+                  ref, lane);
+}
+
 /* Tests tr->node's children and visits those the ray meets (nearer first), leaving the node to
  * visit next in tr->walk.next (0: pop one); true when an any-hit query is answered. */
 inline bool traversal_visit_children(Traversal *tr, const global TraversalNode *nodes,
                                      const global BvhTriangle *tris, bool any_hit, uint *stack,
                                      uint stack_limit, bool defer_leaves, uint instance)
 {
-    COUNT_STEPS(tr->walk.hit, 1u, 0u);
     bool hit[2];
     float t[2];
     uint ref[2], lane[2];
-    test_children(&nodes[tr->node], tr->box, tr->box_tmin, tr->walk.hit.t + tr->walk.slack, hit, t,
-                  ref, lane);
+    traversal_test_children(tr, nodes, hit, t, ref, lane);
     /* Nearer child first: it is the more likely to shorten hit.t for the other. Selects, not
      * indices: a private array indexed at run time would live in memory. */
     bool swap = hit[1] && (!hit[0] || t[1] < t[0]);

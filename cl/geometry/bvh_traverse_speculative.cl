@@ -3,11 +3,11 @@
  * 2009, "Understanding the Efficiency of Ray Traversal on GPUs": while-while with speculative
  * traversal). trace_bvh intersects a leaf child as soon as its box is hit, so a SIMD group pays
  * at every step for the longest leaf that any of its lanes met. Here a lane that meets a leaf
- * holds it and walks on (traversal_visit_children with defer_leaves: leaves become walk_leaf
- * entries); the lanes intersect their leaves together once every lane still walking holds one
- * (all_lanes), or when a lane meets a second leaf or runs out of nodes. The hits are
- * trace_bvh's: hit_wins breaks ties whatever order the leaves come in. Any-hit queries keep
- * trace_bvh: a postponed leaf postpones the hit that would end the query (bvh_query.cl). */
+ * holds it and walks on (speculative_visit: leaves become walk_leaf entries); the lanes
+ * intersect their leaves together once every lane still walking holds one (all_lanes), or when
+ * a lane meets a second leaf or runs out of nodes. The hits are trace_bvh's: hit_wins breaks ties
+ * whatever order the leaves come in. Any-hit queries keep trace_bvh: a postponed leaf postpones
+ * the hit that would end the query (bvh_query.cl). */
 #if BVH_WIDTH == 2
 
 /* No entry left (as a walk_leaf, 15 triangles: more than a leaf holds). */
@@ -48,18 +48,17 @@ inline uint walk_entry(uint ref, uint lane)
 #endif
 }
 
-/* traversal_visit_children for this walk, where no leaf is intersected during a visit: hit.t
- * cannot move between the two children, so test_children's cull is the only one, and the nearer
- * child is next while the farther goes on the stack (selects, no branch on which is which).
- * -DPT_EXP_TIGHT_STEP (experiment). */
+/* Visits tr->node for this walk, where no leaf is intersected during a visit: hit.t cannot move
+ * between the two children, so the box test's cull is the only one (traversal_visit_children's
+ * second, before each child, cannot fire here), and the nearer child is next while the farther
+ * goes on the stack, chosen by selects. 1.02-1.05x on an H100 against the visit through
+ * traversal_visit_children (bench/README.md "Texture code per scene, the tight walk"). */
 inline void speculative_visit(Traversal *tr, const global TraversalNode *nodes, uint *stack)
 {
-    COUNT_STEPS(tr->walk.hit, 1u, 0u);
     bool hit[2];
     float t[2];
     uint ref[2], lane[2];
-    test_children(&nodes[tr->node], tr->box, tr->box_tmin, tr->walk.hit.t + tr->walk.slack, hit, t,
-                  ref, lane);
+    traversal_test_children(tr, nodes, hit, t, ref, lane);
     bool swap = hit[1] && (!hit[0] || t[1] < t[0]);
     uint near = walk_entry(swap ? ref[1] : ref[0], swap ? lane[1] : lane[0]);
     uint far = walk_entry(swap ? ref[0] : ref[1], swap ? lane[0] : lane[1]);
@@ -80,11 +79,7 @@ inline Hit trace_bvh_speculative(const global TraversalNode *nodes, const global
         /* Inner nodes, until this lane meets a second leaf or runs out, or every lane still
          * here holds a leaf. */
         while (!child_is_leaf(tr.node)) {
-#ifdef PT_EXP_TIGHT_STEP
             speculative_visit(&tr, nodes, stack);
-#else
-            traversal_visit_children(&tr, nodes, tris, false, stack, BVH_STACK_SIZE, true, 0u);
-#endif
             tr.node = tr.walk.next ? tr.walk.next : walk_pop(&tr.walk, stack);
             if (leaf == NO_LEAF && child_is_leaf(tr.node) && tr.node != WALK_DONE) {
                 leaf = tr.node;

@@ -14,19 +14,22 @@
 #include "base/error.h"
 #include "base/shared_types.h"
 
-/* The parts the program is built in (cl/shared/program_parts.h says why): X(NAME, the kernels
- * that only part NAME has, space-separated). A kernel of no list is in CORE and maybe in other
- * parts too: device_kernel takes it from a part already built before building CORE for it. */
+/* The parts the program is built in (cl/shared/program_parts.h says why): X(NAME, the register
+ * cap of its kernels on NVIDIA (-cl-nv-maxrregcount; 0: the compiler's choice), the kernels that
+ * only part NAME has, space-separated). A kernel of no list is in CORE and maybe in other parts
+ * too: device_kernel takes it from a part already built before building CORE for it. The caps
+ * trade registers for occupancy where an H100 measured it faster on the benchmark scenes
+ * (bench/README.md, "Texture code per scene, the tight walk and register caps"). */
 #define PROGRAM_PARTS(X)                                                                           \
-    X(CORE, "")                                                                                    \
-    X(MEGAKERNEL, "trace_paths trace_paths_packets")                                               \
-    X(AOV, "render_aov")                                                                           \
-    X(ABLATION, "intersect_closest_brute_force intersect_shadow_brute_force")                     \
-    X(TAIL, "finish_paths")                                                                        \
-    X(SPLIT, "shade_surface_split intersect_shadow")                                               \
-    X(CONNECT, "shade_surface")
+    X(CORE, 40, "")                                                                                \
+    X(MEGAKERNEL, 0, "trace_paths trace_paths_packets")                                            \
+    X(AOV, 0, "render_aov")                                                                        \
+    X(ABLATION, 0, "intersect_closest_brute_force intersect_shadow_brute_force")                  \
+    X(TAIL, 0, "finish_paths")                                                                     \
+    X(SPLIT, 0, "shade_surface_split intersect_shadow")                                            \
+    X(CONNECT, 64, "shade_surface")
 typedef struct BackgroundBuild BackgroundBuild;
-#define PROGRAM_PART_ENUM(name, kernels) PROGRAM_PART_##name,
+#define PROGRAM_PART_ENUM(name, nv_registers, kernels) PROGRAM_PART_##name,
 enum { PROGRAM_PARTS(PROGRAM_PART_ENUM) PROGRAM_PART_COUNT };
 #undef PROGRAM_PART_ENUM
 

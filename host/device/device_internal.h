@@ -24,10 +24,12 @@ const char *device_maths_options(bool correctly_rounded, bool nvidia, bool exact
 /* ---- The program's parts (program.c), their builds (program_build.c) and the builds on a thread
  * of their own (program_background.c) ---- */
 
-/* The parts: each one's -DPT_PARTS bit and the kernels only it has (PROGRAM_PARTS). */
+/* The parts: each one's -DPT_PARTS bit, register cap on NVIDIA and the kernels only it has
+ * (PROGRAM_PARTS). */
 typedef struct {
     const char *name;
     unsigned bit;
+    unsigned nv_registers;
     const char *kernels;
 } ProgramPart;
 extern const ProgramPart program_parts[PROGRAM_PART_COUNT];

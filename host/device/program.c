@@ -92,7 +92,8 @@ bool device_choose_program_options(Device *dev, Error *err)
 
 const char *device_build_options(const Device *dev) { return dev->build_options; }
 
-#define PROGRAM_PART_ROW(id, kernel_list) {#id, PT_PART_BIT_##id, kernel_list},
+#define PROGRAM_PART_ROW(id, nv_registers, kernel_list) \
+    {#id, PT_PART_BIT_##id, nv_registers, kernel_list},
 const ProgramPart program_parts[PROGRAM_PART_COUNT] = {PROGRAM_PARTS(PROGRAM_PART_ROW)};
 #undef PROGRAM_PART_ROW
 

@@ -159,8 +159,12 @@ static void announce_build(const Device *dev, int part)
 static bool part_options_and_key(const Device *dev, int part, char *options, size_t size,
                                  bool *driver_keeps, uint64_t *key, Error *err)
 {
+    unsigned cap = dev->is_nvidia && !dev->whole_program ? program_parts[part].nv_registers : 0u;
     if (dev->whole_program)
         snprintf(options, size, "%s", dev->options);
+    else if (cap)
+        snprintf(options, size, "%s -DPT_PARTS=%uu -cl-nv-maxrregcount=%u", dev->options,
+                 program_parts[part].bit, cap);
     else
         snprintf(options, size, "%s -DPT_PARTS=%uu", dev->options, program_parts[part].bit);
     if (!driver_keeps_programs(dev, driver_keeps, err))
@@ -174,7 +178,7 @@ static bool part_options_and_key(const Device *dev, int part, char *options, siz
     return true;
 }
 
-#define PART_OPTIONS_SIZE (sizeof ((Device *)0)->build_options + PROGRAM_FEATURE_OPTIONS_SIZE + 32)
+#define PART_OPTIONS_SIZE (sizeof ((Device *)0)->build_options + PROGRAM_FEATURE_OPTIONS_SIZE + 64)
 
 bool program_build_part_program(const Device *dev, int part, bool announce, cl_program *out,
                                 bool *compiled, Error *err)
