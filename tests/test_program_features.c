@@ -86,7 +86,12 @@ Test(program_features, options_and_summary_follow_the_list)
     cr_expect_str_eq(summary, "none");
     program_features_summary(PROGRAM_FEATURES_ALL & ~(ProgramFeatures)FEATURE_ENV, summary);
     cr_expect_lt(strlen(summary) + 1, PROGRAM_FEATURE_SUMMARY_SIZE, "%s", summary);
-    cr_expect_eq(MATERIAL_FEATURE_ALL, 0x7ffu, "material features keep the low bits");
+#define COUNT_ONE(name, word) +1
+    enum { MATERIAL_FEATURE_COUNT = 0 MATERIAL_FEATURES(COUNT_ONE) };
+#undef COUNT_ONE
+    cr_expect_eq(MATERIAL_FEATURE_ALL, (1u << MATERIAL_FEATURE_COUNT) - 1u,
+                 "material features keep the low bits: %#x", MATERIAL_FEATURE_ALL);
+    cr_expect_leq(PROGRAM_FEATURE_COUNT, 32, "a ProgramFeatures set is 32 bits");
 }
 
 /* The features are part of the kernel cache's key: a program built for another set is compiled,
