@@ -55,7 +55,7 @@ echo "== profiles $(el) s"
 wait $PIP; cat /tmp/pip.txt
 export PYTHONPATH=/tmp/site
 for s in tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/small-light.json tests/scenes/cornell-sphere /tmp/forest43 /tmp/torus-100k.json tests/scenes/envmap tests/scenes/conductors tests/scenes/textured; do
-  [ $(el) -gt 480 ] && { echo "mitsuba: out of time at $s"; break; }
+  [ $(el) -gt 330 ] && { echo "mitsuba: out of time at $s"; break; }
   python3 tools/bench_mitsuba.py $s --width 1280 --height 960 --spp 64 --max-depth 8 --reps 3 --variant cuda_ad_rgb --rr-depth 5 --csv $O/mitsuba.csv 2>&1 | grep -E "Mpaths|rror" | tail -3
 done
 echo "== done $(el) s"
