@@ -1,7 +1,8 @@
 #!/bin/bash
-# Session 13's last GPU call: the session's final build against its start, and Mitsuba at equal
-# work. Carry .gpu45 (libraries), .gpu56 (pt-base = 65203ed, pt-final = 0b87606), .whl (Mitsuba
-# 3.9.1 and Dr.Jit wheels).
+# NOT RUN: no machine started in five attempts (device time 789 -> 339 s). Session 13's last GPU
+# call as planned: the session's final build against its start, and Mitsuba at equal work. Carry
+# .gpu45 (libraries), .gpu56 (pt-base = 65203ed, pt-final = 0b87606), .whl (Mitsuba 3.9.1 and
+# Dr.Jit wheels).
 set -u
 O=$OUT
 T0=$(date +%s); el() { echo $(( $(date +%s) - T0 )); }
