@@ -1,5 +1,5 @@
 #!/bin/bash
-# Session 13's short last call, for the device time left (run-2-not-run.sh did not start): the
+# NOT RUN (one failed start took the device time to 249 s). Session 13's short last call, for the
 # room and the Cornell box, 65203ed against the final build (0b87606): the images' agreement
 # (bench_compare_exr prints their means), one round of timings, and Mitsuba on both. Carry .gpu45,
 # .gpu56, .whl.
