@@ -335,11 +335,46 @@ inline bool traversal_visit_children(Traversal *tr, const global TraversalNode *
 
 /* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
  * at the first hit found, otherwise when no node is left. */
+#ifdef PT_EXP_TIGHT_ANY
+/* Experiment (-DPT_EXP_TIGHT_ANY, bench/results/throughput-41/session13/next-call.sh): an any-hit
+ * visit without what only closest hits need. The query ends at its first hit, so hit.t never
+ * shrinks during the walk and the second cull cannot fire, and the children need no order: leaf
+ * children are intersected at once, the left inner child is next and the right one pushed. */
+inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
+                          const global BvhTriangle *tris, uint *stack)
+{
+    bool hit[2];
+    float t[2];
+    uint ref[2], lane[2];
+    traversal_test_children(tr, nodes, hit, t, ref, lane);
+    bool leaf0 = child_is_leaf(ref[0]), leaf1 = child_is_leaf(ref[1]);
+    if (hit[0] && leaf0 &&
+        intersect_leaf(tris, leaf_first(ref[0], lane[0]), leaf_count(ref[0], lane[0]), tr->tri,
+                       tr->tmin, true, &tr->walk.hit, 0u))
+        return true;
+    if (hit[1] && leaf1 &&
+        intersect_leaf(tris, leaf_first(ref[1], lane[1]), leaf_count(ref[1], lane[1]), tr->tri,
+                       tr->tmin, true, &tr->walk.hit, 0u))
+        return true;
+    bool inner0 = hit[0] && !leaf0, inner1 = hit[1] && !leaf1;
+    if (inner0 && inner1 && tr->walk.stack_size < BVH_STACK_SIZE)
+        stack[tr->walk.stack_size++] = ref[1];
+    tr->walk.next = inner0 ? ref[0] : inner1 ? ref[1] : 0u;
+    return false;
+}
+#endif
+
 inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
                            const global BvhTriangle *tris, bool any_hit, uint *stack)
 {
+#ifdef PT_EXP_TIGHT_ANY
+    if (any_hit ? any_hit_visit(tr, nodes, tris, stack)
+                : traversal_visit_children(tr, nodes, tris, false, stack, BVH_STACK_SIZE, false, 0u))
+        return true;
+#else
     if (traversal_visit_children(tr, nodes, tris, any_hit, stack, BVH_STACK_SIZE, false, 0u))
         return true;
+#endif
     if (tr->walk.next == 0) {
         if (tr->walk.stack_size == 0)
             return true;
