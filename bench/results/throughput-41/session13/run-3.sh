@@ -1,8 +1,8 @@
 #!/bin/bash
-# NOT RUN (one failed start took the device time to 249 s). Session 13's short last call, for the
-# room and the Cornell box, 65203ed against the final build (0b87606): the images' agreement
-# (bench_compare_exr prints their means), one round of timings, and Mitsuba on both. Carry .gpu45,
-# .gpu56, .whl.
+# Session 13's third call, which ran (started at its second attempt, with 249 s of device time
+# left; run-2-not-run.sh never started): the room and the Cornell box, 65203ed against the final
+# build (0b87606): the images' agreement (bench_compare_exr prints their means), two rounds of
+# timings, and Mitsuba on both. Carry .gpu45, .gpu56, .whl.
 set -u
 O=$OUT
 T0=$(date +%s); el() { echo $(( $(date +%s) - T0 )); }
