@@ -8,8 +8,8 @@
  * TEXTURE_SAMPLER: cl/shared/features.h), since every lookup inlines them. */
 
 /* texels: the scene's texel words; srgb: its srgb_decode table, each 8-bit code's linear value
- * (host/scene/texture.h: correctly rounded and the same on every device, where pow per channel
- * was neither and cost a dozen transcendental evaluations per bilinear lookup). */
+ * (host/scene/texture.h): correctly rounded and the same on every device, and a load where the
+ * transfer function would cost a pow per channel, twelve per bilinear lookup. */
 inline float4 texel_fetch(const global uint *texels, const global float *srgb, TextureInfo info,
                           int x, int y)
 {
