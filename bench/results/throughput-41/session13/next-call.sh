@@ -4,8 +4,8 @@
 # the experiment behind a flag; if .gpu57 is gone, rebuild both and strip them), .whl (Mitsuba
 # 3.9.1 and Dr.Jit wheels). Variants: final (pt-next as built, = 0b87606's code), anyt (with
 # -DPT_EXP_TIGHT_ANY: the any-hit visit without the closest hit's cull and order). The bits lines
-# print the images' means: the room's NVIDIA-only difference (bench/README.md, session 13) should
-# be within noise. Then Mitsuba on every scene, for the table in one call.
+# print the images' means (the room differs from 65203ed on NVIDIA within noise: call 3). Then
+# Mitsuba on every scene, for the table in one call.
 set -u
 O=$OUT
 T0=$(date +%s); el() { echo $(( $(date +%s) - T0 )); }
