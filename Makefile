@@ -41,7 +41,8 @@ endif
 # The OpenCL program, in the order it is assembled (shared.h first: both compilers read it).
 CL_SOURCES := cl/shared.h cl/shared/features.h cl/shared/program_parts.h cl/shared/geometry.h cl/shared/material.h cl/shared/medium.h cl/shared/render.h \
               cl/core/util.cl cl/core/sobol.cl cl/core/rng.cl cl/core/sampling.cl cl/core/camera.cl \
-              cl/geometry/intersect_triangle.cl cl/geometry/instance.cl cl/geometry/bvh_traverse.cl \
+              cl/geometry/intersect_triangle.cl cl/geometry/instance.cl cl/geometry/box_test.cl \
+              cl/geometry/bvh_node_2wide.cl cl/geometry/bvh_traverse.cl \
               cl/geometry/bvh_traverse_speculative.cl cl/geometry/bvh_traverse_wide.cl \
               cl/geometry/bvh_query.cl cl/geometry/bvh_traverse_packet.cl \
               cl/geometry/scene_trace.cl \

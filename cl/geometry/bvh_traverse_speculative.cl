@@ -37,17 +37,6 @@ inline uint walk_pop(Walk *walk, const uint *stack)
     return walk->stack_size ? stack[--walk->stack_size] : WALK_DONE;
 }
 
-/* A child reference as a walk entry: inner nodes as they are, leaves as walk_leaf (the quantised
- * reference already is one). */
-inline uint walk_entry(uint ref, uint lane)
-{
-#if BVH_QUANTIZED
-    return ref;
-#else
-    return child_is_leaf(ref) ? walk_leaf(~ref, lane) : ref;
-#endif
-}
-
 /* Visits tr->node for this walk, where no leaf is intersected during a visit: hit.t cannot move
  * between the two children, so the box test's cull is the only one (traversal_visit_children's
  * second, before each child, cannot fire here), and the nearer child is next while the farther

@@ -4,7 +4,7 @@
  * after another; here one floatW operation tests all of a node's child boxes, or all triangles of
  * a pack, so the SIMD units do the work in parallel that a GPU spreads over its lanes.
  * The tests are the 2-wide ones lane by lane: the same slab test with the same rounding slack
- * (bvh_traverse.cl) and the same watertight triangle test (intersect_triangle.cl), operation for
+ * (box_test.cl) and the same watertight triangle test (intersect_triangle.cl), operation for
  * operation, so every layout reports the same hits. Hits are reported for tmin <= t < tmax. */
 #if BVH_WIDTH != 2
 
@@ -39,7 +39,7 @@ inline uint lane_bits(intW m) { return LANE_BITS(m); }
 /* The lowest set bit's index (OpenCL 1.2 has clz but no ctz); bits != 0. */
 inline uint lowest_lane(uint bits) { return 31u - clz(bits & (0u - bits)); }
 
-/* max_into / min_into of bvh_traverse.cl, lane by lane: a NaN in x leaves acc. */
+/* max_into / min_into of box_test.cl, lane by lane: a NaN in x leaves acc. */
 #ifdef PT_VENDOR_NVIDIA
 inline floatW max_into_w(floatW x, floatW acc) { return fmax(x, acc); }
 inline floatW min_into_w(floatW x, floatW acc) { return fmin(x, acc); }

@@ -3,7 +3,7 @@
  * a frame, an origin p and a power-of-two step s, with every child plane on the grid p + q s,
  * q = 0..255, rounded outwards. The margin: the traversal computes a plane's distance as
  * q * (s / d) + (p - o) / d, whose rounding that is not relative to the distance is at most
- * 2^-14 s (bvh_traverse.cl); planes are pushed out by PLANE_MARGIN = 2^-10 s beyond the exact
+ * 2^-14 s (box_test.cl); planes are pushed out by PLANE_MARGIN = 2^-10 s beyond the exact
  * box, so the quantised box the traversal sees still holds the exact one. Arithmetic is in double,
  * where p + q s and the differences below are exact. */
 #include "accel/bvh_quantized.h"

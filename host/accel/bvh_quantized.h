@@ -6,7 +6,7 @@
 #include "accel/bvh.h"
 
 /* A quantised copy of bvh's nodes, same indices and triangle order (free() it). Every quantised
- * child box holds the exact one with a margin (bvh_traverse.cl, BOX_EXIT_SCALE, says why). Dies
+ * child box holds the exact one with a margin (box_test.cl, BOX_EXIT_SCALE, says why). Dies
  * if bvh has BVH_QUANTIZED_MAX_TRIANGLES triangles or more. */
 BvhNodeQuantized *bvh_quantize(const Bvh *bvh);
 

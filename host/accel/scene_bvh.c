@@ -30,7 +30,7 @@ static void build_one_level(SceneBvh *out, const float4 *positions, const Triang
     BvhLayout layout;
     bvh_layout(&layout, &bvh, out->width, out->quantized);
     /* The 2-wide closest-hit walk packs a leaf's first triangle as the quantised node does
-     * (cl/geometry/bvh_traverse.cl walk_leaf). */
+     * (cl/geometry/bvh_node_2wide.cl walk_leaf). */
     if (out->width == 2 && layout.num_prims >= BVH_QUANTIZED_MAX_TRIANGLES)
         die("BVH: %u triangles; the 2-wide layout addresses fewer than %u (PT_BVH_WIDTH=8 lifts "
             "the limit)", layout.num_prims, BVH_QUANTIZED_MAX_TRIANGLES);
@@ -107,7 +107,7 @@ void scene_bvh_build(SceneBvh *out, const float4 *positions, const Triangle *tri
     switch (levels) {
     case BVH_TWO_LEVEL:
         /* The 2-wide walk packs a TLAS leaf's instance as the quantised node does
-         * (cl/geometry/bvh_traverse.cl walk_leaf). */
+         * (cl/geometry/bvh_node_2wide.cl walk_leaf). */
         if (width == 2 && num_instances >= BVH_QUANTIZED_MAX_TRIANGLES)
             die("BVH: %u instances; the 2-wide TLAS addresses fewer than %u", num_instances,
                 BVH_QUANTIZED_MAX_TRIANGLES);

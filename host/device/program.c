@@ -46,7 +46,7 @@ static bool choose_build_options(Device *dev, Error *err)
     const char *maths = device_maths_options(correctly_rounded, dev->is_nvidia, exact);
     if (!env_text("PT_CL_OPTIONS", MAX_CL_OPTIONS_LENGTH, maths, &maths, err))
         return false;
-    /* Without correctly rounded division the box test widens its margin (bvh_traverse.cl). */
+    /* Without correctly rounded division the box test widens its margin (box_test.cl). */
     bool inexact = !correctly_rounded || !strstr(maths, CORRECTLY_ROUNDED_OPTION);
     snprintf(dev->build_options, sizeof dev->build_options,
              "-cl-std=CL1.2 %s -DBVH_WIDTH=%d%s%s%s", maths, dev->bvh_width,
