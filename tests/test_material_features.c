@@ -108,7 +108,8 @@ static uint32_t texture_features(const char *albedo, const char *normal, const c
     cr_assert(stbi_write_png(png, 1, 1, 3, rgb, 3));
     const float one[] = {1.0f, 0.5f, 0.25f};
     cr_assert(stbi_write_hdr(hdr, 1, 1, 3, one));
-    test_write_file(dir, "q.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    test_write_file(dir, "q.obj",
+                    "v 0 0 0\nv 1 0 0\nv 1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
     char textures[1024] = "", material[512] = "\"type\": \"diffuse\"";
     const char *json[3] = {albedo, normal, bump}, *slot[3] = {"albedo", "normal_map", "bump_map"};
     const char *name[3] = {"t", "n", "b"};
@@ -136,9 +137,14 @@ static uint32_t texture_features(const char *albedo, const char *normal, const c
  * texture needs them (cl/material/texture.cl inlines a lookup at every call site). */
 Test(material_features, textures_report_their_format_sampling_and_bump)
 {
-    enum { TEX = MATERIAL_FEATURE_TEXTURE, SRGB = MATERIAL_FEATURE_SRGB_TEXTURE, FLOAT = MATERIAL_FEATURE_FLOAT_TEXTURE,
-           SAMPLER = MATERIAL_FEATURE_TEXTURE_SAMPLER, DETAIL = MATERIAL_FEATURE_SURFACE_DETAIL,
-           BUMP = MATERIAL_FEATURE_BUMP_MAP };
+    enum {
+        TEX = MATERIAL_FEATURE_TEXTURE,
+        SRGB = MATERIAL_FEATURE_SRGB_TEXTURE,
+        FLOAT = MATERIAL_FEATURE_FLOAT_TEXTURE,
+        SAMPLER = MATERIAL_FEATURE_TEXTURE_SAMPLER,
+        DETAIL = MATERIAL_FEATURE_SURFACE_DETAIL,
+        BUMP = MATERIAL_FEATURE_BUMP_MAP
+    };
     uint32_t f = texture_features("{\"file\": \"t.png\"}", NULL, NULL);
     cr_expect_eq(f, TEX | SRGB, "an 8-bit colour image is sRGB: %#x", f);
     f = texture_features("{\"file\": \"t.png\", \"encoding\": \"linear\"}", NULL, NULL);

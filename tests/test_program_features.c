@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <stb_image_write.h>
+
 #include "io/image_io.h"
 #include "support.h"
 
@@ -65,6 +67,57 @@ Test(program_features, material_specialised_kernels_render_the_same_bits, .timeo
     expect_same_bits("tests/scenes/mix");
     expect_same_bits("tests/scenes/glass");
     expect_same_bits("tests/scenes/conductors");
+}
+
+/* Texture features (material_features: texture, srgb-texture, float-texture, texture-sampler,
+ * bump-map): three quads under a point light, their uvs running to 2 so that wrap modes matter,
+ * one bump-mapped (8-bit linear heights), one with an sRGB albedo clamped at its edges, one with a
+ * float albedo. Under-reporting any feature leaves its lookup out of the specialised program (a
+ * flat normal, raw sRGB codes, float bits read as bytes, repeat for clamp): other bits. */
+Test(program_features, texture_specialised_kernels_render_the_same_bits, .timeout = 480)
+{
+    const char *dir = test_temp_dir();
+    char path[512];
+    unsigned char heights[16], colours[16 * 3];
+    float floats[16 * 3];
+    for (int i = 0; i < 16; i++) {
+        heights[i] = (unsigned char)(i * 37 % 256);
+        for (int c = 0; c < 3; c++) {
+            colours[3 * i + c] = (unsigned char)((i * 53 + c * 90) % 256);
+            floats[3 * i + c] = 0.05f * (float)((i * 7 + c * 3) % 16);
+        }
+    }
+    snprintf(path, sizeof path, "%s/heights.png", dir);
+    cr_assert(stbi_write_png(path, 4, 4, 1, heights, 4));
+    snprintf(path, sizeof path, "%s/colours.png", dir);
+    cr_assert(stbi_write_png(path, 4, 4, 3, colours, 12));
+    snprintf(path, sizeof path, "%s/floats.hdr", dir);
+    cr_assert(stbi_write_hdr(path, 4, 4, 3, floats));
+    /* The MTL names the materials that the scene's JSON then defines (a usemtl the MTL lacks
+     * would take the default material). */
+    test_write_file(dir, "quads.mtl",
+                    "newmtl bumpy\nKd 0.5 0.5 0.5\nnewmtl clamped\nKd 0.5 0.5 0.5\n"
+                    "newmtl hdr\nKd 0.5 0.5 0.5\n");
+    test_write_file(dir, "quads.obj",
+                    "mtllib quads.mtl\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\n"
+                    "v 0 0 1\nv 1 0 1\nv 1 0 0\nv 0 0 0\nusemtl bumpy\nf 1/1 2/2 3/3 4/4\n"
+                    "v 1 0 1\nv 2 0 1\nv 2 0 0\nv 1 0 0\nusemtl clamped\nf 5/1 6/2 7/3 8/4\n"
+                    "v 2 0 1\nv 3 0 1\nv 3 0 0\nv 2 0 0\nusemtl hdr\nf 9/1 10/2 11/3 12/4\n");
+    const char *scene = test_write_file(
+        dir, "scene.json",
+        "{\"camera\": {\"eye\": [1.5, 2.5, 2.5], \"target\": [1.5, 0, 0.5], \"up\": [0, 1, 0], "
+        "\"fov_y\": 50},"
+        " \"textures\": {\"h\": {\"file\": \"heights.png\", \"encoding\": \"linear\"},"
+        " \"c\": {\"file\": \"colours.png\", \"wrap\": \"clamp\"},"
+        " \"f\": {\"file\": \"floats.hdr\"}},"
+        " \"materials\": {\"bumpy\": {\"type\": \"diffuse\", \"bump_map\": \"h\","
+        " \"bump_scale\": 0.05},"
+        " \"clamped\": {\"type\": \"diffuse\", \"albedo\": \"c\"},"
+        " \"hdr\": {\"type\": \"diffuse\", \"albedo\": \"f\"}},"
+        " \"objects\": [{\"obj\": \"quads.obj\"}],"
+        " \"lights\": [{\"type\": \"point\", \"position\": [1.5, 1.5, 1.0],"
+        " \"intensity\": [8, 8, 8]}]}");
+    expect_same_bits(scene);
 }
 
 /* The list's one expansion into options names every feature, on or off (features.h PT_FEATURE
