@@ -7,29 +7,10 @@
 # print the images' means (the room differs from 65203ed on NVIDIA within noise: call 3). Then
 # Mitsuba on every scene, for the table in one call.
 set -u
-O=$OUT
-T0=$(date +%s); el() { echo $(( $(date +%s) - T0 )); }
-mkdir -p /tmp/icd && echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd && cp /etc/OpenCL/vendors/*.icd /tmp/icd/ 2>/dev/null
-export OCL_ICD_VENDORS=/tmp/icd
-[ -d /tmp/ptlib/lib ] || { mkdir -p /tmp/ptlib && tar xJf .gpu45/libs-small.tar.xz -C /tmp/ptlib; }
-export LD_LIBRARY_PATH=/tmp/ptlib/lib XDG_CACHE_HOME=/tmp/ptcache
-nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader
-(python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --target /tmp/site .whl/*.whl > /tmp/pip.txt 2>&1; echo pip rc=$? >> /tmp/pip.txt) &
-PIP=$!
-python3 tools/make_material_scenes.py tests/scenes >/dev/null 2>&1
-python3 -c "
-import sys; sys.path.insert(0,'tools')
-import bench_efficiency as b
-b.small_light_scene('/tmp'); b.torus_scene('/tmp')" > /dev/null
-python3 tools/make_bench_scenes.py --normal-walls /tmp/nw > /dev/null
-python3 tools/make_forest.py --count 42 /tmp/forest43 >/dev/null 2>&1
+. bench/results/throughput-41/gpu-setup.sh
 mkdir -p /tmp/g57 && tar xJf .gpu57/bins.tar.xz -C /tmp/g57
 BASE=/tmp/g57/pt-base NEW=/tmp/g57/pt-next CMP=/tmp/g57/bench_compare_exr
-R="--device gpu --width 1280 --height 960 --spp 64 --max-depth 8"
-M="-cl-mad-enable -cl-no-signed-zeros"
-mp() { sed -n 's/.* s: \([0-9.]*\) Mpaths\/s, \([0-9.]*\) Mrays.*/\1 \2/p' | awk '{printf "%s,%.4f", $1, $2 / $1}'; }
 echo "== setup $(el) s"
-SC="tests/scenes/cornell /tmp/small-light.json /tmp/nw/normal-walls.json tests/scenes/cornell-sphere /tmp/forest43 /tmp/torus-100k.json tests/scenes/envmap tests/scenes/conductors tests/scenes/textured"
 for s in $SC; do n=$(basename $s .json)
   $BASE render $s $R -o /tmp/base-$n.exr > /dev/null 2>&1
   $NEW render $s $R -o /tmp/final-$n.exr > /tmp/v.txt 2>&1 || tail -2 /tmp/v.txt
@@ -62,7 +43,7 @@ done > $O/profiles.txt 2>&1
 echo "== profiles $(el) s"
 wait $PIP; cat /tmp/pip.txt
 export PYTHONPATH=/tmp/site
-for s in tests/scenes/cornell /tmp/nw/normal-walls.json /tmp/small-light.json tests/scenes/cornell-sphere /tmp/forest43 /tmp/torus-100k.json tests/scenes/envmap tests/scenes/conductors tests/scenes/textured; do
+for s in $SC; do
   [ $(el) -gt 480 ] && { echo "mitsuba: out of time at $s"; break; }
   python3 tools/bench_mitsuba.py $s --width 1280 --height 960 --spp 64 --max-depth 8 --reps 3 --variant cuda_ad_rgb --rr-depth 5 --csv $O/mitsuba.csv 2>&1 | grep -E "Mpaths|rror" | tail -3
 done
