@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /* The path pool and window a render chooses (render/pool_size.h): the large GPU pool within its
- * memory share, the old pool below it, the user's pool's half, the material sorter's counts, the
- * max allocation and the clamps. */
+ * memory share (a larger one on large cards, counted as allocated), the old pool below it, the
+ * user's pool's half, the material sorter's counts, the max allocation and the clamps. */
 #include <criterion/criterion.h>
 
 #include "parallel/material_sort.h"
@@ -28,7 +28,7 @@ Test(pool_size, the_default_gpu_pool_is_the_largest_that_fits_its_share)
             PoolRequest r = defaults();
             r.sort_keys = keys[k];
             PoolChoice c = pool_choose(d, r);
-            uint64_t share = d.global_mem / DEFAULT_POOL_MEMORY_SHARE;
+            uint64_t share = pool_default_share(d.global_mem);
             cr_expect_eq(c.pool & (c.pool - 1), 0u, "%u: a power of two", c.pool);
             if (c.pool > POOL_SIZE_GPU) {
                 cr_expect_leq(pool_device_bytes(c.pool, c.window, keys[k]), share,
@@ -50,6 +50,33 @@ Test(pool_size, the_default_gpu_pool_is_the_largest_that_fits_its_share)
     cr_expect_eq(pool_choose(gpu(80), defaults()).pool, POOL_SIZE_GPU_LARGE);
     cr_expect_eq(pool_choose(gpu(16), defaults()).pool, 1u << 23);
     cr_expect_eq(pool_choose(gpu(4), defaults()).pool, POOL_SIZE_GPU);
+}
+
+/* Cards of LARGE_CARD_BYTES or more give the pool a third of their memory, smaller ones an
+ * eighth: 64 GiB hold 2^27 slots, 63 GiB 2^25. */
+Test(pool_size, large_cards_give_the_pool_a_larger_share)
+{
+    cr_expect_eq(pool_default_share(64 * GIB), 64 * GIB / LARGE_CARD_POOL_MEMORY_SHARE);
+    cr_expect_eq(pool_default_share(63 * GIB), 63 * GIB / DEFAULT_POOL_MEMORY_SHARE);
+    cr_expect_eq(pool_choose(gpu(64), defaults()).pool, 1u << 26);
+    cr_expect_eq(pool_choose(gpu(63), defaults()).pool, 1u << 25);
+    cr_expect_eq(pool_choose(gpu(141), defaults()).pool, POOL_SIZE_GPU_LARGE);
+}
+
+/* The share holds the pool and window the render allocates, which its samples bound: a frame of
+ * 1280x960 at 256 spp with material sorting gets the large pool on 80 GiB, where a render of
+ * 2^32 - 1 samples (a window of 4 pools) gets half of it. */
+Test(pool_size, the_share_counts_what_the_render_allocates)
+{
+    PoolRequest r = defaults();
+    r.sort_keys = 9;
+    cr_expect_eq(pool_choose(gpu(80), r).pool, POOL_SIZE_GPU_LARGE / 2);
+    r.total_samples = 1280ull * 960 * 256;
+    PoolChoice c = pool_choose(gpu(80), r);
+    cr_expect_eq(c.pool, POOL_SIZE_GPU_LARGE);
+    cr_expect_eq(c.window, r.total_samples);
+    cr_expect_leq(pool_device_bytes(c.pool, c.window, r.sort_keys),
+                  pool_default_share(80 * GIB));
 }
 
 /* The sorter's counts (one per key per tile) count against the share and stay under 2^32: a
@@ -78,7 +105,7 @@ Test(pool_size, a_given_pool_may_take_half_the_memory)
     PoolChoice c = pool_choose(gpu(16), r);
     cr_expect_eq(c.pool, 1u << 24);
     cr_expect_leq(pool_device_bytes(c.pool, c.window, 0), 8 * GIB);
-    cr_expect_gt(pool_device_bytes(c.pool, c.window, 0), 16 * GIB / DEFAULT_POOL_MEMORY_SHARE,
+    cr_expect_gt(pool_device_bytes(c.pool, c.window, 0), pool_default_share(16 * GIB),
                  "the given pool was held to the default's share");
     r.pool = 1u << 26;
     c = pool_choose(gpu(16), r);
@@ -130,9 +157,12 @@ Test(pool_size, clamps)
     r = defaults();
     r.window_pools = 16;
     cr_expect_eq(pool_choose(gpu(16), r).pool, pool_choose(gpu(16), defaults()).pool);
-    c = pool_choose(gpu(80), r); /* 8 pools of the large pool fit its share, 16 not */
+    c = pool_choose(gpu(128), r); /* 8 pools of the large pool fit its share, 16 not */
     cr_expect_eq(c.pool, POOL_SIZE_GPU_LARGE);
     cr_expect_eq(c.window, 8ull * POOL_SIZE_GPU_LARGE);
+    c = pool_choose(gpu(80), r); /* nor 8 on 80 GiB: the window gives way, not the pool */
+    cr_expect_eq(c.pool, POOL_SIZE_GPU_LARGE);
+    cr_expect_eq(c.window, (uint64_t)WINDOW_PER_POOL * POOL_SIZE_GPU_LARGE);
     cr_expect_eq(pool_choose(gpu(192), r).window, 16ull * POOL_SIZE_GPU_LARGE);
 
     r = defaults();

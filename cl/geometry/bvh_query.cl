@@ -9,12 +9,8 @@ inline Hit trace_bvh_query(const global TraversalNode *nodes, const global Trave
                            float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
 {
 #if BVH_WIDTH == 2 && !defined(BVH_NO_SPECULATION)
-#ifdef PT_EXP_SPEC_ANY /* experiment: any hits through the speculative walk too */
-    return trace_bvh_speculative(nodes, prims, origin, dir, tmin, tmax, any_hit);
-#else
     if (!any_hit)
-        return trace_bvh_speculative(nodes, prims, origin, dir, tmin, tmax, false);
-#endif
+        return trace_bvh_speculative(nodes, prims, origin, dir, tmin, tmax);
 #endif
     return trace_bvh(nodes, prims, origin, dir, tmin, tmax, any_hit);
 }

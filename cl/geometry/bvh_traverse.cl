@@ -3,8 +3,8 @@
  * BVH_WIDTH == 2 (GPUs) it walks the 2-wide node array of host/accel/bvh_build.c (both child boxes
  * in the parent, Aila & Laine 2009; bvh_node_2wide.cl reads them) with a private stack: both child
  * boxes are tested at once, leaf children are intersected right away (nearer first), the nearer
- * inner child is visited next and the farther one is pushed. Hits are reported for
- * tmin <= t < tmax; prim is the original triangle index. */
+ * inner child is visited next and the farther one is pushed; any-hit queries skip the order
+ * (any_hit_visit). Hits are reported for tmin <= t < tmax; prim is the original triangle index. */
 #if BVH_WIDTH == 2 /* else cl/geometry/bvh_traverse_wide.cl; the queries: cl/geometry/bvh_query.cl */
 
 /* Whether a hit at t on triangle prim of `instance` replaces *hit, given t <= hit->t (the tie
@@ -141,13 +141,11 @@ inline bool traversal_visit_children(Traversal *tr, const global TraversalNode *
                        instance);
 }
 
-/* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
- * at the first hit found, otherwise when no node is left. */
-#ifdef PT_EXP_TIGHT_ANY
-/* Experiment (-DPT_EXP_TIGHT_ANY, bench/results/throughput-41/session13/next-call.sh): an any-hit
- * visit without what only closest hits need. The query ends at its first hit, so hit.t never
- * shrinks during the walk and the second cull cannot fire, and the children need no order: leaf
- * children are intersected at once, the left inner child is next and the right one pushed. */
+/* An any-hit visit: the query ends at its first hit, so hit.t never shrinks during the walk and
+ * traversal_visit_children's second cull cannot fire, and the children need no order: leaf
+ * children are intersected at once, the left inner child is next and the right one is pushed.
+ * 0.98-1.03x against the ordered visit on an H100, the env-map scene the one below 1
+ * (bench/README.md "Issue 41's table before and after"). */
 inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
                           const global BvhTriangle *tris, uint *stack)
 {
@@ -165,24 +163,20 @@ inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
                        tr->tmin, true, &tr->walk.hit, 0u))
         return true;
     bool inner0 = hit[0] && !leaf0, inner1 = hit[1] && !leaf1;
-    if (inner0 && inner1 && tr->walk.stack_size < BVH_STACK_SIZE)
+    if (inner0 && inner1 && tr->walk.stack_size < BVH_STACK_SIZE) /* always: the builder bounds it */
         stack[tr->walk.stack_size++] = ref[1];
     tr->walk.next = inner0 ? ref[0] : inner1 ? ref[1] : 0u;
     return false;
 }
-#endif
 
+/* Visits one node; true when the query is answered (the result is in tr->walk.hit): with any_hit
+ * at the first hit found, otherwise when no node is left. */
 inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
                            const global BvhTriangle *tris, bool any_hit, uint *stack)
 {
-#ifdef PT_EXP_TIGHT_ANY
     if (any_hit ? any_hit_visit(tr, nodes, tris, stack)
                 : traversal_visit_children(tr, nodes, tris, false, stack, BVH_STACK_SIZE, false, 0u))
         return true;
-#else
-    if (traversal_visit_children(tr, nodes, tris, any_hit, stack, BVH_STACK_SIZE, false, 0u))
-        return true;
-#endif
     if (tr->walk.next == 0) {
         if (tr->walk.stack_size == 0)
             return true;

@@ -57,10 +57,9 @@ inline void speculative_visit(Traversal *tr, const global TraversalNode *nodes, 
     tr->walk.next = hit[0] || hit[1] ? near : 0u;
 }
 
-/* trace_bvh's closest hit, or with any_hit (only under the experiment -DPT_EXP_SPEC_ANY,
- * bvh_query.cl) the first hit of the leaves as they come. */
+/* trace_bvh's closest hit. */
 inline Hit trace_bvh_speculative(const global TraversalNode *nodes, const global BvhTriangle *tris,
-                                 float3 origin, float3 dir, float tmin, float tmax, bool any_hit)
+                                 float3 origin, float3 dir, float tmin, float tmax)
 {
     Traversal tr;
     uint stack[BVH_STACK_SIZE];
@@ -81,10 +80,8 @@ inline Hit trace_bvh_speculative(const global TraversalNode *nodes, const global
         }
         /* The held leaf, then node while it is a leaf too. */
         while (leaf != NO_LEAF) {
-            if (intersect_leaf(tris, walk_leaf_first(leaf), walk_leaf_count(leaf), tr.tri, tr.tmin,
-                               any_hit, &tr.walk.hit, 0u) &&
-                any_hit)
-                return tr.walk.hit;
+            intersect_leaf(tris, walk_leaf_first(leaf), walk_leaf_count(leaf), tr.tri, tr.tmin,
+                           false, &tr.walk.hit, 0u);
             leaf = NO_LEAF;
             if (child_is_leaf(tr.node) && tr.node != WALK_DONE) {
                 leaf = tr.node;
