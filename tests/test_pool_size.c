@@ -53,7 +53,7 @@ Test(pool_size, the_default_gpu_pool_is_the_largest_that_fits_its_share)
 }
 
 /* Cards of LARGE_CARD_BYTES or more give the pool a third of their memory, smaller ones an
- * eighth: 64 GiB hold 2^27 slots, 63 GiB 2^25. */
+ * eighth: 64 GiB hold 2^26 slots, 63 GiB 2^25, 141 GiB (an H200) 2^27. */
 Test(pool_size, large_cards_give_the_pool_a_larger_share)
 {
     cr_expect_eq(pool_default_share(64 * GIB), 64 * GIB / LARGE_CARD_POOL_MEMORY_SHARE);

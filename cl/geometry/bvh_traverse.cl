@@ -143,9 +143,8 @@ inline bool traversal_visit_children(Traversal *tr, const global TraversalNode *
 
 /* An any-hit visit: the query ends at its first hit, so hit.t never shrinks during the walk and
  * traversal_visit_children's second cull cannot fire, and the children need no order: leaf
- * children are intersected at once, the left inner child is next and the right one is pushed.
- * 0.98-1.03x against the ordered visit on an H100, the env-map scene the one below 1
- * (bench/README.md "Issue 41's table before and after"). */
+ * children are intersected at once, the left inner child is next and the right one is pushed
+ * (measured against the ordered visit: bench/README.md "Issue 41's table before and after"). */
 inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
                           const global BvhTriangle *tris, uint *stack)
 {

@@ -12,9 +12,8 @@
  * memory (1 / LARGE_CARD_POOL_MEMORY_SHARE on a card of LARGE_CARD_BYTES or more, which still
  * keeps over 40 GiB for the scene), so that the scene keeps the rest: every stage launch pays a
  * fixed cost, its ramp and its last, unevenly loaded wave, which a step over more paths spreads
- * thinner (bench/README.md "The path pool"; 2^27 slots against 2^25: 1.03-1.05x on an H100, "Issue
- * 41's table before and after"). The pool and window counted are those the render allocates: no
- * more than its samples. Where the share holds no more than POOL_SIZE_GPU, the GPU keeps that pool
+ * thinner (bench/README.md "The path pool", "Issue 41's table before and after"). The pool and
+ * window counted are those the render allocates: no more than its samples. Where the share holds no more than POOL_SIZE_GPU, the GPU keeps that pool
  * with windows of WINDOW_PER_POOL_SMALL_GPU pools, the configuration measured best at that size.
  * A CPU, whose megakernel needs only a few paths per core, gets POOL_SIZE_CPU. Other than the
  * large pool, a pool (the default or the user's) may take half the memory. */
