@@ -3,8 +3,9 @@
  * BVH_WIDTH == 2 (GPUs) it walks the 2-wide node array of host/accel/bvh_build.c (both child boxes
  * in the parent, Aila & Laine 2009; bvh_node_2wide.cl reads them) with a private stack: both child
  * boxes are tested at once, leaf children are intersected right away (nearer first), the nearer
- * inner child is visited next and the farther one is pushed; any-hit queries skip the order
- * (any_hit_visit). Hits are reported for tmin <= t < tmax; prim is the original triangle index. */
+ * inner child is visited next and the farther one is pushed; one-level any-hit queries skip the
+ * order (any_hit_visit). Hits are reported for tmin <= t < tmax; prim is the original triangle
+ * index. */
 #if BVH_WIDTH == 2 /* else cl/geometry/bvh_traverse_wide.cl; the queries: cl/geometry/bvh_query.cl */
 
 /* Whether a hit at t on triangle prim of `instance` replaces *hit, given t <= hit->t (the tie

@@ -30,17 +30,10 @@ uint64_t pool_device_bytes(uint64_t pool, uint64_t window, uint32_t sort_keys)
            pool_sort_bytes(pool, sort_keys);
 }
 
-/* Whether a pool and window fit the budget as the render allocates them: the window no longer
- * than the render's samples, the pool no larger than the window (pool_choose's last clamps). */
-static bool fits(PoolDevice dev, PoolRequest req, uint64_t pool, uint64_t window, uint64_t budget)
+static bool fits(PoolDevice dev, uint64_t pool, uint64_t window, uint32_t sort_keys, uint64_t budget)
 {
-    if (window > req.total_samples)
-        window = req.total_samples;
-    if (pool > window)
-        pool = window;
-    return window * sizeof(float4) <= dev.max_alloc &&
-           sort_counts(pool, req.sort_keys) <= UINT32_MAX &&
-           pool_device_bytes(pool, window, req.sort_keys) <= budget;
+    return window * sizeof(float4) <= dev.max_alloc && sort_counts(pool, sort_keys) <= UINT32_MAX &&
+           pool_device_bytes(pool, window, sort_keys) <= budget;
 }
 
 uint64_t pool_default_share(uint64_t global_mem)
@@ -66,7 +59,7 @@ static uint64_t first_window(PoolRequest req, uint64_t pool, uint32_t window_poo
 static uint64_t large_gpu_pool(PoolDevice dev, PoolRequest req, uint64_t share)
 {
     for (uint64_t pool = POOL_SIZE_GPU_LARGE; pool > POOL_SIZE_GPU; pool /= 2)
-        if (fits(dev, req, pool, first_window(req, pool, WINDOW_PER_POOL), share))
+        if (fits(dev, pool, first_window(req, pool, WINDOW_PER_POOL), req.sort_keys, share))
             return pool;
     return 0;
 }
@@ -89,7 +82,7 @@ PoolChoice pool_choose(PoolDevice dev, PoolRequest req)
         pool = POOL_SIZE_CPU;
     }
     uint64_t window = first_window(req, pool, window_pools);
-    while (pool > 1024 && !fits(dev, req, pool, window, budget)) {
+    while (pool > 1024 && !fits(dev, pool, window, req.sort_keys, budget)) {
         if (!req.window && window > WINDOW_PER_POOL * pool)
             window /= 2;
         else

@@ -9,14 +9,15 @@
 
 /* Default pools. A GPU gets the largest power of two up to POOL_SIZE_GPU_LARGE that, with its
  * window and the material sorter's counts, takes at most 1 / DEFAULT_POOL_MEMORY_SHARE of its
- * memory (1 / LARGE_CARD_POOL_MEMORY_SHARE on a card of LARGE_CARD_BYTES or more, which still
- * keeps over 40 GiB for the scene), so that the scene keeps the rest: every stage launch pays a
- * fixed cost, its ramp and its last, unevenly loaded wave, which a step over more paths spreads
- * thinner (bench/README.md "The path pool", "Issue 41's table before and after"). The pool and
- * window counted are those the render allocates: no more than its samples. Where the share holds no more than POOL_SIZE_GPU, the GPU keeps that pool
- * with windows of WINDOW_PER_POOL_SMALL_GPU pools, the configuration measured best at that size.
- * A CPU, whose megakernel needs only a few paths per core, gets POOL_SIZE_CPU. Other than the
- * large pool, a pool (the default or the user's) may take half the memory. */
+ * memory, or 1 / LARGE_CARD_POOL_MEMORY_SHARE on a card of LARGE_CARD_BYTES or more (which keeps
+ * over 40 GiB for the scene; a smaller card cannot hold more than 2^25 slots in its eighth, so it
+ * chooses as before the larger share), so that the scene keeps the rest: every stage launch pays
+ * a fixed cost, its ramp and its last, unevenly loaded wave, which a step over more paths spreads
+ * thinner (bench/README.md "The path pool", "Issue 41's table before and after"). Where the share
+ * holds no more than POOL_SIZE_GPU, the GPU keeps that pool with windows of
+ * WINDOW_PER_POOL_SMALL_GPU pools, the configuration measured best at that size. A CPU, whose
+ * megakernel needs only a few paths per core, gets POOL_SIZE_CPU. Other than the large pool, a
+ * pool (the default or the user's) may take half the memory. */
 #define POOL_SIZE_GPU_LARGE (1u << 27)
 #define POOL_SIZE_GPU (1u << 21)
 #define POOL_SIZE_CPU (1u << 16)
@@ -65,9 +66,9 @@ PoolChoice pool_choose(PoolDevice dev, PoolRequest req);
 /* Device bytes of a pool of `pool` slots with a window of `window` samples, sorted by sort_keys
  * keys (0: not sorted); of the sorting alone. */
 uint64_t pool_device_bytes(uint64_t pool, uint64_t window, uint32_t sort_keys);
+uint64_t pool_sort_bytes(uint64_t pool, uint32_t sort_keys);
 
 /* The memory the default GPU pool may take on a device with global_mem bytes. */
 uint64_t pool_default_share(uint64_t global_mem);
-uint64_t pool_sort_bytes(uint64_t pool, uint32_t sort_keys);
 
 #endif
