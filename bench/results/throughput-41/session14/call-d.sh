@@ -3,7 +3,8 @@
 # this session's final build against session 13's on every scene, and against the issue's start
 # at the issue's roulette on the Cornell box and the forest. 1280x960, 256 spp, max depth 8, best
 # of 2 interleaved rounds. No Mitsuba: calls A and B measured it on the same kind of card, and
-# their figures agree within 0.2%. Carry .gpu45 (libraries), .gpu59 (binaries).
+# their figures agree within 0.2%. Carry .gpu45 (libraries), .gpu59 (binaries: pt-final = 8657efc,
+# pt-prev = 0f69a22, pt-start = 4774c8f, stripped; if .gpu59 is gone, rebuild them).
 #   final  pt now (the any-hit visit without order, the pool up to 2^27 slots)
 #   prev   session 13's final build (73e55e4's code)
 #   start3 pt at 4774c8f (roulette from the third vertex); final3: final with -DPT_ROULETTE_DEPTH=3u
