@@ -8,6 +8,7 @@
 #   final  pt now (the any-hit visit without order, the pool up to 2^27 slots)
 #   prev   session 13's final build (73e55e4's code)
 #   start3 pt at 4774c8f (roulette from the third vertex); final3: final with -DPT_ROULETTE_DEPTH=3u
+#   fused3, quant3 (the forest only): final3 with PT_CONNECT_IN_SHADING=1, PT_BVH_QUANTIZED=1
 set -u
 O=$OUT
 T0=$(date +%s); el() { echo $(( $(date +%s) - T0 )); }
@@ -61,6 +62,15 @@ for scene in dict.fromkeys(s for s, v in best):
     print(scene, " ".join(f"{v}={best[(scene, v)]:.1f}" for s, v in best if s == scene),
           f"final/prev={best[(scene, 'final')] / best[(scene, 'prev')]:.3f}")
 PY
+# The forest's gap at the third vertex: shading that traces its shadow rays (0.907 in session 10,
+# before the any-hit visit and the larger pool) and quantised nodes, each against final3.
+echo "scene,round,variant,mpaths,rays_per_path" > $O/forest.csv
+for r in 1 2; do for v in final3 fused3 quant3; do
+  [ $(el) -gt 300 ] && break 2
+  case $v in final3) E="";; fused3) E="PT_CONNECT_IN_SHADING=1";; quant3) E="PT_BVH_QUANTIZED=1";; esac
+  echo "forest43,$r,$v,$(env $E PT_CL_OPTIONS="$M -DPT_ROULETTE_DEPTH=3u" /tmp/g59/pt-final render /tmp/forest43 $R -o /tmp/q.exr 2>&1 | mp)" >> $O/forest.csv
+done; done
+cat $O/forest.csv
 echo "-- profile cornell final3" > $O/profiles.txt
 runv final3 render tests/scenes/cornell $R --profile -o /tmp/q.exr 2>&1 | grep -E "Mpaths|^[a-z_]+ +[0-9]+ +[0-9.]+ +[0-9.]+%" >> $O/profiles.txt
 echo "== done $(el) s"
