@@ -47,6 +47,15 @@ inline bool intersect_leaf(const global BvhTriangle *tris, uint first, uint coun
     return found;
 }
 
+/* Intersects the triangles of the leaf child (ref, lane) of a node; true when any hit. */
+inline bool intersect_child_leaf(const global BvhTriangle *tris, uint ref, uint lane,
+                                 WatertightRay ray, float tmin, bool any_hit, Hit *hit,
+                                 uint instance)
+{
+    return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin, any_hit,
+                          hit, instance);
+}
+
 /* Traversal state that visit_child updates: the best hit so far, the node to visit next (0, the
  * root, is never a child, so it means "pop") and the stack of farther inner children. */
 typedef struct {
@@ -69,8 +78,8 @@ inline bool visit_child(const global BvhTriangle *tris, uint ref, uint lane, flo
         return false;
     if (child_is_leaf(ref)) {
         if (!defer_leaves)
-            return intersect_leaf(tris, leaf_first(ref, lane), leaf_count(ref, lane), ray, tmin,
-                                  any_hit, &walk->hit, instance) &&
+            return intersect_child_leaf(tris, ref, lane, ray, tmin, any_hit, &walk->hit,
+                                        instance) &&
                    any_hit;
         /* The empty TLAS's leaf names no instance (a quantised empty box may pass the test). */
         if (leaf_count(ref, lane) == 0u)
@@ -154,16 +163,14 @@ inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
     uint ref[2], lane[2];
     traversal_test_children(tr, nodes, hit, t, ref, lane);
     bool leaf0 = child_is_leaf(ref[0]), leaf1 = child_is_leaf(ref[1]);
-    if (hit[0] && leaf0 &&
-        intersect_leaf(tris, leaf_first(ref[0], lane[0]), leaf_count(ref[0], lane[0]), tr->tri,
-                       tr->tmin, true, &tr->walk.hit, 0u))
-        return true;
-    if (hit[1] && leaf1 &&
-        intersect_leaf(tris, leaf_first(ref[1], lane[1]), leaf_count(ref[1], lane[1]), tr->tri,
-                       tr->tmin, true, &tr->walk.hit, 0u))
+    if ((hit[0] && leaf0 &&
+         intersect_child_leaf(tris, ref[0], lane[0], tr->tri, tr->tmin, true, &tr->walk.hit, 0u)) ||
+        (hit[1] && leaf1 &&
+         intersect_child_leaf(tris, ref[1], lane[1], tr->tri, tr->tmin, true, &tr->walk.hit, 0u)))
         return true;
     bool inner0 = hit[0] && !leaf0, inner1 = hit[1] && !leaf1;
-    if (inner0 && inner1 && tr->walk.stack_size < BVH_STACK_SIZE) /* always: the builder bounds it */
+    /* The stack check always passes: the builder bounds the depth. */
+    if (inner0 && inner1 && tr->walk.stack_size < BVH_STACK_SIZE)
         stack[tr->walk.stack_size++] = ref[1];
     tr->walk.next = inner0 ? ref[0] : inner1 ? ref[1] : 0u;
     return false;
@@ -174,8 +181,10 @@ inline bool any_hit_visit(Traversal *tr, const global TraversalNode *nodes,
 inline bool traversal_step(Traversal *tr, const global TraversalNode *nodes,
                            const global BvhTriangle *tris, bool any_hit, uint *stack)
 {
-    if (any_hit ? any_hit_visit(tr, nodes, tris, stack)
-                : traversal_visit_children(tr, nodes, tris, false, stack, BVH_STACK_SIZE, false, 0u))
+    bool answered = any_hit ? any_hit_visit(tr, nodes, tris, stack)
+                            : traversal_visit_children(tr, nodes, tris, false, stack,
+                                                       BVH_STACK_SIZE, false, 0u);
+    if (answered)
         return true;
     if (tr->walk.next == 0) {
         if (tr->walk.stack_size == 0)

@@ -40,9 +40,8 @@ inline uint walk_pop(Walk *walk, const uint *stack)
 /* Visits tr->node for this walk, where no leaf is intersected during a visit: hit.t cannot move
  * between the two children, so the box test's cull is the only one (traversal_visit_children's
  * second, before each child, cannot fire here), and the nearer child is next while the farther
- * goes on the stack, chosen by selects. 0.99-1.04x on an H100 against the visit through
- * traversal_visit_children, 1.02-1.04x on the scenes where the walk dominates (bench/README.md
- * "Texture code per scene, the tight walk"). */
+ * goes on the stack, chosen by selects (measured against the visit through
+ * traversal_visit_children: bench/README.md "Texture code per scene, the tight walk"). */
 inline void speculative_visit(Traversal *tr, const global TraversalNode *nodes, uint *stack)
 {
     bool hit[2];

@@ -10,8 +10,8 @@
 /* Default pools. A GPU gets the largest power of two up to POOL_SIZE_GPU_LARGE that, with its
  * window and the material sorter's counts, takes at most 1 / DEFAULT_POOL_MEMORY_SHARE of its
  * memory, or 1 / LARGE_CARD_POOL_MEMORY_SHARE on a card of LARGE_CARD_BYTES or more (which keeps
- * over 40 GiB for the scene; a smaller card cannot hold more than 2^25 slots in its eighth, so it
- * chooses as before the larger share), so that the scene keeps the rest: every stage launch pays
+ * over 40 GiB for the scene; a smaller card's eighth holds at most 2^25 slots, as before the
+ * larger share), so that the scene keeps the rest: every stage launch pays
  * a fixed cost, its ramp and its last, unevenly loaded wave, which a step over more paths spreads
  * thinner (bench/README.md "The path pool", "Issue 41's table before and after"). Where the share
  * holds no more than POOL_SIZE_GPU, the GPU keeps that pool with windows of
