@@ -1,5 +1,5 @@
 #!/bin/bash
-# Sourced by issue 41's GPU call scripts from next-call.sh on (the earlier run-*.sh carry their own
+# Sourced by issue 41's GPU call scripts from session 14 on (the earlier run-*.sh carry their own
 # copy, as they ran): NVIDIA's OpenCL ICD, pt's libraries from .gpu45, Mitsuba's wheels from .whl
 # installing in the background (wait $PIP), the benchmark scenes, the render options and `mp` (a
 # render's output to "Mpaths/s,rays per path"), `bits A B` (two EXRs compared bit for bit with

@@ -13,6 +13,7 @@
 #   c05, c20  the 2-wide tree built with a triangle's SAH cost 0.5 and 2.0 (1.0: a node step)
 # Each phase appends to its CSV under $OUT, so a call cut short keeps what it measured.
 set -u
+# bits and best: gpu-setup.sh (this call ran them as copies of the same text).
 . bench/results/throughput-41/gpu-setup.sh
 mkdir -p /tmp/g58 && tar xJf .gpu58/bins.tar.xz -C /tmp/g58
 START=/tmp/g58/pt-start FINAL=/tmp/g58/pt-final CMP=/tmp/g58/bench_compare_exr
@@ -25,20 +26,6 @@ runv() { local v=$1; shift; case $v in
   anyt) PT_CL_OPTIONS="$M -DPT_EXP_TIGHT_ANY" $FINAL "$@";;
   spec) PT_CL_OPTIONS="$M -DPT_EXP_SPEC_ANY" $FINAL "$@";;
   c05) /tmp/g58/pt-c05 "$@";; c20) /tmp/g58/pt-c20 "$@";; esac; }
-bits() { $CMP "$1" "$2" --tolerance 0 2>&1 | tail -1 | cut -c1-200; }
-best() { python3 - "$1" "$2" <<'PY'
-import csv, sys, collections
-rows = list(csv.DictReader(open(sys.argv[1])))
-best = collections.defaultdict(float)
-for r in rows:
-    try: best[(r["scene"], r["variant"])] = max(best[(r["scene"], r["variant"])], float(r["mpaths"]))
-    except ValueError: pass
-ref = sys.argv[2]
-for scene in dict.fromkeys(r["scene"] for r in rows):
-    b = best[(scene, ref)] or 1.0
-    print(scene, " ".join(f"{v}={best[(scene, v)]:.1f}({best[(scene, v)] / b:.3f})" for s, v in best if s == scene))
-PY
-}
 echo "== setup $(el) s"
 # 1. Before and after: builds, then each image against its partner.
 for s in $SC; do n=$(basename $s .json)

@@ -9,6 +9,7 @@
 #   both   anyt and p26;  p27: both with 2^27 slots (a few scenes)
 #   *3     the same with roulette from the third vertex (-DPT_ROULETTE_DEPTH=3u); start3: 4774c8f
 set -u
+# bits and best: gpu-setup.sh (this call ran them as copies of the same text).
 . bench/results/throughput-41/gpu-setup.sh
 mkdir -p /tmp/g58 && tar xJf .gpu58/bins.tar.xz -C /tmp/g58
 START=/tmp/g58/pt-start FINAL=/tmp/g58/pt-final CMP=/tmp/g58/bench_compare_exr
@@ -26,20 +27,6 @@ runv() { local v=$1; shift; case $v in
   final3) PT_CL_OPTIONS="$M $D3" $FINAL "$@";;
   both3) PT_POOL_SIZE=67108864 PT_CL_OPTIONS="$M $A $D3" $FINAL "$@";;
   p273) PT_POOL_SIZE=134217728 PT_CL_OPTIONS="$M $A $D3" $FINAL "$@";; esac; }
-bits() { $CMP "$1" "$2" --tolerance 0 2>&1 | tail -1 | cut -c1-200; }
-best() { python3 - "$1" "$2" <<'PY'
-import csv, sys, collections
-rows = list(csv.DictReader(open(sys.argv[1])))
-best = collections.defaultdict(float)
-for r in rows:
-    try: best[(r["scene"], r["variant"])] = max(best[(r["scene"], r["variant"])], float(r["mpaths"]))
-    except ValueError: pass
-ref = sys.argv[2]
-for scene in dict.fromkeys(r["scene"] for r in rows):
-    b = best[(scene, ref)] or 1.0
-    print(scene, " ".join(f"{v}={best[(scene, v)]:.1f}({best[(scene, v)] / b:.3f})" for s, v in best if s == scene))
-PY
-}
 vs() { case $(basename $1 .json) in cornell|small-light|forest43) echo "final anyt p26 both p27";; *) echo "final anyt p26 both";; esac; }
 echo "== setup $(el) s"
 for s in $SC; do n=$(basename $s .json)

@@ -1,13 +1,16 @@
 #!/bin/bash
 # Session 14, call C: issue 41's table before and after in one call with this session's final
 # build, at the issue's settings (1280x960, 256 spp, max depth 8, best of 2 interleaved rounds),
-# with Mitsuba 3.9.1 cuda_ad_rgb at equal work. Carry .gpu45 (libraries), .gpu59 (binaries, as
-# call-d.sh says), .whl (wheels).
+# with Mitsuba 3.9.1 cuda_ad_rgb at equal work. Carry .gpu45 (libraries), .gpu59 (binaries),
+# .whl (wheels). .gpu59 holds pt-final (8657efc, whose kernels d49d0c8 only refactors), pt-prev
+# (0f69a22) and pt-start (4774c8f), stripped; if it is gone, rebuild them.
 #   start  pt at 4774c8f, the tree when the issue was filed (roulette from the third vertex)
 #   rr3    pt now (the any-hit visit without order, the pool up to 2^27 slots), roulette from the
 #          third vertex (-DPT_ROULETTE_DEPTH=3u): the issue's work per path, against start
 #   final  pt now as users run it: roulette from the fifth vertex (issue 34), Mitsuba's default
 #   prev   session 13's final build (73e55e4's code), against final: this session's change
+#   fused3, quant3 (the forest only, at the end): rr3 with PT_CONNECT_IN_SHADING=1 or
+#          PT_BVH_QUANTIZED=1
 # Mitsuba at rr_depth 3 (against start and rr3) and 5 (against final). Each phase appends to its
 # CSV under $OUT, so a call cut short keeps what it measured.
 set -u
@@ -41,6 +44,15 @@ for rr in 3 5; do for s in $SC; do
   if [ $(basename $s) = forest43 ]; then MB="env MITSUBA_FLATTEN=1 python3 tools/mitsuba_forest.py"; else MB="python3 tools/bench_mitsuba.py"; fi
   $MB $s --width 1280 --height 960 --spp 256 --max-depth 8 --reps 2 --variant cuda_ad_rgb --rr-depth $rr --csv $O/mitsuba-rr$rr.csv 2>&1 | grep -E "Mpaths|rror" | tail -2
 done; echo "== mitsuba rr $rr $(el) s"; done
+# The forest's gap at the third vertex: shading that traces its shadow rays (0.907 in session 10,
+# before the any-hit visit and the larger pool) and quantised nodes, each against final3.
+echo "scene,round,variant,mpaths,rays_per_path" > $O/forest.csv
+for r in 1 2; do for v in final3 fused3 quant3; do
+  [ $(el) -gt 560 ] && break 2
+  case $v in final3) E="";; fused3) E="PT_CONNECT_IN_SHADING=1";; quant3) E="PT_BVH_QUANTIZED=1";; esac
+  echo "forest43,$r,$v,$(env $E PT_CL_OPTIONS="$M -DPT_ROULETTE_DEPTH=3u" $FINAL render /tmp/forest43 $R -o /tmp/q.exr 2>&1 | mp)" >> $O/forest.csv
+done; done
+cat $O/forest.csv
 # 3. Where the Cornell box's time goes, at both roulettes.
 for v in rr3 final prev; do [ $(el) -gt 540 ] && break; echo "-- profile cornell $v"; runv $v render tests/scenes/cornell $R --profile -o /tmp/q.exr 2>&1 | grep -E "Mpaths|^[a-z_]+ +[0-9]+ +[0-9.]+ +[0-9.]+%"; done > $O/profiles.txt 2>&1
 echo "== done $(el) s"
