@@ -9,8 +9,9 @@
 #          third vertex (-DPT_ROULETTE_DEPTH=3u): the issue's work per path, against start
 #   final  pt now as users run it: roulette from the fifth vertex (issue 34), Mitsuba's default
 #   prev   session 13's final build (73e55e4's code), against final: this session's change
-#   fused3, quant3 (the forest only, at the end): rr3 with PT_CONNECT_IN_SHADING=1 or
-#          PT_BVH_QUANTIZED=1
+#   fused3, quant3, cap64, ls128 (the forest only, at the end): rr3 with PT_CONNECT_IN_SHADING=1,
+#          PT_BVH_QUANTIZED=1, -cl-nv-maxrregcount=64 (+4% on the two-level forest in session 7)
+#          or PT_LOCAL_SIZE=128
 # Mitsuba at rr_depth 3 (against start and rr3) and 5 (against final). Each phase appends to its
 # CSV under $OUT, so a call cut short keeps what it measured.
 set -u
@@ -47,12 +48,15 @@ done; echo "== mitsuba rr $rr $(el) s"; done
 # The forest's gap at the third vertex: shading that traces its shadow rays (0.907 in session 10,
 # before the any-hit visit and the larger pool) and quantised nodes, each against final3.
 echo "scene,round,variant,mpaths,rays_per_path" > $O/forest.csv
-for r in 1 2; do for v in final3 fused3 quant3; do
-  [ $(el) -gt 560 ] && break 2
-  case $v in final3) E="";; fused3) E="PT_CONNECT_IN_SHADING=1";; quant3) E="PT_BVH_QUANTIZED=1";; esac
-  echo "forest43,$r,$v,$(env $E PT_CL_OPTIONS="$M -DPT_ROULETTE_DEPTH=3u" $FINAL render /tmp/forest43 $R -o /tmp/q.exr 2>&1 | mp)" >> $O/forest.csv
+for r in 1 2; do for v in final3 fused3 quant3 cap64 ls128; do
+  [ $(el) -gt 540 ] && break 2
+  X=""; case $v in final3) E="";; fused3) E="PT_CONNECT_IN_SHADING=1";; quant3) E="PT_BVH_QUANTIZED=1";;
+    cap64) E=""; X="-cl-nv-maxrregcount=64";; ls128) E="PT_LOCAL_SIZE=128";; esac
+  echo "forest43,$r,$v,$(env $E PT_CL_OPTIONS="$M -DPT_ROULETTE_DEPTH=3u $X" $FINAL render /tmp/forest43 $R -o /tmp/q.exr 2>&1 | mp)" >> $O/forest.csv
 done; done
 cat $O/forest.csv
-# 3. Where the Cornell box's time goes, at both roulettes.
-for v in rr3 final prev; do [ $(el) -gt 540 ] && break; echo "-- profile cornell $v"; runv $v render tests/scenes/cornell $R --profile -o /tmp/q.exr 2>&1 | grep -E "Mpaths|^[a-z_]+ +[0-9]+ +[0-9.]+ +[0-9.]+%"; done > $O/profiles.txt 2>&1
+best $O/forest.csv final3
+# 3. Where the Cornell box's and the forest's time goes, at both roulettes.
+for s in tests/scenes/cornell /tmp/forest43; do for v in rr3 final prev; do [ $(el) -gt 570 ] && break 2
+  echo "-- profile $(basename $s) $v"; runv $v render $s $R --profile -o /tmp/q.exr 2>&1 | grep -E "Mpaths|^[a-z_]+ +[0-9]+ +[0-9.]+ +[0-9.]+%"; done; done > $O/profiles.txt 2>&1
 echo "== done $(el) s"
