@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-# bake_forest.py IN OUT: the forest with every instance baked into one OBJ in world space (usemtl kept): a one-level
-# scene equal to the instanced one, to time what instancing costs beyond the flat BVH.
+# bake_forest.py IN OUT: the forest of tools/make_forest.py with every instance baked into one OBJ
+# in world space (usemtl kept): a one-level scene equal to the instanced one, to time what
+# instancing costs beyond the flat BVH (call-d.sh). Pure Python, no numpy needed.
 import json, math, os, shutil, sys
 base, outdir = sys.argv[1], sys.argv[2]
 os.makedirs(outdir, exist_ok=True)
-
 scene = json.load(open(base + "/scene.json"))
 def mat_mul(a, b): return [[sum(a[i][k]*b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
 def eye(): return [[float(i == j) for j in range(4)] for i in range(4)]

@@ -1,9 +1,9 @@
 #!/bin/bash
-# Session 14, call C: issue 41's table before and after in one call with this session's final
-# build, at the issue's settings (1280x960, 256 spp, max depth 8, best of 2 interleaved rounds),
-# with Mitsuba 3.9.1 cuda_ad_rgb at equal work. Carry .gpu45 (libraries), .gpu59 (binaries),
-# .whl (wheels). .gpu59 holds pt-final (8657efc, whose kernels d49d0c8 only refactors), pt-prev
-# (0f69a22) and pt-start (4774c8f), stripped; if it is gone, rebuild them.
+# Session 15, call C (prepared in session 14; ran on its third attempt): issue 41's table before
+# and after in one call with session 14's final build, at the issue's settings (1280x960, 256 spp,
+# max depth 8, best of 2 interleaved rounds), with Mitsuba 3.9.1 cuda_ad_rgb at equal work.
+# Carry .gpu45 (libraries), .gpu59 (binaries), .whl (wheels). .gpu59 holds pt-final (8657efc,
+# whose kernels d49d0c8 only refactors), pt-prev (0f69a22) and pt-start (4774c8f), stripped.
 #   start  pt at 4774c8f, the tree when the issue was filed (roulette from the third vertex)
 #   rr3    pt now (the any-hit visit without order, the pool up to 2^27 slots), roulette from the
 #          third vertex (-DPT_ROULETTE_DEPTH=3u): the issue's work per path, against start
