@@ -11,13 +11,13 @@
  * window and the material sorter's counts, takes at most 1 / DEFAULT_POOL_MEMORY_SHARE of its
  * memory, or 1 / LARGE_CARD_POOL_MEMORY_SHARE on a card of LARGE_CARD_BYTES or more (which keeps
  * over 40 GiB for the scene; a smaller card's eighth holds at most 2^25 slots, as before the
- * larger share), so that the scene keeps the rest: every stage launch pays
- * a fixed cost, its ramp and its last, unevenly loaded wave, which a step over more paths spreads
- * thinner (bench/README.md "The path pool", "Issue 41's table before and after"). Where the share
- * holds no more than POOL_SIZE_GPU, the GPU keeps that pool with windows of
- * WINDOW_PER_POOL_SMALL_GPU pools, the configuration measured best at that size. A CPU, whose
- * megakernel needs only a few paths per core, gets POOL_SIZE_CPU. Other than the large pool, a
- * pool (the default or the user's) may take half the memory. */
+ * larger share), so that the scene keeps the rest: every stage launch pays a fixed cost, its ramp
+ * and its last, unevenly loaded wave, which a step over more paths spreads thinner
+ * (bench/README.md "The path pool", "Issue 41's table before and after"). Where the share holds
+ * no more than POOL_SIZE_GPU, the GPU keeps that pool with windows of WINDOW_PER_POOL_SMALL_GPU
+ * pools, the configuration measured best at that size. A CPU, whose megakernel needs only a few
+ * paths per core, gets POOL_SIZE_CPU. Other than the large pool, a pool (the default or the
+ * user's) may take half the memory. */
 #define POOL_SIZE_GPU_LARGE (1u << 27)
 #define POOL_SIZE_GPU (1u << 21)
 #define POOL_SIZE_CPU (1u << 16)
